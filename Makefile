@@ -1,0 +1,29 @@
+# The two commands of the README:
+#   make demo   install what is missing, build (Release), render scenes/default.scene to default.png
+#   make test   the same install and build, then the whole test suite with CTest (on lavapipe
+#               when the machine has no GPU)
+BUILD ?= build
+JOBS ?= $(shell nproc)
+SCENE ?= scenes/default.scene
+OUT ?= default.png
+
+.PHONY: all deps configure build demo test clean
+all: build
+
+deps:
+	@scripts/install-deps.sh
+
+configure: deps
+	@cmake -S . -B $(BUILD) -DCMAKE_BUILD_TYPE=Release >/dev/null
+
+build: configure
+	@cmake --build $(BUILD) -j $(JOBS)
+
+demo: build
+	$(BUILD)/vkray render $(SCENE) -o $(OUT)
+
+test: build
+	cd $(BUILD) && ctest --output-on-failure --timeout 900 -j $(JOBS)
+
+clean:
+	rm -rf $(BUILD)

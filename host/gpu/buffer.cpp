@@ -1,0 +1,98 @@
+#include "gpu/buffer.h"
+
+#include <algorithm>
+#include <cstring>
+
+#include "core/error.h"
+
+namespace vkray::gpu {
+namespace {
+
+std::string mib(vk::DeviceSize bytes) {
+    return std::to_string((bytes + (1u << 20) - 1) >> 20) + " MiB";
+}
+
+}  // namespace
+
+Buffer::Buffer(const VulkanContext& ctx, vk::DeviceSize size, vk::BufferUsageFlags usage,
+               MemoryUse use, const std::string& what)
+    : size_(size) {
+    using MP = vk::MemoryPropertyFlagBits;
+    const auto& dev = ctx.device();
+    buffer_ = vk::raii::Buffer(dev, vk::BufferCreateInfo{.size = size, .usage = usage,
+                                                         .sharingMode = vk::SharingMode::eExclusive});
+    const vk::MemoryRequirements req = buffer_.getMemoryRequirements();
+    vk::MemoryPropertyFlags required, preferred;
+    switch (use) {
+        case MemoryUse::DeviceLocal: required = MP::eDeviceLocal; break;
+        case MemoryUse::Upload: required = MP::eHostVisible | MP::eHostCoherent; break;
+        case MemoryUse::Readback:
+            required = MP::eHostVisible | MP::eHostCoherent;
+            preferred = MP::eHostCached;
+            break;
+    }
+    const uint32_t type = ctx.findMemoryType(req.memoryTypeBits, required, preferred);
+    try {
+        memory_ = vk::raii::DeviceMemory(dev, vk::MemoryAllocateInfo{.allocationSize = req.size,
+                                                                     .memoryTypeIndex = type});
+    } catch (const vk::SystemError& e) {
+        throw Error("cannot allocate " + mib(size) + " of GPU memory for " + what + " on '" +
+                    ctx.info().name + "': " + e.what());
+    }
+    buffer_.bindMemory(*memory_, 0);
+    auto flags = ctx.physicalDevice().getMemoryProperties().memoryTypes[type].propertyFlags;
+    // Only coherent memory is written in place: it needs no flush/invalidate calls.
+    if ((flags & MP::eHostVisible) && (flags & MP::eHostCoherent))
+        mapped_ = memory_.mapMemory(0, VK_WHOLE_SIZE);
+}
+
+OneShotCommands::OneShotCommands(const VulkanContext& ctx) : ctx_(ctx) {
+    pool_ = vk::raii::CommandPool(ctx.device(),
+                                  vk::CommandPoolCreateInfo{.flags = vk::CommandPoolCreateFlagBits::eTransient,
+                                                            .queueFamilyIndex = ctx.queueFamily()});
+}
+
+const vk::raii::CommandBuffer& OneShotCommands::begin() {
+    vk::raii::CommandBuffers buffers(ctx_.device(),
+                                     vk::CommandBufferAllocateInfo{.commandPool = *pool_,
+                                                                   .level = vk::CommandBufferLevel::ePrimary,
+                                                                   .commandBufferCount = 1});
+    cmd_ = std::move(buffers[0]);
+    cmd_.begin(vk::CommandBufferBeginInfo{.flags = vk::CommandBufferUsageFlagBits::eOneTimeSubmit});
+    return cmd_;
+}
+
+void OneShotCommands::submitAndWait() {
+    cmd_.end();
+    vk::raii::Fence fence(ctx_.device(), vk::FenceCreateInfo{});
+    vk::CommandBuffer raw = *cmd_;
+    ctx_.queue().submit(vk::SubmitInfo{.commandBufferCount = 1, .pCommandBuffers = &raw}, *fence);
+    // No timeout: a long render is legitimate; the kernels bound their own loops.
+    while (ctx_.device().waitForFences(*fence, VK_TRUE, UINT64_MAX) == vk::Result::eTimeout) {
+    }
+}
+
+Buffer uploadStorageBuffer(const VulkanContext& ctx, const void* data, size_t bytes,
+                           const std::string& what) {
+    const vk::DeviceSize range = ctx.info().maxStorageBufferRange;
+    if (bytes > range)
+        throw Error("the scene's " + what + " need " + mib(bytes) + ", more than the " + mib(range) +
+                    " one storage buffer may hold on '" + ctx.info().name +
+                    "' (maxStorageBufferRange)");
+    const vk::DeviceSize size = std::max<vk::DeviceSize>(bytes, 16);
+    using BU = vk::BufferUsageFlagBits;
+    Buffer target(ctx, size, BU::eStorageBuffer | BU::eTransferDst, MemoryUse::DeviceLocal, what);
+    if (bytes == 0) return target;
+    if (target.hostVisible()) {
+        std::memcpy(target.mapped(), data, bytes);
+        return target;
+    }
+    Buffer staging(ctx, size, BU::eTransferSrc, MemoryUse::Upload, what + " (staging)");
+    std::memcpy(staging.mapped(), data, bytes);
+    OneShotCommands commands(ctx);
+    commands.begin().copyBuffer(staging.handle(), target.handle(), vk::BufferCopy{.size = bytes});
+    commands.submitAndWait();
+    return target;
+}
+
+}  // namespace vkray::gpu

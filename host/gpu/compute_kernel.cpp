@@ -1,0 +1,80 @@
+#include "gpu/compute_kernel.h"
+
+namespace vkray::gpu {
+
+ComputeKernel::ComputeKernel(const VulkanContext& ctx, std::span<const uint32_t> spirv,
+                             uint32_t storageBuffers, uint32_t pushConstantBytes,
+                             const Specialization& spec)
+    : ctx_(ctx), pushConstantBytes_(pushConstantBytes) {
+    const auto& dev = ctx.device();
+    module_ = vk::raii::ShaderModule(dev, vk::ShaderModuleCreateInfo{.codeSize = spirv.size_bytes(),
+                                                                     .pCode = spirv.data()});
+
+    std::vector<vk::DescriptorSetLayoutBinding> bindings;
+    for (uint32_t i = 0; i < storageBuffers; ++i)
+        bindings.push_back({.binding = i,
+                            .descriptorType = vk::DescriptorType::eStorageBuffer,
+                            .descriptorCount = 1,
+                            .stageFlags = vk::ShaderStageFlagBits::eCompute});
+    setLayout_ = vk::raii::DescriptorSetLayout(
+        dev, vk::DescriptorSetLayoutCreateInfo{.bindingCount = uint32_t(bindings.size()),
+                                               .pBindings = bindings.data()});
+
+    vk::PushConstantRange range{.stageFlags = vk::ShaderStageFlagBits::eCompute,
+                                .offset = 0, .size = pushConstantBytes};
+    vk::DescriptorSetLayout rawSetLayout = *setLayout_;
+    layout_ = vk::raii::PipelineLayout(
+        dev, vk::PipelineLayoutCreateInfo{.setLayoutCount = 1, .pSetLayouts = &rawSetLayout,
+                                          .pushConstantRangeCount = pushConstantBytes ? 1u : 0u,
+                                          .pPushConstantRanges = &range});
+
+    std::vector<vk::SpecializationMapEntry> entries;
+    std::vector<uint32_t> data;
+    for (auto [id, value] : spec.values) {
+        entries.push_back({.constantID = id, .offset = uint32_t(data.size() * 4), .size = 4});
+        data.push_back(value);
+    }
+    vk::SpecializationInfo specInfo{.mapEntryCount = uint32_t(entries.size()),
+                                    .pMapEntries = entries.data(),
+                                    .dataSize = data.size() * 4,
+                                    .pData = data.data()};
+    vk::ComputePipelineCreateInfo info{
+        .stage = {.stage = vk::ShaderStageFlagBits::eCompute, .module = *module_, .pName = "main",
+                  .pSpecializationInfo = &specInfo},
+        .layout = *layout_};
+    pipeline_ = vk::raii::Pipeline(dev, nullptr, info);
+
+    vk::DescriptorPoolSize poolSize{.type = vk::DescriptorType::eStorageBuffer,
+                                    .descriptorCount = storageBuffers};
+    pool_ = vk::raii::DescriptorPool(
+        dev, vk::DescriptorPoolCreateInfo{.flags = vk::DescriptorPoolCreateFlagBits::eFreeDescriptorSet,
+                                          .maxSets = 1, .poolSizeCount = 1, .pPoolSizes = &poolSize});
+    vk::raii::DescriptorSets sets(dev, vk::DescriptorSetAllocateInfo{.descriptorPool = *pool_,
+                                                                     .descriptorSetCount = 1,
+                                                                     .pSetLayouts = &rawSetLayout});
+    set_ = std::move(sets[0]);
+}
+
+void ComputeKernel::bindStorageBuffers(std::span<const vk::Buffer> buffers) {
+    std::vector<vk::DescriptorBufferInfo> infos;
+    infos.reserve(buffers.size());
+    for (vk::Buffer b : buffers) infos.push_back({.buffer = b, .offset = 0, .range = VK_WHOLE_SIZE});
+    std::vector<vk::WriteDescriptorSet> writes;
+    for (uint32_t i = 0; i < infos.size(); ++i)
+        writes.push_back({.dstSet = *set_, .dstBinding = i, .descriptorCount = 1,
+                          .descriptorType = vk::DescriptorType::eStorageBuffer,
+                          .pBufferInfo = &infos[i]});
+    ctx_.device().updateDescriptorSets(writes, nullptr);
+}
+
+void ComputeKernel::dispatch(const vk::raii::CommandBuffer& cmd, const void* pushConstants,
+                             uint32_t groupsX, uint32_t groupsY) const {
+    cmd.bindPipeline(vk::PipelineBindPoint::eCompute, *pipeline_);
+    cmd.bindDescriptorSets(vk::PipelineBindPoint::eCompute, *layout_, 0, *set_, nullptr);
+    if (pushConstantBytes_)
+        vkCmdPushConstants(*cmd, *layout_, VK_SHADER_STAGE_COMPUTE_BIT, 0, pushConstantBytes_,
+                           pushConstants);
+    cmd.dispatch(groupsX, groupsY, 1);
+}
+
+}  // namespace vkray::gpu

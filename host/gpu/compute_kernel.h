@@ -1,0 +1,45 @@
+// One compute kernel ready to dispatch: SPIR-V module, descriptor-set layout of N storage buffers,
+// push-constant range, pipeline specialised with constants, and its one descriptor set.
+#pragma once
+
+#include <cstdint>
+#include <span>
+#include <utility>
+#include <vector>
+
+#include <vulkan/vulkan_raii.hpp>
+
+#include "gpu/vulkan_context.h"
+
+namespace vkray::gpu {
+
+// Specialization constants, each a 32-bit value (bools as 0/1, as SPIR-V OpSpecConstantTrue/False
+// expect a VkBool32).
+struct Specialization {
+    std::vector<std::pair<uint32_t, uint32_t>> values;  // (constant_id, value)
+    void set(uint32_t id, uint32_t value) { values.emplace_back(id, value); }
+};
+
+class ComputeKernel {
+public:
+    ComputeKernel(const VulkanContext& ctx, std::span<const uint32_t> spirv, uint32_t storageBuffers,
+                  uint32_t pushConstantBytes, const Specialization& spec);
+
+    // Points binding i of the descriptor set at buffers[i] (whole range).
+    void bindStorageBuffers(std::span<const vk::Buffer> buffers);
+
+    void dispatch(const vk::raii::CommandBuffer& cmd, const void* pushConstants, uint32_t groupsX,
+                  uint32_t groupsY) const;
+
+private:
+    const VulkanContext& ctx_;
+    uint32_t pushConstantBytes_;
+    vk::raii::ShaderModule module_{nullptr};
+    vk::raii::DescriptorSetLayout setLayout_{nullptr};
+    vk::raii::PipelineLayout layout_{nullptr};
+    vk::raii::Pipeline pipeline_{nullptr};
+    vk::raii::DescriptorPool pool_{nullptr};
+    vk::raii::DescriptorSet set_{nullptr};
+};
+
+}  // namespace vkray::gpu

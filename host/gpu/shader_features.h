@@ -1,0 +1,29 @@
+// What the render kernel is specialised with for one scene: the features the scene does not need are
+// compiled out through specialization constants (shared/gpu_layout.h, VKRAY_SPEC_*), not skipped at
+// run time.
+#pragma once
+
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "gpu/compute_kernel.h"
+#include "scene/scene.h"
+
+namespace vkray::gpu {
+
+struct ShaderFeatures {
+    int maxDepth = 1;
+    bool reflection = false;         // a material reflects, or refracts (Fresnel reflection), and maxDepth > 1
+    bool refraction = false;         // a material transmits and maxDepth > 1
+    bool pointLights = false;
+    bool directionalLights = false;
+    bool smoothNormals = false;
+
+    static ShaderFeatures forScene(const Scene& scene, int maxDepth);
+    Specialization specialization() const;
+    // (name, compiled in) for --stats.
+    std::vector<std::pair<std::string, bool>> list() const;
+};
+
+}  // namespace vkray::gpu

@@ -1,0 +1,240 @@
+#include "gpu/vulkan_context.h"
+
+#include <algorithm>
+#include <atomic>
+#include <cctype>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <string_view>
+
+#include "core/error.h"
+
+namespace vkray::gpu {
+namespace {
+
+constexpr const char* kValidationLayer = "VK_LAYER_KHRONOS_validation";
+
+std::string versionString(uint32_t v) {
+    return std::to_string(VK_API_VERSION_MAJOR(v)) + "." + std::to_string(VK_API_VERSION_MINOR(v)) +
+           "." + std::to_string(VK_API_VERSION_PATCH(v));
+}
+
+std::string typeName(vk::PhysicalDeviceType t) {
+    switch (t) {
+        case vk::PhysicalDeviceType::eDiscreteGpu: return "discrete";
+        case vk::PhysicalDeviceType::eIntegratedGpu: return "integrated";
+        case vk::PhysicalDeviceType::eVirtualGpu: return "virtual";
+        case vk::PhysicalDeviceType::eCpu: return "cpu";
+        default: return "other";
+    }
+}
+
+// Default choice order: a real GPU before a software rasterizer.
+int typeRank(vk::PhysicalDeviceType t) {
+    switch (t) {
+        case vk::PhysicalDeviceType::eDiscreteGpu: return 0;
+        case vk::PhysicalDeviceType::eIntegratedGpu: return 1;
+        case vk::PhysicalDeviceType::eVirtualGpu: return 2;
+        case vk::PhysicalDeviceType::eCpu: return 3;
+        default: return 4;
+    }
+}
+
+std::optional<uint32_t> computeQueueFamily(const vk::raii::PhysicalDevice& pd) {
+    auto families = pd.getQueueFamilyProperties();
+    // Prefer a compute-only family (async compute on discrete GPUs), else any with compute.
+    for (uint32_t i = 0; i < families.size(); ++i)
+        if ((families[i].queueFlags & vk::QueueFlagBits::eCompute) &&
+            !(families[i].queueFlags & vk::QueueFlagBits::eGraphics))
+            return i;
+    for (uint32_t i = 0; i < families.size(); ++i)
+        if (families[i].queueFlags & vk::QueueFlagBits::eCompute) return i;
+    return std::nullopt;
+}
+
+DeviceInfo describe(const vk::raii::PhysicalDevice& pd, uint32_t index) {
+    DeviceInfo d;
+    d.index = index;
+    auto chain = pd.getProperties2<vk::PhysicalDeviceProperties2, vk::PhysicalDeviceDriverProperties>();
+    const auto& props = chain.get<vk::PhysicalDeviceProperties2>().properties;
+    const auto& drv = chain.get<vk::PhysicalDeviceDriverProperties>();
+    d.name = props.deviceName.data();
+    d.type = typeName(props.deviceType);
+    d.driver = std::string(drv.driverName.data());
+    if (drv.driverInfo[0] != '\0') d.driver += " / " + std::string(drv.driverInfo.data());
+    d.apiVersion = versionString(props.apiVersion);
+    d.maxStorageBufferRange = props.limits.maxStorageBufferRange;
+    d.timestampPeriodNs = props.limits.timestampPeriod;
+    auto mem = pd.getMemoryProperties();
+    for (uint32_t h = 0; h < mem.memoryHeapCount; ++h)
+        if (mem.memoryHeaps[h].flags & vk::MemoryHeapFlagBits::eDeviceLocal)
+            d.deviceLocalBytes = std::max<uint64_t>(d.deviceLocalBytes, mem.memoryHeaps[h].size);
+    d.hasCompute = computeQueueFamily(pd).has_value();
+    return d;
+}
+
+bool layerAvailable(const vk::raii::Context& ctx, const char* name) {
+    for (const auto& l : ctx.enumerateInstanceLayerProperties())
+        if (std::strcmp(l.layerName.data(), name) == 0) return true;
+    return false;
+}
+
+std::string lower(std::string s) {
+    std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return std::tolower(c); });
+    return s;
+}
+
+vk::raii::Instance createInstance(const vk::raii::Context& ctx, bool validation) {
+    std::vector<const char*> layers, extensions;
+    if (validation) {
+        if (!layerAvailable(ctx, kValidationLayer))
+            throw Error(std::string("validation was requested (VKRAY_VALIDATION=1) but ") +
+                        kValidationLayer + " is not installed (Debian package vulkan-validationlayers)");
+        layers.push_back(kValidationLayer);
+        extensions.push_back(VK_EXT_DEBUG_UTILS_EXTENSION_NAME);
+    }
+    vk::ApplicationInfo app{.pApplicationName = "vkray",
+                            .applicationVersion = VK_MAKE_API_VERSION(0, 0, 1, 0),
+                            .pEngineName = "vkray",
+                            .engineVersion = VK_MAKE_API_VERSION(0, 0, 1, 0),
+                            .apiVersion = VK_API_VERSION_1_1};
+    vk::InstanceCreateInfo info{.pApplicationInfo = &app,
+                                .enabledLayerCount = uint32_t(layers.size()),
+                                .ppEnabledLayerNames = layers.data(),
+                                .enabledExtensionCount = uint32_t(extensions.size()),
+                                .ppEnabledExtensionNames = extensions.data()};
+    try {
+        return vk::raii::Instance(ctx, info);
+    } catch (const vk::SystemError& e) {
+        throw Error(std::string("cannot create a Vulkan instance (is a Vulkan driver installed? "
+                                "Debian: mesa-vulkan-drivers): ") + e.what());
+    }
+}
+
+vk::raii::Context loadVulkan() {
+    try {
+        return vk::raii::Context();
+    } catch (const std::exception& e) {
+        throw Error(std::string("cannot load the Vulkan loader (Debian package libvulkan1): ") + e.what());
+    }
+}
+
+}  // namespace
+
+bool validationRequestedByEnvironment() {
+    const char* v = std::getenv("VKRAY_VALIDATION");
+    return v && std::string_view(v) != "" && std::string_view(v) != "0";
+}
+
+struct VulkanContext::Messenger {
+    std::atomic<uint32_t> errors{0};
+
+    static VKAPI_ATTR VkBool32 VKAPI_CALL callback(VkDebugUtilsMessageSeverityFlagBitsEXT severity,
+                                                   VkDebugUtilsMessageTypeFlagsEXT,
+                                                   const VkDebugUtilsMessengerCallbackDataEXT* data,
+                                                   void* user) {
+        auto* self = static_cast<Messenger*>(user);
+        if (severity & VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT) {
+            self->errors.fetch_add(1);
+            std::fprintf(stderr, "vulkan validation error: %s\n", data->pMessage);
+        } else if (severity & VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT) {
+            std::fprintf(stderr, "vulkan validation warning: %s\n", data->pMessage);
+        }
+        return VK_FALSE;
+    }
+};
+
+std::vector<DeviceInfo> VulkanContext::listDevices(bool validation) {
+    vk::raii::Context ctx = loadVulkan();
+    vk::raii::Instance instance = createInstance(ctx, validation);
+    vk::raii::PhysicalDevices devices(instance);
+    std::vector<DeviceInfo> out;
+    for (uint32_t i = 0; i < devices.size(); ++i) out.push_back(describe(devices[i], i));
+    return out;
+}
+
+VulkanContext::VulkanContext(const ContextOptions& options)
+    : context_(loadVulkan()), messengerState_(std::make_unique<Messenger>()) {
+    instance_ = createInstance(context_, options.validation);
+    if (options.validation) {
+        vk::DebugUtilsMessengerCreateInfoEXT info{
+            .messageSeverity = vk::DebugUtilsMessageSeverityFlagBitsEXT::eWarning |
+                               vk::DebugUtilsMessageSeverityFlagBitsEXT::eError,
+            .messageType = vk::DebugUtilsMessageTypeFlagBitsEXT::eGeneral |
+                           vk::DebugUtilsMessageTypeFlagBitsEXT::eValidation,
+            .pfnUserCallback = &Messenger::callback,
+            .pUserData = messengerState_.get()};
+        messenger_ = vk::raii::DebugUtilsMessengerEXT(instance_, info);
+    }
+
+    vk::raii::PhysicalDevices devices(instance_);
+    if (devices.empty())
+        throw Error("no Vulkan device found (for the CPU driver lavapipe install mesa-vulkan-drivers)");
+    std::vector<DeviceInfo> infos;
+    for (uint32_t i = 0; i < devices.size(); ++i) infos.push_back(describe(devices[i], i));
+
+    std::optional<uint32_t> chosen;
+    const std::string& want = options.device;
+    if (want.empty()) {
+        int bestRank = 1 << 30;
+        for (uint32_t i = 0; i < devices.size(); ++i) {
+            int rank = typeRank(devices[i].getProperties().deviceType);
+            if (infos[i].hasCompute && rank < bestRank) bestRank = rank, chosen = i;
+        }
+    } else if (std::all_of(want.begin(), want.end(), [](unsigned char c) { return std::isdigit(c); })) {
+        uint32_t idx = uint32_t(std::min<unsigned long>(std::stoul(want), 1ul << 30));
+        if (idx >= devices.size())
+            throw Error("--device " + want + ": there are only " + std::to_string(devices.size()) +
+                        " Vulkan devices (see `vkray devices`)");
+        chosen = idx;
+    } else {
+        for (uint32_t i = 0; i < devices.size() && !chosen; ++i)
+            if (lower(infos[i].name).find(lower(want)) != std::string::npos) chosen = i;
+        if (!chosen) throw Error("--device " + want + ": no Vulkan device name contains it (see `vkray devices`)");
+    }
+    if (!chosen) throw Error("no Vulkan device with a compute queue");
+    if (!infos[*chosen].hasCompute)
+        throw Error("Vulkan device '" + infos[*chosen].name + "' has no compute queue");
+
+    physical_ = std::move(devices[*chosen]);
+    info_ = infos[*chosen];
+    limits_ = physical_.getProperties().limits;
+    queueFamily_ = *computeQueueFamily(physical_);
+    timestampValidBits_ = physical_.getQueueFamilyProperties()[queueFamily_].timestampValidBits;
+
+    float priority = 1.0f;
+    vk::DeviceQueueCreateInfo queueInfo{.queueFamilyIndex = queueFamily_, .queueCount = 1,
+                                        .pQueuePriorities = &priority};
+    vk::DeviceCreateInfo deviceInfo{.queueCreateInfoCount = 1, .pQueueCreateInfos = &queueInfo};
+    device_ = vk::raii::Device(physical_, deviceInfo);
+    queue_ = vk::raii::Queue(device_, queueFamily_, 0);
+}
+
+VulkanContext::~VulkanContext() {
+    if (*device_) device_.waitIdle();
+}
+
+uint32_t VulkanContext::findMemoryType(uint32_t typeBits, vk::MemoryPropertyFlags required,
+                                       vk::MemoryPropertyFlags preferred) const {
+    auto mem = physical_.getMemoryProperties();
+    std::optional<uint32_t> fallback;
+    for (uint32_t i = 0; i < mem.memoryTypeCount; ++i) {
+        if (!(typeBits & (1u << i))) continue;
+        auto flags = mem.memoryTypes[i].propertyFlags;
+        if ((flags & required) != required) continue;
+        if ((flags & preferred) == preferred) return i;
+        if (!fallback) fallback = i;
+    }
+    if (!fallback) throw Error("Vulkan device '" + info_.name + "' has no suitable memory type");
+    return *fallback;
+}
+
+void VulkanContext::checkValidation() const {
+    uint32_t n = messengerState_->errors.load();
+    if (n > 0)
+        throw Error("the Vulkan validation layer reported " + std::to_string(n) +
+                    " error(s) (printed above)");
+}
+
+}  // namespace vkray::gpu

@@ -1,0 +1,76 @@
+// Headless Vulkan for compute: instance (with the Khronos validation layer when asked), physical
+// device choice, one logical device with one compute queue. Every handle is a vk::raii owner; every
+// failing call throws (vk::SystemError names the call and the result; GpuError wraps it for main()).
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <vulkan/vulkan_raii.hpp>
+
+namespace vkray::gpu {
+
+struct DeviceInfo {
+    uint32_t index = 0;
+    std::string name;
+    std::string type;          // "discrete", "integrated", "virtual", "cpu", "other"
+    std::string driver;        // driver name and info, e.g. "llvmpipe / Mesa 22.3.6"
+    std::string apiVersion;    // "1.3.230"
+    uint64_t maxStorageBufferRange = 0;
+    uint64_t deviceLocalBytes = 0;
+    float timestampPeriodNs = 0.0f;
+    bool hasCompute = false;
+};
+
+struct ContextOptions {
+    // Enable the Khronos validation layer; any validation error makes checkValidation() throw.
+    // Defaults to the environment variable VKRAY_VALIDATION=1.
+    bool validation = false;
+    std::string device;  // "" = best (discrete > integrated > virtual > cpu), "N" = index, else substring
+};
+
+bool validationRequestedByEnvironment();
+
+class VulkanContext {
+public:
+    explicit VulkanContext(const ContextOptions& options);
+    ~VulkanContext();
+    VulkanContext(const VulkanContext&) = delete;
+    VulkanContext& operator=(const VulkanContext&) = delete;
+
+    // Devices the loader sees (no logical device is created for this).
+    static std::vector<DeviceInfo> listDevices(bool validation);
+
+    const DeviceInfo& info() const { return info_; }
+    const vk::raii::Device& device() const { return device_; }
+    const vk::raii::PhysicalDevice& physicalDevice() const { return physical_; }
+    const vk::raii::Queue& queue() const { return queue_; }
+    uint32_t queueFamily() const { return queueFamily_; }
+    const vk::PhysicalDeviceLimits& limits() const { return limits_; }
+    uint32_t timestampValidBits() const { return timestampValidBits_; }
+
+    uint32_t findMemoryType(uint32_t typeBits, vk::MemoryPropertyFlags required,
+                            vk::MemoryPropertyFlags preferred = {}) const;
+
+    // Throws if the validation layer reported errors since the context was created.
+    void checkValidation() const;
+
+private:
+    struct Messenger;  // debug-utils callback state (counts validation errors)
+    vk::raii::Context context_;
+    std::unique_ptr<Messenger> messengerState_;
+    vk::raii::Instance instance_{nullptr};
+    vk::raii::DebugUtilsMessengerEXT messenger_{nullptr};
+    vk::raii::PhysicalDevice physical_{nullptr};
+    vk::raii::Device device_{nullptr};
+    vk::raii::Queue queue_{nullptr};
+    uint32_t queueFamily_ = 0;
+    uint32_t timestampValidBits_ = 0;
+    vk::PhysicalDeviceLimits limits_{};
+    DeviceInfo info_;
+};
+
+}  // namespace vkray::gpu

@@ -1,0 +1,15 @@
+// Options every renderer takes; the CLI fills them from the scene file and the command line.
+#pragma once
+
+#include <string>
+
+namespace vkray {
+
+struct RenderOptions {
+    int width = 0, height = 0;  // image size (the scene's `size` unless overridden)
+    int maxDepth = 5;           // primary rays count as depth 1
+    int threads = 0;            // CPU worker threads; 0 = all cores
+    std::string accel = "brute";
+};
+
+}  // namespace vkray

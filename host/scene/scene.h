@@ -1,0 +1,86 @@
+// In-memory scene: what the .scene parser (and the OBJ/MTL loader) produce, in world space,
+// and what every renderer and acceleration structure consumes. See ../shared/DESIGN.md for the
+// file format; triangle order here *is* the triangle identity of DESIGN.md ("Triangle identity").
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+namespace vkray {
+
+// Limits on what a scene or the command line may ask for: past them an image is an input error,
+// not an allocation failure (each side; the total bounds host and GPU memory for the AOVs).
+inline constexpr int kMaxImageSide = 16384;
+inline constexpr long long kMaxImagePixels = 1LL << 26;  // 8192 x 8192
+inline constexpr int kMaxDepthLimit = 64;
+
+// Material state of the .scene format (CSE167 conventions, seed 001), resolved at the time a
+// primitive is created: `reflect` already holds the specular colour when the scene never set it.
+struct Material {
+    glm::vec3 ambient{0.2f};
+    glm::vec3 diffuse{0.0f};
+    glm::vec3 specular{0.0f};
+    glm::vec3 emission{0.0f};
+    glm::vec3 reflect{0.0f};   // mirror weight per channel
+    glm::vec3 transmit{0.0f};  // refraction (transmission) weight per channel; 0 = opaque
+    float shininess = 1.0f;
+    float ior = 1.0f;          // index of refraction of the material's inside
+
+    bool reflects() const { return glm::any(glm::greaterThan(reflect, glm::vec3(0.0f))); }
+    bool refracts() const { return glm::any(glm::greaterThan(transmit, glm::vec3(0.0f))); }
+    bool operator==(const Material&) const = default;
+};
+
+struct Light {
+    enum class Type : uint32_t { Point = 0, Directional = 1 };
+    Type type = Type::Point;
+    glm::vec3 vector{0.0f};  // Point: world position. Directional: direction *towards* the light.
+    glm::vec3 color{1.0f};
+};
+
+struct Camera {
+    glm::vec3 eye{0.0f, 0.0f, 5.0f};
+    glm::vec3 center{0.0f};
+    glm::vec3 up{0.0f, 1.0f, 0.0f};
+    float fovyDegrees = 45.0f;
+};
+
+// One world-space triangle. `material` indexes Scene::materials.
+struct Triangle {
+    glm::vec3 p0, p1, p2;
+    uint32_t material = 0;
+};
+
+// Per-vertex shading normals of one triangle (unit length, world space).
+struct TriangleNormals {
+    glm::vec3 n0, n1, n2;
+};
+
+struct Scene {
+    std::filesystem::path sourceFile;  // the .scene file it came from (empty when built in code)
+
+    // Settings of the file; the CLI may override width/height/maxDepth.
+    int width = 640;
+    int height = 480;
+    int maxDepth = 5;            // primary rays count as depth 1
+    std::string output;          // `output NAME` as written in the file; empty if absent
+
+    Camera camera;
+    bool hasCamera = false;      // a scene without a `camera` line is an error at render time
+    glm::vec3 attenuation{1.0f, 0.0f, 0.0f};  // constant, linear, quadratic (point lights only)
+    std::vector<Light> lights;
+
+    std::vector<Material> materials;   // deduplicated: equal material states share one entry
+    std::vector<Triangle> triangles;   // in load order = triangle identity
+    // Either empty (every triangle flat-shaded with its geometric normal) or one entry per triangle;
+    // flat triangles then carry their geometric normal three times.
+    std::vector<TriangleNormals> normals;
+
+    bool hasSmoothNormals() const { return !normals.empty(); }
+};
+
+}  // namespace vkray

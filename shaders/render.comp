@@ -1,0 +1,91 @@
+// The render kernel: one invocation per pixel of one tile. Camera ray, closest hit, iterative
+// Whitted shading over a small stack of pending rays (GLSL has no recursion), primary-hit AOVs.
+#version 460
+#extension GL_GOOGLE_include_directive : require
+
+#include "include/bindings.glsl"
+#include "include/camera.glsl"
+#include "include/brute_force.glsl"
+#include "include/shading.glsl"
+
+layout(local_size_x = VKRAY_WORKGROUP_X, local_size_y = VKRAY_WORKGROUP_Y) in;
+
+// A ray waiting to be traced, with the product of the weights along its path (docs/shading.md).
+struct PendingRay {
+    vec3 origin;
+    vec3 dir;
+    vec3 weight;
+    int depth;  // primary rays have depth 1
+};
+
+// Depth-first, each ray pushes at most two children one level deeper and only below MAX_DEPTH,
+// so at most MAX_DEPTH rays are ever pending.
+PendingRay stack[MAX_DEPTH];
+int stackTop = 0;
+
+// Below this weight in every channel a secondary ray is not traced (docs/shading.md).
+const float kMinWeight = 1.0 / 1024.0;
+// Hang guard (lavapipe has no watchdog): far above the rays the weight cutoff lets a pixel spawn.
+const int kMaxRaysPerPixel = 1 << 16;
+
+void pushRay(vec3 origin, vec3 dir, vec3 weight, int depth) {
+    if (max(weight.r, max(weight.g, weight.b)) < kMinWeight) return;
+    stack[stackTop] = PendingRay(origin, dir, weight, depth);
+    ++stackTop;
+}
+
+// Reflected and refracted children of a hit (docs/shading.md, "Secondary rays").
+void spawnSecondaryRays(PendingRay ray, SurfacePoint s, GpuMaterial m) {
+    vec3 reflectWeight = m.reflect.rgb;
+    if (HAS_REFRACTION && any(greaterThan(m.transmit.rgb, vec3(0.0)))) {
+        const float ior = m.diffuseIor.w;
+        const float eta = s.front ? 1.0 / ior : ior;
+        const float cosi = clamp(dot(-ray.dir, s.normal), 0.0, 1.0);
+        float cost;
+        const float F = fresnelDielectric(cosi, eta, cost);
+        reflectWeight += m.transmit.rgb * F;
+        if (F < 1.0) {
+            const vec3 refracted = normalize(eta * ray.dir + (eta * cosi - cost) * s.normal);
+            pushRay(offsetRayOrigin(s.position, -s.facing), refracted,
+                    ray.weight * m.transmit.rgb * (1.0 - F), ray.depth + 1);
+        }
+    }
+    const vec3 reflected = reflect(ray.dir, s.normal);
+    pushRay(offsetRayOrigin(s.position, s.facing), reflected, ray.weight * reflectWeight, ray.depth + 1);
+}
+
+void main() {
+    const uvec2 local = gl_GlobalInvocationID.xy;
+    const uvec2 imageSize = params.imageTile.xy;
+    const uvec2 pixel = params.imageTile.zw + local;
+    if (local.x >= VKRAY_TILE_SIZE || local.y >= VKRAY_TILE_SIZE ||
+        any(greaterThanEqual(pixel, imageSize)))
+        return;
+    const uint outIndex = params.counts.z + local.y * params.counts.w + local.x;
+
+    float depthAov = kInfinity;
+    vec3 normalAov = vec3(0.0);
+    int primAov = -1;
+    vec3 radiance = vec3(0.0);
+
+    stack[0] = PendingRay(params.eye.xyz, primaryDirection(pixel, imageSize), vec3(1.0), 1);
+    stackTop = 1;
+    for (int rays = 0; stackTop > 0 && rays < kMaxRaysPerPixel; ++rays) {
+        --stackTop;
+        const PendingRay ray = stack[stackTop];
+        const Hit hit = traceClosest(ray.origin, ray.dir, kInfinity);
+        if (hit.triangle < 0) continue;  // no background: a miss adds nothing
+        const SurfacePoint s = surfaceAt(hit, ray.dir);
+        if (rays == 0) {
+            depthAov = hit.t;
+            normalAov = s.normal;
+            primAov = s.original;
+        }
+        const GpuMaterial m = materials[s.material];
+        radiance += ray.weight * localShading(s, m, -ray.dir);
+        if ((HAS_REFLECTION || HAS_REFRACTION) && ray.depth < MAX_DEPTH) spawnSecondaryRays(ray, s, m);
+    }
+
+    pixels[outIndex].colorDepth = vec4(radiance, depthAov);
+    pixels[outIndex].normalPrim = vec4(normalAov, intBitsToFloat(primAov));
+}

@@ -1,0 +1,57 @@
+# End-to-end runs of the vkray binary as a user runs it. Included from tests/CMakeLists.txt.
+set(CLI_DIR ${CMAKE_CURRENT_SOURCE_DIR}/cli)
+set(CLI_DATA ${CLI_DIR}/data)
+set(CLI_OUT ${CMAKE_BINARY_DIR}/test-output/cli)
+file(MAKE_DIRECTORY ${CLI_OUT})
+
+# Bad input: one "error: " line naming the cause (and file:line), a non-zero exit, never a crash.
+function(vkray_expect_error name pattern)
+  add_test(NAME cli.error.${name}
+           COMMAND ${CLI_DIR}/expect_error.sh "${pattern}" $<TARGET_FILE:vkray> ${ARGN})
+  set_tests_properties(cli.error.${name} PROPERTIES TIMEOUT 180 ENVIRONMENT "VKRAY_VALIDATION=1")
+endfunction()
+
+vkray_expect_error(missing_file "does_not_exist\\.scene" render ${CLI_DATA}/does_not_exist.scene)
+vkray_expect_error(unknown_command "unknown_command\\.scene:3.*frobnicate" render ${CLI_DATA}/unknown_command.scene)
+vkray_expect_error(too_few_args "too_few_args\\.scene:3" render ${CLI_DATA}/too_few_args.scene)
+vkray_expect_error(too_many_args "too_many_args\\.scene:3" render ${CLI_DATA}/too_many_args.scene)
+vkray_expect_error(non_numeric "non_numeric\\.scene:3.*abc" render ${CLI_DATA}/non_numeric.scene)
+vkray_expect_error(nan_coordinate "nan_coordinate\\.scene:3" render ${CLI_DATA}/nan_coordinate.scene)
+vkray_expect_error(inf_coordinate "inf_coordinate\\.scene:3" render ${CLI_DATA}/inf_coordinate.scene)
+vkray_expect_error(index_out_of_range "index_out_of_range\\.scene:6.*5" render ${CLI_DATA}/index_out_of_range.scene)
+vkray_expect_error(zero_size "zero_size\\.scene:2" render ${CLI_DATA}/zero_size.scene)
+vkray_expect_error(absurd_size "absurd_size\\.scene:2" render ${CLI_DATA}/absurd_size.scene)
+vkray_expect_error(negative_maxdepth "negative_maxdepth\\.scene:3" render ${CLI_DATA}/negative_maxdepth.scene)
+vkray_expect_error(no_triangles "no_triangles\\.scene.*no triangles" render ${CLI_DATA}/no_triangles.scene)
+vkray_expect_error(no_camera "no_camera\\.scene.*camera" render ${CLI_DATA}/no_camera.scene)
+vkray_expect_error(size_flag_zero "--size 0x0" render ${CLI_DATA}/one_triangle.scene --size 0x0 -o ${CLI_OUT}/x.png)
+vkray_expect_error(size_flag_absurd "--size 100000x100000" render ${CLI_DATA}/one_triangle.scene --size 100000x100000 -o ${CLI_OUT}/x.png)
+vkray_expect_error(size_flag_garbage "--size big" render ${CLI_DATA}/one_triangle.scene --size big -o ${CLI_OUT}/x.png)
+vkray_expect_error(maxdepth_flag "--maxdepth 0" render ${CLI_DATA}/one_triangle.scene --maxdepth 0 -o ${CLI_OUT}/x.png)
+vkray_expect_error(unknown_accel "--accel warp" render ${CLI_DATA}/one_triangle.scene --accel warp -o ${CLI_OUT}/x.png)
+vkray_expect_error(unknown_aov "unknown AOV 'albedo'" render ${CLI_DATA}/one_triangle.scene --aov albedo=a.pfm -o ${CLI_OUT}/x.png)
+vkray_expect_error(unknown_device "--device 999" render ${CLI_DATA}/one_triangle.scene --device 999 -o ${CLI_OUT}/x.png)
+vkray_expect_error(unwritable_output "${CLI_OUT}/no/such/dir/x\\.png" render ${CLI_DATA}/one_triangle.scene -o ${CLI_OUT}/no/such/dir/x.png)
+vkray_expect_error(compare_missing "missing\\.png" compare ${CLI_OUT}/missing.png ${CLI_OUT}/missing2.png)
+
+# Success paths: devices, a GPU render with AOVs, the CPU reference, and compare between them.
+add_test(NAME cli.devices COMMAND $<TARGET_FILE:vkray> devices)
+set_tests_properties(cli.devices PROPERTIES PASS_REGULAR_EXPRESSION "maxStorageBufferRange")
+add_test(NAME cli.render_gpu
+         COMMAND $<TARGET_FILE:vkray> render ${CMAKE_SOURCE_DIR}/scenes/default.scene --size 96x96
+                 -o ${CLI_OUT}/default-gpu.png --aov depth=${CLI_OUT}/depth.pfm
+                 --aov primid=${CLI_OUT}/primid.pfm --aov normal=${CLI_OUT}/normal.pfm --stats)
+set_tests_properties(cli.render_gpu PROPERTIES TIMEOUT 300 ENVIRONMENT "VKRAY_VALIDATION=1"
+  PASS_REGULAR_EXPRESSION "left out:" FIXTURES_SETUP default_renders)
+add_test(NAME cli.render_cpu
+         COMMAND $<TARGET_FILE:vkray> render ${CMAKE_SOURCE_DIR}/scenes/default.scene --size 96x96 --cpu
+                 -o ${CLI_OUT}/default-cpu.png --aov primid=${CLI_OUT}/primid-cpu.pfm)
+set_tests_properties(cli.render_cpu PROPERTIES TIMEOUT 300 FIXTURES_SETUP default_renders)
+add_test(NAME cli.compare_gpu_cpu
+         COMMAND $<TARGET_FILE:vkray> compare ${CLI_OUT}/default-gpu.png ${CLI_OUT}/default-cpu.png
+                 --max-rmse 0.02 --max-bad-fraction 0.005 --threshold 0.0314 --diff ${CLI_OUT}/default-diff.png)
+set_tests_properties(cli.compare_gpu_cpu PROPERTIES FIXTURES_REQUIRED default_renders)
+add_test(NAME cli.compare_primid_gpu_cpu
+         COMMAND $<TARGET_FILE:vkray> compare ${CLI_OUT}/primid.pfm ${CLI_OUT}/primid-cpu.pfm
+                 --threshold 0 --max-bad-fraction 0.001)
+set_tests_properties(cli.compare_primid_gpu_cpu PROPERTIES FIXTURES_REQUIRED default_renders)

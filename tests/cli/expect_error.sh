@@ -1,0 +1,18 @@
+#!/usr/bin/env bash
+# Runs a vkray command that must fail cleanly: a non-zero exit that is not a crash (signal) or a
+# time-out, and exactly one "error: " line on stderr that matches the expected pattern.
+# usage: expect_error.sh PATTERN COMMAND [ARGS...]
+set -u
+pattern=$1; shift
+err=$(mktemp); out=$(mktemp)
+trap 'rm -f "$err" "$out"' EXIT
+timeout 120 "$@" >"$out" 2>"$err"
+rc=$?
+fail() { echo "FAIL: $*"; echo "--- command: $*"; echo "--- stderr:"; cat "$err"; exit 1; }
+[[ $rc -eq 0 ]] && fail "exit code 0, expected an error"
+[[ $rc -eq 124 ]] && fail "timed out (a hang)"
+[[ $rc -ge 128 ]] && fail "killed by signal $((rc - 128)) (a crash)"
+n=$(grep -c '^error: ' "$err")
+[[ $n -eq 1 ]] || fail "expected exactly one 'error: ' line, got $n"
+grep -E -q -- "^error: .*${pattern}" "$err" || fail "error line does not match '$pattern'"
+echo "ok (exit $rc): $(grep '^error: ' "$err")"

@@ -1,0 +1,139 @@
+// The GPU renderer on scenes built in code: tiling, AOVs, depth semantics, device choice, limits.
+#include <cmath>
+#include <limits>
+
+#include <gtest/gtest.h>
+
+#include "core/error.h"
+#include "cpu/reference_renderer.h"
+#include "cpu/scene_builder.h"
+#include "gpu/buffer.h"
+#include "gpu/gpu_renderer.h"
+#include "gpu_test_util.h"
+
+namespace vkray {
+namespace {
+
+// A lit square filling the view, so every pixel has a distinct colour from the point light.
+Scene litSquare() {
+    Scene s = test::sceneLookingDownZ();
+    Material m = test::blackMaterial();
+    m.diffuse = glm::vec3(0.8f, 0.6f, 0.4f);
+    m.specular = glm::vec3(0.3f);
+    m.shininess = 20.0f;
+    test::addSquare(s, 0.0f, 10.0f, true, test::addMaterial(s, m));
+    test::addPointLight(s, {1.0f, 0.5f, 2.0f}, glm::vec3(1.0f));
+    return s;
+}
+
+TEST(GpuRenderer, TilesCoverTheImageInPlace) {
+    // 300x260 spans 2x2 tiles of 256: a tile written at the wrong offset or a missed edge would
+    // put wrong colours (or no hit) there.
+    const Scene s = litSquare();
+    RenderOptions o{.width = 300, .height = 260, .maxDepth = 1};
+    gpu::GpuRenderReport report;
+    const Frame g = gpu::renderOnGpu(test::gpuContext(), s, o, &report);
+    const Frame c = renderReference(s, o);
+    EXPECT_EQ(report.tiles, 4u);
+    ASSERT_EQ(g.color.size(), c.color.size());
+    for (size_t i = 0; i < g.color.size(); ++i) {
+        ASSERT_NE(g.primId[i], -1) << "pixel " << i << " not written";
+        for (int ch = 0; ch < 3; ++ch)
+            ASSERT_NEAR(g.color[i][ch], c.color[i][ch], 1e-4f) << "pixel " << i % 300 << "," << i / 300;
+    }
+}
+
+TEST(GpuRenderer, DepthAndPrimIdAovs) {
+    Scene s = litSquare();
+    RenderOptions o{.width = 33, .height = 33, .maxDepth = 1};
+    const Frame f = gpu::renderOnGpu(test::gpuContext(), s, o);
+    // The centre pixel of an odd image looks straight down -z: t = 5 exactly, on triangle 0 or 1
+    // (it lies on their shared diagonal).
+    const size_t centre = f.index(16, 16);
+    EXPECT_NEAR(f.depth[centre], 5.0f, 1e-5f);
+    EXPECT_TRUE(f.primId[centre] == 0 || f.primId[centre] == 1);
+    EXPECT_NEAR(f.normal[centre].z, 1.0f, 1e-6f);
+    // Pixels off the diagonal belong to one triangle; the lower-right half is triangle 0.
+    EXPECT_EQ(f.primId[f.index(30, 30)], 0);
+    EXPECT_EQ(f.primId[f.index(2, 2)], 1);
+}
+
+TEST(GpuRenderer, MissesAreBlackWithInfiniteDepth) {
+    Scene s = test::sceneLookingDownZ();
+    Material m;
+    m.ambient = glm::vec3(0.5f);
+    test::addSquare(s, 0.0f, 0.5f, true, test::addMaterial(s, m));  // small: corners miss
+    RenderOptions o{.width = 16, .height = 16, .maxDepth = 3};
+    const Frame f = gpu::renderOnGpu(test::gpuContext(), s, o);
+    const size_t corner = f.index(0, 0);
+    EXPECT_EQ(f.primId[corner], -1);
+    EXPECT_EQ(f.depth[corner], std::numeric_limits<float>::infinity());
+    EXPECT_EQ(f.color[corner], glm::vec3(0.0f));
+    EXPECT_NEAR(f.color[f.index(8, 8)].x, 0.5f, 1e-6f);
+}
+
+TEST(GpuRenderer, MaxDepthOneLeavesOutReflection) {
+    // A mirror facing the camera, with an emissive square behind the camera: visible only by
+    // reflection, so depth 1 shows black and depth 2 shows the emission.
+    Scene s = test::sceneLookingDownZ();
+    Material mirror = test::blackMaterial();
+    mirror.reflect = glm::vec3(1.0f);
+    test::addSquare(s, 0.0f, 10.0f, true, test::addMaterial(s, mirror));
+    Material glow = test::blackMaterial();
+    glow.emission = glm::vec3(0.25f, 0.5f, 0.75f);
+    test::addSquare(s, 10.0f, 30.0f, false, test::addMaterial(s, glow));
+    RenderOptions o{.width = 9, .height = 9, .maxDepth = 1};
+    gpu::GpuRenderReport report;
+    Frame f = gpu::renderOnGpu(test::gpuContext(), s, o, &report);
+    EXPECT_FALSE(report.features.reflection);
+    EXPECT_EQ(f.color[f.index(4, 4)], glm::vec3(0.0f));
+    o.maxDepth = 2;
+    f = gpu::renderOnGpu(test::gpuContext(), s, o, &report);
+    EXPECT_TRUE(report.features.reflection);
+    EXPECT_FALSE(report.features.refraction);
+    EXPECT_NEAR(f.color[f.index(4, 4)].z, 0.75f, 1e-6f);
+}
+
+TEST(GpuRenderer, FeaturesFollowTheScene) {
+    Scene s = litSquare();
+    auto f = gpu::ShaderFeatures::forScene(s, 5);
+    EXPECT_TRUE(f.pointLights);
+    EXPECT_FALSE(f.directionalLights);
+    EXPECT_FALSE(f.reflection);  // specular 0.3 but reflect 0: built in code, no CSE167 default
+    EXPECT_FALSE(f.refraction);
+    EXPECT_FALSE(f.smoothNormals);
+    Material glass = test::blackMaterial();
+    glass.transmit = glm::vec3(1.0f);
+    glass.ior = 1.5f;
+    test::addSquare(s, 1.0f, 0.1f, true, test::addMaterial(s, glass));
+    f = gpu::ShaderFeatures::forScene(s, 5);
+    EXPECT_TRUE(f.refraction);
+    EXPECT_TRUE(f.reflection);  // Fresnel reflection of glass
+    f = gpu::ShaderFeatures::forScene(s, 1);
+    EXPECT_FALSE(f.refraction);
+    EXPECT_FALSE(f.reflection);
+}
+
+TEST(GpuRenderer, DataBeyondMaxStorageBufferRangeIsAnError) {
+    const auto& ctx = test::gpuContext();
+    const size_t tooBig = size_t(ctx.info().maxStorageBufferRange) + 1;
+    try {
+        gpu::uploadStorageBuffer(ctx, nullptr, tooBig, "triangles");
+        FAIL() << "expected an error";
+    } catch (const Error& e) {
+        EXPECT_NE(std::string(e.what()).find("maxStorageBufferRange"), std::string::npos) << e.what();
+    }
+}
+
+TEST(GpuRenderer, UnknownDeviceIsAnError) {
+    EXPECT_THROW(gpu::VulkanContext({.validation = false, .device = "999"}), Error);
+    EXPECT_THROW(gpu::VulkanContext({.validation = false, .device = "no such device name"}), Error);
+}
+
+TEST(GpuRenderer, UnimplementedAcceleratorIsAnError) {
+    RenderOptions o{.width = 8, .height = 8, .maxDepth = 1, .accel = "kd-restart"};
+    EXPECT_THROW(gpu::renderOnGpu(test::gpuContext(), litSquare(), o), Error);
+}
+
+}  // namespace
+}  // namespace vkray
