@@ -1,0 +1,79 @@
+#include "cpu/reference_renderer.h"
+
+#include <mutex>
+#include <string>
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
+#include "core/error.h"
+#include "cpu/brute_force.h"
+#include "cpu/whitted.h"
+#include "scene/camera.h"
+
+namespace vkray {
+
+namespace {
+
+// What the shading code indexes without checking.
+void checkRenderable(const Scene& scene, const RenderOptions& options) {
+    if (!scene.hasCamera) throw Error("the scene has no camera");
+    if (options.maxDepth < 1)
+        throw Error("maxdepth " + std::to_string(options.maxDepth) + " is below 1");
+    if (scene.hasSmoothNormals() && scene.normals.size() != scene.triangles.size())
+        throw Error("the scene has " + std::to_string(scene.normals.size()) + " normal triples for " +
+                    std::to_string(scene.triangles.size()) + " triangles");
+    for (size_t k = 0; k < scene.triangles.size(); ++k)
+        if (scene.triangles[k].material >= scene.materials.size())
+            throw Error("triangle " + std::to_string(k) + " uses material " +
+                        std::to_string(scene.triangles[k].material) + " of " +
+                        std::to_string(scene.materials.size()));
+}
+
+}  // namespace
+
+Frame renderReference(const Scene& scene, const RenderOptions& options, const RenderProgress& progress) {
+    checkRenderable(scene, options);  // before building anything over a scene we cannot render
+    const cpu::BruteForceTracer tracer(scene);
+    return renderReference(scene, options, tracer, progress);
+}
+
+Frame renderReference(const Scene& scene, const RenderOptions& options, const cpu::Tracer& tracer,
+                      const RenderProgress& progress) {
+    checkRenderable(scene, options);
+    const CameraFrame camera = makeCameraFrame(scene.camera, options.width, options.height);
+    const cpu::WhittedIntegrator integrator(scene, tracer, options.maxDepth);
+
+    Frame frame;
+    frame.resize(options.width, options.height);
+    std::mutex progressMutex;
+    int rowsDone = 0;
+
+    // Every pixel is computed alone from the same inputs, so the image does not depend on how rows
+    // are spread over threads.
+    auto renderRows = [&](const tbb::blocked_range<int>& rows) {
+        for (int j = rows.begin(); j != rows.end(); ++j) {
+            for (int i = 0; i < frame.width; ++i) {
+                const cpu::Ray ray{camera.eye, primaryDirection(camera, i, j)};
+                const cpu::PixelSample px = integrator.sample(ray);
+                const size_t k = frame.index(i, j);
+                frame.color[k] = glm::vec3(px.radiance);
+                if (px.primary.found()) {
+                    frame.depth[k] = float(px.primary.t);  // the camera direction is unit length
+                    frame.primId[k] = px.primary.triangle;
+                    frame.normal[k] = glm::vec3(px.normal);
+                }
+            }
+            if (progress) {
+                const std::lock_guard lock(progressMutex);
+                progress(++rowsDone, frame.height);
+            }
+        }
+    };
+    tbb::task_arena arena(options.threads > 0 ? options.threads : tbb::task_arena::automatic);
+    arena.execute([&] { tbb::parallel_for(tbb::blocked_range<int>(0, frame.height), renderRows); });
+    return frame;
+}
+
+}  // namespace vkray

@@ -1,0 +1,38 @@
+// Whitted's recursion over a tracer (docs/shading.md, "Secondary rays" and "Depth and weights"),
+// for one camera ray at a time. The renderer loops it over pixels and threads.
+#pragma once
+
+#include "cpu/ray.h"
+#include "cpu/tracer.h"
+#include "scene/scene.h"
+
+namespace vkray::cpu {
+
+// What a camera ray produces: its radiance and the AOVs of its primary hit.
+struct PixelSample {
+    glm::dvec3 radiance{0.0};
+    Hit primary;                 // primary.found() == false on a miss
+    glm::dvec3 normal{0.0};      // N at the primary hit (facing the camera), 0 on a miss
+};
+
+class WhittedIntegrator {
+public:
+    // `scene` and `tracer` must outlive the integrator; maxDepth >= 1 (primary rays are depth 1).
+    WhittedIntegrator(const Scene& scene, const Tracer& tracer, int maxDepth);
+
+    PixelSample sample(const Ray& cameraRay) const;
+
+private:
+    // Adds weight ⊙ L(ray) to `radiance`, the form the GPU's iterative stack evaluates too.
+    void addRadiance(const Ray& ray, const Hit& hit, int depth, const glm::dvec3& weight,
+                     glm::dvec3& radiance) const;
+
+    const Scene& scene_;
+    const Tracer& tracer_;
+    int maxDepth_;
+};
+
+// The weight cutoff: a secondary ray whose weight is below 1/1024 in every channel is not traced.
+bool worthTracing(const glm::dvec3& weight);
+
+}  // namespace vkray::cpu

@@ -1,0 +1,84 @@
+// Camera rays (DESIGN.md, "Camera rays") against values computed by hand.
+#include <cmath>
+
+#include <gtest/gtest.h>
+
+#include "core/error.h"
+#include "scene/camera.h"
+
+namespace vkray {
+namespace {
+
+constexpr double kTol = 1e-15;
+
+void expectDir(const glm::dvec3& got, const glm::dvec3& unnormalised) {
+    const glm::dvec3 want = unnormalised / std::sqrt(glm::dot(unnormalised, unnormalised));
+    EXPECT_NEAR(got.x, want.x, kTol);
+    EXPECT_NEAR(got.y, want.y, kTol);
+    EXPECT_NEAR(got.z, want.z, kTol);
+}
+
+Camera cameraAt(glm::vec3 eye, glm::vec3 center, glm::vec3 up, float fovy) {
+    Camera c;
+    c.eye = eye;
+    c.center = center;
+    c.up = up;
+    c.fovyDegrees = fovy;
+    return c;
+}
+
+// 2x2, fovy 90 (tanX = tanY = 1), looking down -z: pixel centres at a, b = +-1/2.
+TEST(CameraRays, TwoByTwoLookingDownZ) {
+    const CameraFrame f = makeCameraFrame(cameraAt({0, 0, 0}, {0, 0, -1}, {0, 1, 0}, 90.0f), 2, 2);
+    EXPECT_EQ(f.w, glm::dvec3(0, 0, 1));
+    EXPECT_EQ(f.u, glm::dvec3(1, 0, 0));
+    EXPECT_EQ(f.v, glm::dvec3(0, 1, 0));
+    expectDir(primaryDirection(f, 0, 0), {-0.5, 0.5, -1});  // top left
+    expectDir(primaryDirection(f, 1, 0), {0.5, 0.5, -1});   // top right
+    expectDir(primaryDirection(f, 0, 1), {-0.5, -0.5, -1});
+    expectDir(primaryDirection(f, 1, 1), {0.5, -0.5, -1});
+}
+
+// An up vector that is not orthogonal to the view direction is orthogonalised, not used as is.
+TEST(CameraRays, UpIsOrthogonalised) {
+    const CameraFrame f = makeCameraFrame(cameraAt({0, 0, 0}, {0, 0, -1}, {0, 5, 1}, 90.0f), 2, 2);
+    EXPECT_NEAR(f.u.x, 1.0, kTol);
+    EXPECT_NEAR(f.v.y, 1.0, kTol);
+    expectDir(primaryDirection(f, 0, 0), {-0.5, 0.5, -1});
+}
+
+// 4x3, fovy 90: tanX = 4/3, so a = (4/3)((i + 1/2) - 2)/2 in {-1, -1/3, 1/3, 1} and
+// b = (3/2 - (j + 1/2))/(3/2) in {2/3, 0, -2/3}. Looking down +x from (1, 2, 3): w = -x, u = +z,
+// v = +y, so a direction is (1, b, a) before normalisation.
+TEST(CameraRays, FourByThreeLookingDownX) {
+    const CameraFrame f = makeCameraFrame(cameraAt({1, 2, 3}, {4, 2, 3}, {0, 1, 0}, 90.0f), 4, 3);
+    EXPECT_EQ(f.w, glm::dvec3(-1, 0, 0));
+    EXPECT_EQ(f.u, glm::dvec3(0, 0, 1));
+    EXPECT_EQ(f.v, glm::dvec3(0, 1, 0));
+    EXPECT_NEAR(f.tanX, 4.0 / 3.0, kTol);
+    expectDir(primaryDirection(f, 0, 0), {1, 2.0 / 3.0, -1});
+    expectDir(primaryDirection(f, 3, 1), {1, 0, 1});
+    expectDir(primaryDirection(f, 1, 2), {1, -2.0 / 3.0, -1.0 / 3.0});
+    expectDir(primaryDirection(f, 2, 0), {1, 2.0 / 3.0, 1.0 / 3.0});
+}
+
+// With an odd size the centre pixel's a and b are exactly 0: the direction is -w, bit for bit.
+TEST(CameraRays, CentrePixelOfOddSizeIsMinusW) {
+    const CameraFrame f = makeCameraFrame(cameraAt({0, 0, 5}, {0, 0, 0}, {0, 1, 0}, 45.0f), 5, 3);
+    EXPECT_EQ(primaryDirection(f, 2, 1), -f.w);
+    const CameraFrame g = makeCameraFrame(cameraAt({1, 2, 3}, {4, 2, 3}, {0, 1, 0}, 30.0f), 3, 7);
+    EXPECT_EQ(primaryDirection(g, 1, 3), -g.w);
+    // Oblique view: -w up to the rounding of renormalising an already unit vector.
+    const CameraFrame h = makeCameraFrame(cameraAt({1, 1, 1}, {0, 0, 0}, {0, 1, 0}, 60.0f), 3, 3);
+    expectDir(primaryDirection(h, 1, 1), {-1, -1, -1});
+}
+
+TEST(CameraRays, DegenerateCameraIsAnError) {
+    EXPECT_THROW(makeCameraFrame(cameraAt({0, 0, 0}, {0, 0, 0}, {0, 1, 0}, 45.0f), 2, 2), Error);
+    EXPECT_THROW(makeCameraFrame(cameraAt({0, 0, 0}, {0, 1, 0}, {0, 1, 0}, 45.0f), 2, 2), Error);
+    EXPECT_THROW(makeCameraFrame(cameraAt({0, 0, 0}, {0, 0, -1}, {0, 1, 0}, 180.0f), 2, 2), Error);
+    EXPECT_THROW(makeCameraFrame(cameraAt({0, 0, 0}, {0, 0, -1}, {0, 1, 0}, 45.0f), 0, 2), Error);
+}
+
+}  // namespace
+}  // namespace vkray
