@@ -1,0 +1,28 @@
+// Mesh files named by `geo FILE` / `obj FILE` in a .scene: one entry point that picks the reader by
+// the file extension, so a new format (a .off reader, say) is one function and one table row.
+#pragma once
+
+#include <filesystem>
+#include <string>
+
+#include "core/error.h"
+#include "scene/scene.h"
+#include "scene/scene_builder.h"
+#include "scene/transform.h"
+
+namespace vkray {
+
+// What the scene line asks a mesh reader to do.
+struct MeshRequest {
+    std::filesystem::path file;  // resolved against the including scene file's directory
+    std::string displayName;     // how error messages name the file (the resolved path)
+    FileLoc requestedAt;         // the scene line, for errors that concern the file as a whole
+    Transform toWorld;           // the current transform at that line
+    Material defaultMaterial;    // the scene's material state, for faces the file gives none
+};
+
+// Appends the file's triangles in file order. Throws vkray::Error for an unsupported extension,
+// an unreadable file or bad content.
+void loadMeshFile(const MeshRequest& request, SceneBuilder& out);
+
+}  // namespace vkray

@@ -1,0 +1,39 @@
+#include "scene/scene_line.h"
+
+#include "core/error.h"
+
+namespace vkray {
+
+SceneLine::SceneLine(const std::string& file, int number, std::vector<Token> tokens)
+    : file_(file), number_(number), tokens_(std::move(tokens)) {}
+
+std::string SceneLine::argName(size_t arg) const {
+    return "argument " + std::to_string(arg) + " of '" + std::string(command()) + "'";
+}
+
+void SceneLine::fail(const std::string& what, size_t arg) const {
+    const int col = arg < tokens_.size() ? tokens_[arg].col : tokens_[0].col;
+    throw Error(FileLoc{file_, number_, col}, what);
+}
+
+float SceneLine::number(size_t arg) const {
+    float value = 0.0f;
+    const NumberStatus status = parseFloat(text(arg), value);
+    if (status != NumberStatus::Ok)
+        fail(describeNumberError(status, text(arg), argName(arg), "a number"), arg);
+    return value;
+}
+
+int64_t SceneLine::integer(size_t arg) const {
+    int64_t value = 0;
+    const NumberStatus status = parseInt(text(arg), value);
+    if (status != NumberStatus::Ok)
+        fail(describeNumberError(status, text(arg), argName(arg), "an integer"), arg);
+    return value;
+}
+
+glm::vec3 SceneLine::vec3(size_t firstArg) const {
+    return glm::vec3(number(firstArg), number(firstArg + 1), number(firstArg + 2));
+}
+
+}  // namespace vkray

@@ -1,0 +1,43 @@
+// One command line of a .scene file with typed access to its arguments. Every accessor throws
+// vkray::Error at file:line:col of the offending token, with the command named in the message.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "scene/text_input.h"
+
+namespace vkray {
+
+class SceneLine {
+public:
+    // `tokens` is non-empty; tokens[0] is the command.
+    SceneLine(const std::string& file, int number, std::vector<Token> tokens);
+
+    std::string_view command() const { return tokens_[0].text; }
+    size_t argCount() const { return tokens_.size() - 1; }
+    int number() const { return number_; }
+    const std::string& file() const { return file_; }
+
+    // Arguments are 1-based, as in the messages ("argument 2 of 'vertex'").
+    std::string_view text(size_t arg) const { return tokens_.at(arg).text; }
+    float number(size_t arg) const;
+    int64_t integer(size_t arg) const;
+    glm::vec3 vec3(size_t firstArg) const;  // arguments firstArg .. firstArg + 2
+
+    // Fails at argument `arg` (its column; 0 = the command itself).
+    [[noreturn]] void fail(const std::string& what, size_t arg = 0) const;
+
+private:
+    std::string argName(size_t arg) const;
+
+    const std::string& file_;
+    int number_;
+    std::vector<Token> tokens_;
+};
+
+}  // namespace vkray

@@ -1,0 +1,380 @@
+#include "scene/scene_parser.h"
+
+#include <algorithm>
+#include <cctype>
+#include <iterator>
+#include <optional>
+#include <vector>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "core/error.h"
+#include "scene/mesh_file.h"
+#include "scene/scene_builder.h"
+#include "scene/scene_line.h"
+#include "scene/sphere.h"
+#include "scene/text_input.h"
+#include "scene/transform.h"
+
+namespace vkray {
+namespace {
+
+// The material commands' state. `reflect` is kept apart because, until a `reflect` line sets it,
+// it follows the specular colour (the CSE167 convention of DESIGN.md).
+struct MaterialState {
+    Material base;
+    std::optional<glm::vec3> reflect;
+
+    Material resolve() const {
+        Material m = base;
+        m.reflect = reflect ? *reflect : base.specular;
+        return m;
+    }
+};
+
+class Parser {
+public:
+    Parser(Scene& scene, std::string file, std::filesystem::path baseDir)
+        : file_(std::move(file)), baseDir_(std::move(baseDir)), out_(scene), transforms_(1) {}
+
+    void parseLine(std::string_view text, int number);
+
+private:
+    enum class Kind { Numbers, Integers, FileName, Nothing };
+    struct Command {
+        std::string_view name;
+        size_t args;
+        Kind kind;
+        std::string_view usage;
+        void (Parser::*run)(const SceneLine&);
+    };
+    static const Command kCommands[];
+
+    Scene& scene() { return out_.scene(); }
+    const Transform& transform() const { return transforms_.back(); }
+    void then(const glm::dmat4& m) { transforms_.back() = transforms_.back().then(m); }
+    uint32_t currentMaterial();
+    void materialChanged() { materialIndex_.reset(); }
+    void checkArgCount(const Command& c, const SceneLine& line) const;
+    [[noreturn]] void unknownCommand(const SceneLine& line) const;
+    uint32_t vertexIndex(const SceneLine& line, size_t arg, size_t count, const char* noun) const;
+    void added(bool ok, const SceneLine& line) const;
+
+    void size(const SceneLine&);
+    void output(const SceneLine& l) { scene().output = std::string(l.text(1)); }
+    void maxdepth(const SceneLine&);
+    void camera(const SceneLine&);
+    void light(const SceneLine&);
+    void attenuation(const SceneLine&);
+    void colour(const SceneLine&);
+    void shininess(const SceneLine&);
+    void refract(const SceneLine&);
+    void maxCount(const SceneLine&);
+    void vertex(const SceneLine& l) { vertices_.push_back(glm::dvec3(l.vec3(1))); }
+    void tri(const SceneLine&);
+    void vertexNormal(const SceneLine&);
+    void triNormal(const SceneLine&);
+    void sphere(const SceneLine&);
+    void sphereSteps(const SceneLine&);
+    void translate(const SceneLine& l) { then(glm::translate(glm::dmat4(1.0), glm::dvec3(l.vec3(1)))); }
+    void rotate(const SceneLine&);
+    void scale(const SceneLine&);
+    void pushTransform(const SceneLine&) { transforms_.push_back(transform()); }
+    void popTransform(const SceneLine&);
+    void geo(const SceneLine&);
+
+    std::string file_;
+    std::filesystem::path baseDir_;
+    SceneBuilder out_;
+    MaterialState material_;
+    std::optional<uint32_t> materialIndex_;
+    std::vector<Transform> transforms_;  // back() is current; the first entry is never popped
+    std::vector<glm::dvec3> vertices_;
+    std::vector<std::pair<glm::dvec3, glm::dvec3>> normalVertices_;  // position, normal
+    int sphereSteps_ = kDefaultSphereSteps;
+};
+
+const Parser::Command Parser::kCommands[] = {
+    {"size", 2, Kind::Integers, "width height", &Parser::size},
+    {"output", 1, Kind::FileName, "", &Parser::output},
+    {"maxdepth", 1, Kind::Integers, "depth", &Parser::maxdepth},
+    {"camera", 10, Kind::Numbers, "eye xyz, centre xyz, up xyz, fovy", &Parser::camera},
+    {"point", 6, Kind::Numbers, "x y z r g b", &Parser::light},
+    {"directional", 6, Kind::Numbers, "x y z r g b", &Parser::light},
+    {"attenuation", 3, Kind::Numbers, "constant linear quadratic", &Parser::attenuation},
+    {"ambient", 3, Kind::Numbers, "r g b", &Parser::colour},
+    {"diffuse", 3, Kind::Numbers, "r g b", &Parser::colour},
+    {"specular", 3, Kind::Numbers, "r g b", &Parser::colour},
+    {"emission", 3, Kind::Numbers, "r g b", &Parser::colour},
+    {"reflect", 3, Kind::Numbers, "r g b", &Parser::colour},
+    {"shininess", 1, Kind::Numbers, "s", &Parser::shininess},
+    {"refract", 4, Kind::Numbers, "ior tr tg tb", &Parser::refract},
+    {"maxverts", 1, Kind::Integers, "n", &Parser::maxCount},
+    {"maxvertnorms", 1, Kind::Integers, "n", &Parser::maxCount},
+    {"vertex", 3, Kind::Numbers, "x y z", &Parser::vertex},
+    {"tri", 3, Kind::Integers, "vertex indices i j k", &Parser::tri},
+    {"vertexnormal", 6, Kind::Numbers, "x y z nx ny nz", &Parser::vertexNormal},
+    {"trinormal", 3, Kind::Integers, "vertexnormal indices i j k", &Parser::triNormal},
+    {"sphere", 4, Kind::Numbers, "x y z radius", &Parser::sphere},
+    {"spheresteps", 1, Kind::Integers, "n", &Parser::sphereSteps},
+    {"translate", 3, Kind::Numbers, "x y z", &Parser::translate},
+    {"rotate", 4, Kind::Numbers, "axis x y z, degrees", &Parser::rotate},
+    {"scale", 3, Kind::Numbers, "x y z", &Parser::scale},
+    {"pushTransform", 0, Kind::Nothing, "", &Parser::pushTransform},
+    {"popTransform", 0, Kind::Nothing, "", &Parser::popTransform},
+    {"geo", 1, Kind::FileName, "", &Parser::geo},
+    {"obj", 1, Kind::FileName, "", &Parser::geo},
+};
+
+void Parser::parseLine(std::string_view text, int number) {
+    std::vector<Token> tokens = tokenize(text);
+    if (tokens.empty()) return;  // blank or comment
+    const SceneLine line(file_, number, std::move(tokens));
+    for (const Command& c : kCommands) {
+        if (c.name == line.command()) {
+            checkArgCount(c, line);
+            (this->*c.run)(line);
+            return;
+        }
+    }
+    unknownCommand(line);
+}
+
+void Parser::checkArgCount(const Command& c, const SceneLine& line) const {
+    if (line.argCount() == c.args) return;
+    const bool one = c.args == 1;
+    std::string expected;
+    switch (c.kind) {
+        case Kind::Numbers:
+            expected = std::to_string(c.args) + (one ? " number" : " numbers");
+            break;
+        case Kind::Integers:
+            expected = std::to_string(c.args) + (one ? " integer" : " integers");
+            break;
+        case Kind::FileName:
+            expected = "1 file name";
+            break;
+        case Kind::Nothing:
+            expected = "no arguments";
+            break;
+    }
+    const std::string usage = c.usage.empty() ? "" : " (" + std::string(c.usage) + ")";
+    line.fail("expected " + expected + " after '" + std::string(c.name) + "'" + usage + ", got " +
+                  std::to_string(line.argCount()),
+              line.argCount() > c.args ? c.args + 1 : 0);
+}
+
+void Parser::unknownCommand(const SceneLine& line) const {
+    const auto lower = [](std::string_view s) {
+        std::string r(s);
+        std::transform(r.begin(), r.end(), r.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+        return r;
+    };
+    for (const Command& c : kCommands)
+        if (lower(c.name) == lower(line.command()))
+            line.fail("unknown command '" + std::string(line.command()) + "' (did you mean '" +
+                      std::string(c.name) + "'? commands are case-sensitive)");
+    line.fail("unknown command '" + std::string(line.command()) + "'");
+}
+
+uint32_t Parser::currentMaterial() {
+    if (!materialIndex_) materialIndex_ = out_.material(material_.resolve());
+    return *materialIndex_;
+}
+
+uint32_t Parser::vertexIndex(const SceneLine& line, size_t arg, size_t count, const char* noun) const {
+    const int64_t i = line.integer(arg);
+    if (i < 0 || uint64_t(i) >= count) {
+        const std::string defined =
+            count == 0 ? std::string("none defined yet")
+                       : std::to_string(count) + " defined, valid 0.." + std::to_string(count - 1);
+        line.fail(std::string(noun) + " index " + std::to_string(i) + " out of range (" + defined + ")", arg);
+    }
+    return uint32_t(i);
+}
+
+void Parser::added(bool ok, const SceneLine& line) const {
+    if (!ok) line.fail("the transformed geometry does not fit a 32-bit float (coordinates overflow)");
+}
+
+void Parser::size(const SceneLine& line) {
+    const int64_t w = line.integer(1), h = line.integer(2);
+    if (w < 1 || h < 1 || w > kMaxImageSide || h > kMaxImageSide || w * h > kMaxImagePixels)
+        line.fail("image size " + std::to_string(w) + "x" + std::to_string(h) +
+                      " is invalid: each side must be 1.." + std::to_string(kMaxImageSide) +
+                      " and the total at most " + std::to_string(kMaxImagePixels) + " pixels (2^26)",
+                  w < 1 || w > kMaxImageSide ? 1 : 2);
+    scene().width = int(w);
+    scene().height = int(h);
+}
+
+void Parser::maxdepth(const SceneLine& line) {
+    const int64_t d = line.integer(1);
+    if (d < 1 || d > kMaxDepthLimit)
+        line.fail("maxdepth " + std::to_string(d) + " is outside 1.." + std::to_string(kMaxDepthLimit), 1);
+    scene().maxDepth = int(d);
+}
+
+void Parser::camera(const SceneLine& line) {
+    Camera c{line.vec3(1), line.vec3(4), line.vec3(7), line.number(10)};
+    if (!(c.fovyDegrees > 0.0f && c.fovyDegrees < 180.0f))
+        line.fail("camera fovy " + std::string(line.text(10)) + " is outside (0, 180) degrees", 10);
+    const glm::dvec3 back = glm::dvec3(c.eye) - glm::dvec3(c.center);
+    if (glm::length(back) == 0.0) line.fail("camera eye and look-at centre coincide", 1);
+    const glm::dvec3 up(c.up);
+    // The same test as makeCameraFrame (camera.cpp), reported here with the line.
+    if (glm::length(glm::cross(up, glm::normalize(back))) <= 1e-9 * glm::length(up) || glm::length(up) == 0.0)
+        line.fail("camera up vector is zero or parallel to the viewing direction", 7);
+    scene().camera = c;
+    scene().hasCamera = true;
+}
+
+void Parser::light(const SceneLine& line) {
+    Light l;
+    l.type = line.command() == "point" ? Light::Type::Point : Light::Type::Directional;
+    l.vector = line.vec3(1);
+    l.color = line.vec3(4);
+    if (l.type == Light::Type::Directional && l.vector == glm::vec3(0.0f))
+        line.fail("directional light direction is the zero vector", 1);
+    scene().lights.push_back(l);
+}
+
+void Parser::attenuation(const SceneLine& line) {
+    const glm::vec3 a = line.vec3(1);
+    if (a.x < 0.0f || a.y < 0.0f || a.z < 0.0f || a == glm::vec3(0.0f))
+        line.fail("attenuation needs non-negative coefficients, not all zero", 1);
+    scene().attenuation = a;
+}
+
+void Parser::colour(const SceneLine& line) {
+    const glm::vec3 c = line.vec3(1);
+    const std::string_view name = line.command();
+    if (name == "ambient")
+        material_.base.ambient = c;
+    else if (name == "diffuse")
+        material_.base.diffuse = c;
+    else if (name == "specular")
+        material_.base.specular = c;
+    else if (name == "emission")
+        material_.base.emission = c;
+    else
+        material_.reflect = c;  // "reflect"
+    materialChanged();
+}
+
+void Parser::shininess(const SceneLine& line) {
+    const float s = line.number(1);
+    if (s < 0.0f) line.fail("shininess " + std::string(line.text(1)) + " is negative", 1);
+    material_.base.shininess = s;
+    materialChanged();
+}
+
+void Parser::refract(const SceneLine& line) {
+    const float ior = line.number(1);
+    if (!(ior > 0.0f)) line.fail("index of refraction " + std::string(line.text(1)) + " must be positive", 1);
+    material_.base.ior = ior;
+    material_.base.transmit = line.vec3(2);
+    materialChanged();
+}
+
+void Parser::maxCount(const SceneLine& line) {
+    // Only a size hint in CSE167 files; vertices beyond it are accepted.
+    const int64_t n = line.integer(1);
+    if (n < 0) line.fail(std::string(line.command()) + " " + std::to_string(n) + " is negative", 1);
+    if (line.command() == "maxverts")
+        vertices_.reserve(size_t(std::min<int64_t>(n, 1 << 20)));
+    else
+        normalVertices_.reserve(size_t(std::min<int64_t>(n, 1 << 20)));
+}
+
+void Parser::tri(const SceneLine& line) {
+    TriPoints p;
+    for (size_t k = 0; k < 3; ++k)
+        p[k] = transform().point(vertices_[vertexIndex(line, k + 1, vertices_.size(), "vertex")]);
+    added(out_.addFlat(p, currentMaterial()), line);
+}
+
+void Parser::vertexNormal(const SceneLine& line) {
+    const glm::dvec3 n(line.vec3(4));
+    if (n == glm::dvec3(0.0)) line.fail("vertexnormal normal is the zero vector", 4);
+    normalVertices_.emplace_back(glm::dvec3(line.vec3(1)), n);
+}
+
+void Parser::triNormal(const SceneLine& line) {
+    TriPoints p, n;
+    for (size_t k = 0; k < 3; ++k) {
+        const auto& [position, normal] =
+            normalVertices_[vertexIndex(line, k + 1, normalVertices_.size(), "vertexnormal")];
+        p[k] = transform().point(position);
+        n[k] = transform().normal(normal);
+    }
+    added(out_.addSmooth(p, n, currentMaterial()), line);
+}
+
+void Parser::sphere(const SceneLine& line) {
+    const glm::dvec3 centre(line.vec3(1));
+    const float r = line.number(4);
+    if (!(r > 0.0f)) line.fail("sphere radius " + std::string(line.text(4)) + " must be positive", 4);
+    added(appendSphere(out_, transform(), centre, r, sphereSteps_, currentMaterial()), line);
+}
+
+void Parser::sphereSteps(const SceneLine& line) {
+    const int64_t n = line.integer(1);
+    if (n < kMinSphereSteps || n > kMaxSphereSteps)
+        line.fail("spheresteps " + std::to_string(n) + " is outside " + std::to_string(kMinSphereSteps) +
+                      ".." + std::to_string(kMaxSphereSteps),
+                  1);
+    sphereSteps_ = int(n);
+}
+
+void Parser::rotate(const SceneLine& line) {
+    const glm::dvec3 axis(line.vec3(1));
+    const double degrees = line.number(4);
+    if (axis == glm::dvec3(0.0)) line.fail("rotate axis is the zero vector", 1);
+    then(glm::rotate(glm::dmat4(1.0), glm::radians(degrees), glm::normalize(axis)));
+}
+
+void Parser::scale(const SceneLine& line) {
+    const glm::dvec3 s(line.vec3(1));
+    for (int k = 0; k < 3; ++k)
+        if (s[k] == 0.0) line.fail("scale factor 0 would flatten the geometry (no normals)", size_t(k) + 1);
+    then(glm::scale(glm::dmat4(1.0), s));
+}
+
+void Parser::popTransform(const SceneLine& line) {
+    if (transforms_.size() == 1) line.fail("popTransform without a matching pushTransform");
+    transforms_.pop_back();
+}
+
+void Parser::geo(const SceneLine& line) {
+    const std::filesystem::path file = baseDir_ / std::filesystem::path(std::string(line.text(1)));
+    MeshRequest request{file, file.lexically_normal().string(), FileLoc{file_, line.number(), 0}, transform(),
+                        material_.resolve()};
+    loadMeshFile(request, out_);
+}
+
+Scene parseText(std::string_view text, const std::string& displayName, const std::filesystem::path& baseDir) {
+    Scene scene;
+    Parser parser(scene, displayName, baseDir);
+    forEachLine(text, displayName, TextCheck::Utf8,
+                [&](std::string_view line, int number) { parser.parseLine(line, number); });
+    return scene;
+}
+
+}  // namespace
+
+Scene parseScene(std::istream& in, const std::string& displayName, const std::filesystem::path& baseDir) {
+    const std::string text{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+    if (in.bad()) throw Error(FileLoc{displayName}, "cannot read scene file");
+    return parseText(text, displayName, baseDir);
+}
+
+Scene loadScene(const std::filesystem::path& file) {
+    const std::optional<std::string> text = readFileBytes(file);
+    if (!text) throw Error(FileLoc{file.string()}, "cannot open scene file");
+    Scene scene = parseText(*text, file.string(), file.parent_path());
+    scene.sourceFile = file;
+    return scene;
+}
+
+}  // namespace vkray

@@ -1,0 +1,203 @@
+#include "scene/text_input.h"
+
+#include <charconv>
+#include <cmath>
+#include <fstream>
+#include <limits>
+#include <sstream>
+#include <system_error>
+
+#include "core/error.h"
+
+namespace vkray {
+namespace {
+
+std::string hexByte(unsigned char c) {
+    const char* digits = "0123456789ABCDEF";
+    return std::string("0x") + digits[c >> 4] + digits[c & 15];
+}
+
+bool isAllowedControl(unsigned char c) { return c == '\t' || c == '\r' || c == '\v' || c == '\f'; }
+
+// Length of the UTF-8 sequence starting at s[i], or 0 when it is invalid (overlong forms,
+// surrogates and code points above U+10FFFF included), following RFC 3629's byte table.
+size_t utf8SequenceLength(std::string_view s, size_t i) {
+    const auto byte = [&](size_t k) { return static_cast<unsigned char>(s[k]); };
+    const unsigned char c = byte(i);
+    size_t len = 0;
+    unsigned char lo = 0x80, hi = 0xBF;  // allowed range of the second byte
+    if (c >= 0xC2 && c <= 0xDF)
+        len = 2;
+    else if (c == 0xE0)
+        len = 3, lo = 0xA0;
+    else if (c == 0xED)
+        len = 3, hi = 0x9F;
+    else if (c >= 0xE1 && c <= 0xEF)
+        len = 3;
+    else if (c == 0xF0)
+        len = 4, lo = 0x90;
+    else if (c == 0xF4)
+        len = 4, hi = 0x8F;
+    else if (c >= 0xF1 && c <= 0xF3)
+        len = 4;
+    else
+        return 0;
+    if (i + len > s.size()) return 0;
+    if (byte(i + 1) < lo || byte(i + 1) > hi) return 0;
+    for (size_t k = 2; k < len; ++k)
+        if (byte(i + k) < 0x80 || byte(i + k) > 0xBF) return 0;
+    return len;
+}
+
+// Throws on the first byte of `line` that `check` does not allow.
+void checkLine(std::string_view line, const std::string& displayName, int number, TextCheck check) {
+    if (check == TextCheck::NoNul) {  // memchr speed: OBJ files run to millions of lines
+        const size_t nul = line.find('\0');
+        if (nul != std::string_view::npos)
+            throw Error(FileLoc{displayName, number, int(nul) + 1}, "binary data (NUL byte); expected a text file");
+        return;
+    }
+    for (size_t i = 0; i < line.size();) {
+        const auto c = static_cast<unsigned char>(line[i]);
+        const FileLoc loc{displayName, number, int(i) + 1};
+        if (c == 0) throw Error(loc, "binary data (NUL byte); expected a text file");
+        if (c >= 0x20 && c < 0x7F) {
+            ++i;
+            continue;
+        }
+        if (c < 0x80) {
+            if (!isAllowedControl(c))
+                throw Error(loc, "binary data (control byte " + hexByte(c) + "); expected a text file");
+            ++i;
+            continue;
+        }
+        const size_t len = utf8SequenceLength(line, i);
+        if (len == 0)
+            throw Error(
+                loc, "binary data or invalid UTF-8 (byte " + hexByte(c) + "); save the file as UTF-8 text");
+        i += len;
+    }
+}
+
+}  // namespace
+
+std::optional<std::string> readFileBytes(const std::filesystem::path& file) {
+    std::error_code ec;
+    if (std::filesystem::is_directory(file, ec)) return std::nullopt;
+    std::ifstream in(file, std::ios::binary | std::ios::ate);
+    if (!in) return std::nullopt;
+    const std::streamoff size = in.tellg();
+    if (size <= 0) {  // empty, or not seekable (a pipe): read it as a stream
+        in.clear();
+        in.seekg(0);
+        std::ostringstream bytes;
+        bytes << in.rdbuf();
+        return in.bad() ? std::nullopt : std::optional<std::string>(std::move(bytes).str());
+    }
+    std::string bytes(size_t(size), '\0');
+    in.seekg(0);
+    if (!in.read(bytes.data(), size)) return std::nullopt;
+    return bytes;
+}
+
+void forEachLine(std::string_view data, const std::string& displayName, TextCheck check,
+                 const std::function<void(std::string_view line, int number)>& fn) {
+    if (data.size() >= 2 &&
+        ((data[0] == '\xFF' && data[1] == '\xFE') || (data[0] == '\xFE' && data[1] == '\xFF')))
+        throw Error(FileLoc{displayName, 1}, "UTF-16 is not supported; save as UTF-8");
+    if (data.substr(0, 3) == "\xEF\xBB\xBF") data.remove_prefix(3);
+    int number = 0;
+    while (!data.empty()) {
+        const size_t end = data.find('\n');
+        std::string_view line = data.substr(0, end);
+        data.remove_prefix(end == std::string_view::npos ? data.size() : end + 1);
+        if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
+        ++number;
+        checkLine(line, displayName, number, check);
+        fn(line, number);
+    }
+}
+
+namespace {
+bool isSpace(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\v' || c == '\f'; }
+}  // namespace
+
+void tokenize(std::string_view line, std::vector<Token>& tokens) {
+    tokens.clear();
+    size_t i = 0;
+    while (i < line.size()) {
+        if (isSpace(line[i])) {
+            ++i;
+            continue;
+        }
+        if (line[i] == '#') break;
+        const size_t start = i;
+        while (i < line.size() && !isSpace(line[i]) && line[i] != '#') ++i;
+        tokens.push_back({line.substr(start, i - start), int(start) + 1});
+    }
+}
+
+std::vector<Token> tokenize(std::string_view line) {
+    std::vector<Token> tokens;
+    tokenize(line, tokens);
+    return tokens;
+}
+
+std::string_view firstToken(std::string_view line) {
+    size_t i = 0;
+    while (i < line.size() && isSpace(line[i])) ++i;
+    size_t end = i;
+    while (end < line.size() && !isSpace(line[end]) && line[end] != '#') ++end;
+    return line.substr(i, end - i);
+}
+
+NumberStatus parseFloat(std::string_view s, float& out) {
+    // std::from_chars is locale-independent and reports overflow, unlike strtof under a
+    // German locale; it rejects a leading '+', which strtod (and CSE167 files) accept.
+    if (s.size() > 1 && s[0] == '+' && s[1] != '-') s.remove_prefix(1);
+    double value = 0.0;
+    const auto [end, ec] = std::from_chars(s.data(), s.data() + s.size(), value);
+    if (s.empty() || end != s.data() + s.size()) return NumberStatus::NotANumber;
+    // Overflow and underflow of a double alike (1e999, 1e-999): no scene means either.
+    if (ec == std::errc::result_out_of_range) return NumberStatus::OutOfRange;
+    if (ec != std::errc()) return NumberStatus::NotANumber;
+    if (!std::isfinite(value)) return NumberStatus::NotFinite;
+    if (std::abs(value) > double(std::numeric_limits<float>::max())) return NumberStatus::OutOfRange;
+    out = static_cast<float>(value);
+    return NumberStatus::Ok;
+}
+
+NumberStatus parseInt(std::string_view s, int64_t& out) {
+    if (s.size() > 1 && s[0] == '+' && s[1] != '-') s.remove_prefix(1);
+    int64_t value = 0;
+    const auto [end, ec] = std::from_chars(s.data(), s.data() + s.size(), value);
+    if (s.empty() || end != s.data() + s.size()) return NumberStatus::NotANumber;
+    if (ec == std::errc::result_out_of_range) return NumberStatus::OutOfRange;
+    if (ec != std::errc()) return NumberStatus::NotANumber;
+    out = value;
+    return NumberStatus::Ok;
+}
+
+std::string describeNumberError(NumberStatus status, std::string_view token, const std::string& what,
+                                std::string_view kind) {
+    // Built with append: GCC 12 warns falsely (-Wrestrict) on chains of std::string operator+.
+    std::string quoted = "'";
+    quoted.append(token).append("'");
+    std::string msg;
+    switch (status) {
+        case NumberStatus::NotFinite:
+            msg.append(what).append(" is ").append(quoted).append(", not a finite number");
+            return msg;
+        case NumberStatus::OutOfRange:
+            msg.append(what).append(" ").append(quoted).append(" is out of range");
+            if (kind != "an integer") msg.append(" for a 32-bit float");
+            return msg;
+        case NumberStatus::NotANumber:
+        case NumberStatus::Ok:
+            break;
+    }
+    msg.append("expected ").append(kind).append(" for ").append(what).append(", got ").append(quoted);
+    return msg;
+}
+
+}  // namespace vkray

@@ -1,0 +1,55 @@
+// Text input shared by the .scene parser and the OBJ/MTL checks: whole-file reads, encoding checks,
+// line splitting, tokens with their columns, and locale-independent number parsing. One place, so
+// every input file reports bad bytes and bad numbers the same way ("file:line:col: ...").
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <functional>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace vkray {
+
+// The whole file as bytes; nullopt when it cannot be opened or read (a directory included), so
+// the caller can say which kind of file it wanted and who asked for it.
+std::optional<std::string> readFileBytes(const std::filesystem::path& file);
+
+enum class TextCheck {
+    Utf8,   // .scene files: valid UTF-8 without control bytes (except tab, CR, VT, FF)
+    NoNul,  // OBJ/MTL files: exporters write Latin-1 comments, so only binary data is rejected
+};
+
+// Calls `fn(line, number)` for each line of `data` (1-based numbers, LF or CRLF endings, the
+// terminator removed) after rejecting UTF-16 (a byte-order mark) and skipping a UTF-8 BOM.
+// Throws vkray::Error naming `displayName`:line on binary data or invalid UTF-8.
+void forEachLine(std::string_view data, const std::string& displayName, TextCheck check,
+                 const std::function<void(std::string_view line, int number)>& fn);
+
+struct Token {
+    std::string_view text;
+    int col = 0;  // 1-based byte column in its line
+};
+
+// Whitespace-separated tokens of `line`, stopping at '#' (a comment runs to the end of the line).
+std::vector<Token> tokenize(std::string_view line);
+// The same into `out` (cleared first), reusing its storage: for files of millions of lines.
+void tokenize(std::string_view line, std::vector<Token>& out);
+// The first token of `line` (empty for a blank or comment line), without tokenizing the rest.
+std::string_view firstToken(std::string_view line);
+
+enum class NumberStatus { Ok, NotANumber, NotFinite, OutOfRange };
+
+// The whole token must be a number (an optional leading '+' is accepted, as strtod does).
+// Floats must be finite and fit a 32-bit float: "nan", "inf" and 1e999 are rejected.
+NumberStatus parseFloat(std::string_view s, float& out);
+NumberStatus parseInt(std::string_view s, int64_t& out);
+
+// "expected a number for argument 2 of 'vertex', got 'abc'" and its siblings; `what` names the
+// value ("argument 2 of 'vertex'") and `kind` what was expected ("a number", "an integer").
+std::string describeNumberError(NumberStatus status, std::string_view token, const std::string& what,
+                                std::string_view kind);
+
+}  // namespace vkray
