@@ -1,0 +1,152 @@
+// `vkray compare A B`: difference metrics between two images (PNG, BMP or PFM; see
+// image/compare.h for the metrics and their inf/NaN rules). Exit code 1 when a limit given with
+// --max-rmse or --max-bad-fraction is exceeded, so scripts and CI can gate on it.
+#include <charconv>
+#include <cmath>
+#include <cstdio>
+#include <iostream>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "cli/commands.h"
+#include "core/error.h"
+#include "image/compare.h"
+#include "image/image_io.h"
+
+namespace vkray::cli {
+namespace {
+
+struct CompareArgs {
+    std::string a, b;
+    std::string threshold = "2/255";  // two 8-bit levels: GPU float vs CPU double rounding may move
+                                      // a channel by one level; more than two is a real difference
+    double maxRmse = 0.0, maxBadFraction = 0.0;
+    std::string diff;
+    bool json = false;
+};
+
+// "0.01" or a fraction "2/255" (8-bit levels are the natural unit for PNG).
+double parseThreshold(const std::string& text) {
+    auto number = [&](std::string_view s) {
+        double v = 0.0;
+        const auto [end, ec] = std::from_chars(s.data(), s.data() + s.size(), v);
+        if (s.empty() || ec != std::errc() || end != s.data() + s.size() || !std::isfinite(v))
+            throw Error("--threshold: '" + text + "' is not a number or a fraction like 2/255");
+        return v;
+    };
+    const std::string_view s = text;
+    const size_t slash = s.find('/');
+    const double v = slash == std::string_view::npos ? number(s) : number(s.substr(0, slash)) / number(s.substr(slash + 1));
+    if (!(v >= 0.0) || !std::isfinite(v)) throw Error("--threshold: '" + text + "' must be a finite number >= 0");
+    return v;
+}
+
+std::string fmt(double v) {
+    if (std::isinf(v)) return v > 0 ? "inf" : "-inf";
+    char buf[64];
+    std::snprintf(buf, sizeof buf, "%.6g", v);
+    return buf;
+}
+
+nlohmann::json finiteOrNull(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); }
+
+void run(const CompareArgs& args, bool hasMaxRmse, bool hasMaxBad, int& exitCode) {
+    const double threshold = parseThreshold(args.threshold);
+    const Image a = readImage(args.a);
+    const Image b = readImage(args.b);
+    CompareStats s;
+    try {
+        s = compareImages(a, b, threshold);
+    } catch (const Error& e) {
+        throw Error("cannot compare " + args.a + " with " + args.b + ": " + e.what());
+    }
+    if (!args.diff.empty()) writeImage(args.diff, makeDiffImage(a, b, threshold));
+
+    std::vector<std::string> failures;
+    if (hasMaxRmse) {
+        // A non-finite mismatch is left out of the RMSE (compare.h) but means an infinite error:
+        // it must not pass an RMSE gate silently.
+        if (s.nonFiniteMismatches > 0)
+            failures.push_back("--max-rmse " + fmt(args.maxRmse) + ": " + std::to_string(s.nonFiniteMismatches) +
+                               " channel value(s) inf or NaN in only one image (an infinite error)");
+        if (s.rmse > args.maxRmse)
+            failures.push_back("RMSE " + fmt(s.rmse) + " > --max-rmse " + fmt(args.maxRmse));
+    }
+    if (hasMaxBad && s.badFraction > args.maxBadFraction)
+        failures.push_back("bad fraction " + fmt(s.badFraction) + " > --max-bad-fraction " + fmt(args.maxBadFraction));
+    exitCode = failures.empty() ? 0 : 1;
+
+    if (args.json) {
+        nlohmann::json j;
+        j["a"] = args.a;
+        j["b"] = args.b;
+        j["width"] = a.width;
+        j["height"] = a.height;
+        j["channels"] = a.channels;
+        j["rmse"] = s.rmse;
+        j["psnr"] = finiteOrNull(s.psnr);           // null: infinite (identical images)
+        j["max_error"] = finiteOrNull(s.maxError);  // null: infinite (a non-finite mismatch)
+        j["max_error_at"] = s.maxErrorX >= 0 ? nlohmann::json{s.maxErrorX, s.maxErrorY} : nlohmann::json(nullptr);
+        j["threshold"] = threshold;
+        j["bad_pixels"] = s.badPixels;
+        j["pixels"] = s.pixels;
+        j["bad_fraction"] = s.badFraction;
+        j["non_finite_mismatches"] = s.nonFiniteMismatches;
+        j["diff"] = args.diff.empty() ? nlohmann::json(nullptr) : nlohmann::json(args.diff);
+        j["max_rmse"] = hasMaxRmse ? nlohmann::json(args.maxRmse) : nlohmann::json(nullptr);
+        j["max_bad_fraction"] = hasMaxBad ? nlohmann::json(args.maxBadFraction) : nlohmann::json(nullptr);
+        j["failures"] = failures;
+        j["pass"] = failures.empty();
+        std::cout << j.dump(2) << '\n';
+    } else {
+        std::cout << "compare " << args.a << " " << args.b << ": " << a.width << "x" << a.height << ", " << a.channels
+                  << (a.channels == 1 ? " channel\n" : " channels\n");
+        std::cout << "  RMSE        " << fmt(s.rmse) << "\n";
+        std::cout << "  PSNR        " << fmt(s.psnr) << " dB\n";
+        std::cout << "  max error   " << fmt(s.maxError);
+        if (s.maxErrorX >= 0) std::cout << " at pixel (" << s.maxErrorX << ", " << s.maxErrorY << ")";
+        std::cout << "\n";
+        std::cout << "  bad pixels  " << s.badPixels << " of " << s.pixels << " (" << fmt(100.0 * s.badFraction)
+                  << " %) differ by more than " << fmt(threshold) << " (" << args.threshold << ") in a channel\n";
+        if (s.nonFiniteMismatches > 0)
+            std::cout << "  non-finite  " << s.nonFiniteMismatches
+                      << " channel value(s) inf or NaN in only one image: bad pixels, left out of the RMSE\n";
+        if (!args.diff.empty()) std::cout << "  diff image  written to " << args.diff << "\n";
+        if (!hasMaxRmse && !hasMaxBad)
+            std::cout << "  result      no limits given (--max-rmse, --max-bad-fraction)\n";
+        else if (failures.empty())
+            std::cout << "  result      pass\n";
+        for (const std::string& f : failures) std::cout << "  result      FAIL: " << f << "\n";
+    }
+    std::cout.flush();
+}
+
+}  // namespace
+
+void registerCompareCommand(CLI::App& app, int& exitCode) {
+    auto args = std::make_shared<CompareArgs>();
+    CLI::App* cmd = app.add_subcommand(
+        "compare", "Image difference metrics (RMSE, PSNR, max error, pixels over a threshold) of two PNG/BMP/PFM "
+                   "files; exits 1 when over --max-rmse or --max-bad-fraction");
+    cmd->add_option("A", args->a, "First image (the reference)")->required();
+    cmd->add_option("B", args->b, "Second image")->required();
+    cmd->add_option("--threshold", args->threshold,
+                    "A pixel is bad when a channel differs by more than this (a number or a fraction like 2/255)")
+        ->capture_default_str();
+    CLI::Option* maxRmse = cmd->add_option("--max-rmse", args->maxRmse, "Fail (exit 1) when the RMSE is larger")
+                               ->check(CLI::NonNegativeNumber);
+    CLI::Option* maxBad =
+        cmd->add_option("--max-bad-fraction", args->maxBadFraction,
+                        "Fail (exit 1) when a larger fraction of the pixels is bad")
+            ->check(CLI::Range(0.0, 1.0));
+    cmd->add_option("--diff", args->diff, "Write a difference image here (PNG, BMP or PFM by extension)");
+    cmd->add_flag("--json", args->json, "Print the figures as JSON");
+    cmd->callback([args, maxRmse, maxBad, &exitCode] {
+        run(*args, maxRmse->count() > 0, maxBad->count() > 0, exitCode);
+    });
+}
+
+}  // namespace vkray::cli
