@@ -18,40 +18,32 @@ struct PendingRay {
     int depth;  // primary rays have depth 1
 };
 
-// Depth-first, each ray pushes at most two children one level deeper and only below MAX_DEPTH,
-// so at most MAX_DEPTH rays are ever pending.
-PendingRay stack[MAX_DEPTH];
-int stackTop = 0;
-
 // Below this weight in every channel a secondary ray is not traced (docs/shading.md).
 const float kMinWeight = 1.0 / 1024.0;
 // Hang guard (lavapipe has no watchdog): far above the rays the weight cutoff lets a pixel spawn.
 const int kMaxRaysPerPixel = 1 << 16;
 
-void pushRay(vec3 origin, vec3 dir, vec3 weight, int depth) {
-    if (max(weight.r, max(weight.g, weight.b)) < kMinWeight) return;
-    stack[stackTop] = PendingRay(origin, dir, weight, depth);
-    ++stackTop;
-}
+bool worthTracing(vec3 weight) { return max(weight.r, max(weight.g, weight.b)) >= kMinWeight; }
 
-// Reflected and refracted children of a hit (docs/shading.md, "Secondary rays").
-void spawnSecondaryRays(PendingRay ray, SurfacePoint s, GpuMaterial m) {
+// Reflected and refracted children of a hit (docs/shading.md, "Secondary rays"); a child whose
+// weight is below the cutoff comes back with weight 0.
+void secondaryRays(PendingRay ray, SurfacePoint s, GpuMaterial m, out PendingRay reflected,
+                   out PendingRay refracted) {
     vec3 reflectWeight = m.reflect.rgb;
+    refracted = PendingRay(vec3(0.0), vec3(0.0), vec3(0.0), ray.depth + 1);
     if (HAS_REFRACTION && any(greaterThan(m.transmit.rgb, vec3(0.0)))) {
-        const float ior = m.diffuseIor.w;
-        const float eta = s.front ? 1.0 / ior : ior;
+        const float eta = s.front ? 1.0 / m.ior : m.ior;
         const float cosi = clamp(dot(-ray.dir, s.normal), 0.0, 1.0);
         float cost;
         const float F = fresnelDielectric(cosi, eta, cost);
         reflectWeight += m.transmit.rgb * F;
-        if (F < 1.0) {
-            const vec3 refracted = normalize(eta * ray.dir + (eta * cosi - cost) * s.normal);
-            pushRay(offsetRayOrigin(s.position, -s.facing), refracted,
-                    ray.weight * m.transmit.rgb * (1.0 - F), ray.depth + 1);
-        }
+        if (F < 1.0)
+            refracted = PendingRay(offsetRayOrigin(s.position, -s.facing),
+                                   normalize(eta * ray.dir + (eta * cosi - cost) * s.normal),
+                                   ray.weight * m.transmit.rgb * (1.0 - F), ray.depth + 1);
     }
-    const vec3 reflected = reflect(ray.dir, s.normal);
-    pushRay(offsetRayOrigin(s.position, s.facing), reflected, ray.weight * reflectWeight, ray.depth + 1);
+    reflected = PendingRay(offsetRayOrigin(s.position, s.facing), reflect(ray.dir, s.normal),
+                           ray.weight * reflectWeight, ray.depth + 1);
 }
 
 void main() {
@@ -68,9 +60,13 @@ void main() {
     int primAov = -1;
     vec3 radiance = vec3(0.0);
 
+    // Depth-first: each ray pushes at most two children one level deeper and only below
+    // MAX_DEPTH, so at most MAX_DEPTH rays are ever pending.
+    PendingRay stack[MAX_DEPTH];
     stack[0] = PendingRay(params.eye.xyz, primaryDirection(pixel, imageSize), vec3(1.0), 1);
-    stackTop = 1;
-    for (int rays = 0; stackTop > 0 && rays < kMaxRaysPerPixel; ++rays) {
+    int stackTop = 1;
+    int rays = 0;
+    for (; stackTop > 0 && rays < kMaxRaysPerPixel; ++rays) {
         --stackTop;
         const PendingRay ray = stack[stackTop];
         const Hit hit = traceClosest(ray.origin, ray.dir, kInfinity);
@@ -83,9 +79,15 @@ void main() {
         }
         const GpuMaterial m = materials[s.material];
         radiance += ray.weight * localShading(s, m, -ray.dir);
-        if ((HAS_REFLECTION || HAS_REFRACTION) && ray.depth < MAX_DEPTH) spawnSecondaryRays(ray, s, m);
+        if ((HAS_REFLECTION || HAS_REFRACTION) && ray.depth < MAX_DEPTH) {
+            PendingRay reflected, refracted;
+            secondaryRays(ray, s, m, reflected, refracted);
+            if (worthTracing(refracted.weight)) stack[stackTop++] = refracted;
+            if (worthTracing(reflected.weight)) stack[stackTop++] = reflected;
+        }
     }
 
-    pixels[outIndex].colorDepth = vec4(radiance, depthAov);
-    pixels[outIndex].normalPrim = vec4(normalAov, intBitsToFloat(primAov));
+    const bool cutShort = gLoopCutShort || stackTop > 0;
+    pixels[outIndex] = GpuPixel(radiance, depthAov, normalAov, primAov,
+                                cutShort ? VKRAY_PIXEL_CUT_SHORT : 0u, uint(rays), 0u, 0u);
 }

@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <array>
-#include <bit>
 #include <chrono>
 
 #include "core/error.h"
@@ -51,15 +50,17 @@ GpuFrameParams frameParams(const Scene& scene, const RenderOptions& options) {
     return p;
 }
 
-void readTile(const GpuPixel* src, const Tile& tile, Frame& frame) {
+void readTile(const GpuPixel* src, const Tile& tile, Frame& frame, GpuRenderReport& rep) {
     for (uint32_t y = 0; y < tile.height; ++y)
         for (uint32_t x = 0; x < tile.width; ++x) {
             const GpuPixel& px = src[y * VKRAY_TILE_SIZE + x];
             const size_t i = frame.index(int(tile.x + x), int(tile.y + y));
-            frame.color[i] = glm::vec3(px.colorDepth);
-            frame.depth[i] = px.colorDepth.w;
-            frame.normal[i] = glm::vec3(px.normalPrim);
-            frame.primId[i] = std::bit_cast<int32_t>(px.normalPrim.w);
+            frame.color[i] = px.color;
+            frame.depth[i] = px.depth;
+            frame.normal[i] = px.normal;
+            frame.primId[i] = px.primId;
+            rep.raysTraced += px.rays;
+            rep.pixelsCutShort += (px.flags & VKRAY_PIXEL_CUT_SHORT) != 0;
         }
 }
 
@@ -152,11 +153,17 @@ Frame renderOnGpu(const VulkanContext& ctx, const Scene& scene, const RenderOpti
             }
         }
         const auto* src = static_cast<const GpuPixel*>(pixels.mapped());
-        for (size_t k = 0; k < count; ++k) readTile(src + k * kTilePixels, tiles[first + k], frame);
+        for (size_t k = 0; k < count; ++k) readTile(src + k * kTilePixels, tiles[first + k], frame, rep);
         if (progress) progress(uint32_t(first + count), uint32_t(tiles.size()));
     }
     rep.renderMs = msSince(start);
     ctx.checkValidation();
+    if (rep.pixelsCutShort > 0)
+        throw Error(std::to_string(rep.pixelsCutShort) + " pixels were cut short on '" + ctx.info().name +
+                    "': its shader loops stop early (llvmpipe ends all loops of a pixel after 65535 "
+                    "iterations in total), so with --accel " + options.accel + " this scene of " +
+                    std::to_string(scene.triangles.size()) + " triangles needs a smaller --maxdepth, fewer "
+                    "triangles or lights, or another device; no image was written");
     return frame;
 }
 

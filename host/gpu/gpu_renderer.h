@@ -23,6 +23,8 @@ struct GpuRenderReport {
     double pipelineMs = 0.0;     // kernel specialisation and pipeline creation, host clock
     double gpuMs = -1.0;         // sum of the batches' timestamp intervals; -1 without timestamps
     double renderMs = 0.0;       // dispatch to read-back done, host clock
+    uint64_t raysTraced = 0;     // camera and secondary rays (shadow rays not counted)
+    uint64_t pixelsCutShort = 0; // pixels whose loops the driver cut short (then renderOnGpu throws)
 };
 
 using TileProgress = std::function<void(uint32_t tilesDone, uint32_t tilesTotal)>;

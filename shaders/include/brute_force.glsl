@@ -1,37 +1,64 @@
 // The `brute` accelerator: every ray is tested against every triangle. The reference the other
 // traversals are measured against, usable for small scenes and tests.
+//
+// llvmpipe (lavapipe) ends every loop of an invocation once its loops together ran 65535
+// iterations (Mesa gallivm LP_MAX_TGSI_LOOP_ITERATIONS). The loops below test kBruteBatch
+// triangles per iteration, which multiplies the scene size brute force handles there, and report a
+// loop that ended before its bound in gLoopCutShort, so a cut never passes silently.
 #ifndef VKRAY_BRUTE_FORCE_GLSL
 #define VKRAY_BRUTE_FORCE_GLSL
 
 #include "triangle.glsl"
 
-// Closest hit in (0, tmax). Ties in t go to the lowest triangle index (strict <), as on the CPU.
+// Set when a loop ended before its bound: the driver cut it short (see VKRAY_PIXEL_CUT_SHORT).
+bool gLoopCutShort = false;
+
+const uint kBruteBatch = 4;
+
+void closestOf(uint i, uint count, vec3 origin, vec3 dir, inout Hit best) {
+    float t;
+    vec2 uv;
+    if (i < count && intersectTriangle(origin, dir, triangles[i], best.t, t, uv)) {
+        best.t = t;
+        best.uv = uv;
+        best.triangle = int(i);
+    }
+}
+
+bool occludes(uint i, uint count, vec3 origin, vec3 dir, float tmax) {
+    float t;
+    vec2 uv;
+    return i < count && intersectTriangle(origin, dir, triangles[i], tmax, t, uv);
+}
+
+// Closest hit in (0, tmax). Ties in t go to the lowest triangle index (strict <, in index order),
+// as on the CPU.
 Hit traceClosest(vec3 origin, vec3 dir, float tmax) {
     Hit best;
     best.t = tmax;
     best.triangle = -1;
     const uint count = params.counts.x;
-    for (uint i = 0; i < count; ++i) {
-        float t;
-        vec2 uv;
-        if (intersectTriangle(origin, dir, triangles[i], best.t, t, uv)) {
-            best.t = t;
-            best.uv = uv;
-            best.triangle = int(i);
-        }
+    uint i = 0;
+    for (; i < count; i += kBruteBatch) {
+        closestOf(i, count, origin, dir, best);
+        closestOf(i + 1, count, origin, dir, best);
+        closestOf(i + 2, count, origin, dir, best);
+        closestOf(i + 3, count, origin, dir, best);
     }
+    if (i < count) gLoopCutShort = true;
     return best;
 }
 
 // Any hit in (0, tmax): shadow rays stop at the first occluder.
 bool traceAny(vec3 origin, vec3 dir, float tmax) {
     const uint count = params.counts.x;
-    for (uint i = 0; i < count; ++i) {
-        float t;
-        vec2 uv;
-        if (intersectTriangle(origin, dir, triangles[i], tmax, t, uv)) return true;
-    }
-    return false;
+    bool occluded = false;
+    uint i = 0;
+    for (; i < count && !occluded; i += kBruteBatch)
+        occluded = occludes(i, count, origin, dir, tmax) || occludes(i + 1, count, origin, dir, tmax) ||
+                   occludes(i + 2, count, origin, dir, tmax) || occludes(i + 3, count, origin, dir, tmax);
+    if (!occluded && i < count) gLoopCutShort = true;
+    return occluded;
 }
 
 #endif

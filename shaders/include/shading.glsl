@@ -18,7 +18,7 @@ struct SurfacePoint {
 
 SurfacePoint surfaceAt(Hit hit, vec3 dir) {
     const GpuTriangle tri = triangles[hit.triangle];
-    const vec3 p0 = tri.p0Material.xyz, p1 = tri.p1Original.xyz, p2 = tri.p2.xyz;
+    const vec3 p0 = tri.p0, p1 = tri.p1, p2 = tri.p2;
     const float b0 = 1.0 - hit.uv.x - hit.uv.y;
     SurfacePoint s;
     s.position = b0 * p0 + hit.uv.x * p1 + hit.uv.y * p2;
@@ -33,8 +33,8 @@ SurfacePoint surfaceAt(Hit hit, vec3 dir) {
         if (len > 0.0) s.normal = interpolated / len;
     }
     if (dot(s.normal, s.facing) < 0.0) s.normal = -s.normal;
-    s.material = floatBitsToUint(tri.p0Material.w);
-    s.original = floatBitsToInt(tri.p1Original.w);
+    s.material = tri.material;
+    s.original = int(tri.original);
     return s;
 }
 
@@ -44,36 +44,51 @@ vec3 blinnPhong(SurfacePoint s, GpuMaterial m, vec3 V, vec3 transmit, vec3 L, ve
     const float nDotL = dot(s.normal, L);
     if (nDotL <= 0.0 || dot(s.facing, L) <= 0.0) return vec3(0.0);
     const float nDotH = dot(s.normal, normalize(L + V));
-    const float spec = nDotH > 0.0 ? pow(nDotH, m.ambientShininess.w) : 0.0;
-    return lightColor * ((1.0 - transmit) * m.diffuseIor.rgb * nDotL + m.specular.rgb * spec);
+    const float spec = nDotH > 0.0 ? pow(nDotH, m.shininess) : 0.0;
+    return lightColor * ((1.0 - transmit) * m.diffuse * nDotL + m.specular.rgb * spec);
+}
+
+// Direction towards a light, its colour with attenuation, and the shadow ray that tests it.
+struct LightSample {
+    vec3 L;            // unit vector from the shaded point towards the light
+    vec3 radiance;     // light colour, attenuated for point lights
+    vec3 shadowDir;    // from the offset shadow-ray origin
+    float shadowTmax;  // the light's distance from that origin; +inf for directional lights
+};
+
+LightSample sampleLight(GpuLight light, vec3 position, vec3 shadowOrigin) {
+    LightSample ls;
+    if (HAS_DIRECTIONAL_LIGHTS && (!HAS_POINT_LIGHTS || light.type == VKRAY_LIGHT_DIRECTIONAL)) {
+        ls.L = normalize(light.vector);
+        ls.radiance = light.color.rgb;
+        ls.shadowDir = ls.L;
+        ls.shadowTmax = kInfinity;
+    } else {
+        const vec3 toLight = light.vector - position;
+        const float r = length(toLight);
+        const vec3 att = params.attenuation.xyz;
+        ls.L = toLight / r;
+        ls.radiance = light.color.rgb / (att.x + att.y * r + att.z * r * r);
+        const vec3 toLightFromOrigin = light.vector - shadowOrigin;
+        ls.shadowTmax = length(toLightFromOrigin);
+        ls.shadowDir = toLightFromOrigin / ls.shadowTmax;
+    }
+    return ls;
 }
 
 // Emission, ambient and every light with its shadow ray (docs/shading.md, "Local shading").
 vec3 localShading(SurfacePoint s, GpuMaterial m, vec3 V) {
     const vec3 transmit = m.transmit.rgb;
-    vec3 color = m.emission.rgb + (1.0 - transmit) * m.ambientShininess.rgb;
+    vec3 color = m.emission.rgb + (1.0 - transmit) * m.ambient;
+    if (!HAS_POINT_LIGHTS && !HAS_DIRECTIONAL_LIGHTS) return color;
     const vec3 shadowOrigin = offsetRayOrigin(s.position, s.facing);
     const uint lightCount = params.counts.y;
     for (uint i = 0; i < lightCount; ++i) {
-        const GpuLight light = lights[i];
-        const bool isPoint = light.vectorType.w < 0.5;
-        if (HAS_POINT_LIGHTS && isPoint) {
-            const vec3 toLight = light.vectorType.xyz - s.position;
-            const float r = length(toLight);
-            const vec3 att = params.attenuation.xyz;
-            const vec3 term = blinnPhong(s, m, V, transmit, toLight / r, light.color.rgb) /
-                              (att.x + att.y * r + att.z * r * r);
-            if (term == vec3(0.0)) continue;
-            const vec3 shadowDir = light.vectorType.xyz - shadowOrigin;
-            const float shadowLength = length(shadowDir);
-            if (!traceAny(shadowOrigin, shadowDir / shadowLength, shadowLength)) color += term;
-        }
-        if (HAS_DIRECTIONAL_LIGHTS && !isPoint) {
-            const vec3 L = normalize(light.vectorType.xyz);
-            const vec3 term = blinnPhong(s, m, V, transmit, L, light.color.rgb);
-            if (term == vec3(0.0)) continue;
-            if (!traceAny(shadowOrigin, L, kInfinity)) color += term;
-        }
+        const LightSample ls = sampleLight(lights[i], s.position, shadowOrigin);
+        const vec3 term = blinnPhong(s, m, V, transmit, ls.L, ls.radiance);
+        // Shadow rays only where the light would add something.
+        if (any(greaterThan(term, vec3(0.0))) && !traceAny(shadowOrigin, ls.shadowDir, ls.shadowTmax))
+            color += term;
     }
     return color;
 }

@@ -1,6 +1,7 @@
 // The one definition of every buffer layout, binding number and specialization constant shared by
 // the host (C++) and the kernels (GLSL), after nvpro-samples' vk_mini_path_tracer `common.h`.
-// Every struct is made of 16-byte slots (vec4/uvec4), so std430 and C++ agree without hand padding;
+// Every struct is made of 16-byte slots (vec4, or vec3 + one 4-byte scalar), so std430 and C++ agree
+// without hand padding;
 // the C++ half checks sizes and offsets with static_assert.
 #ifndef VKRAY_GPU_LAYOUT_H
 #define VKRAY_GPU_LAYOUT_H
@@ -42,68 +43,98 @@ using uvec4 = glm::uvec4;
 #define VKRAY_SPEC_HAS_SMOOTH_NORMALS 5     // bool
 #define VKRAY_SPEC_COUNT 6
 
-// ---- Light types (GpuLight.vectorType.w) -------------------------------------------------------
+// ---- GpuPixel.flags ------------------------------------------------------------------------------
+// A loop of the kernel ended before its bound: the driver cut it short (llvmpipe/lavapipe stops
+// every loop of an invocation once all its loops together ran 65535 iterations), or the
+// per-pixel ray cap was reached. The pixel is wrong; the host reports it instead of writing it.
+#define VKRAY_PIXEL_CUT_SHORT 1u
+
+// ---- Light types (GpuLight.type) -------------------------------------------------------
 #define VKRAY_LIGHT_POINT 0
 #define VKRAY_LIGHT_DIRECTIONAL 1
 
+// Integers get integer slots (vec3 + uint), never float bit patterns: a small int stored in a
+// float's bits is a denormal, and a driver that flushes denormals (seen on lavapipe) turns it to 0.
 #ifdef __cplusplus
 namespace vkray::gpu {
-struct GpuTriangle {    // 48 bytes
-    vec4 p0Material;    // xyz = p0, w = material index (uintBitsToFloat)
-    vec4 p1Original;    // xyz = p1, w = original triangle index (uintBitsToFloat)
-    vec4 p2;            // xyz = p2, w unused
+using vec3 = glm::vec3;
+using uint = uint32_t;
+#define VKRAY_STRUCT(name) struct alignas(16) name
+#else
+#define VKRAY_STRUCT(name) struct name
+#endif
+
+VKRAY_STRUCT(GpuTriangle) {  // 48 bytes
+    vec3 p0;
+    uint material;  // index into the materials buffer
+    vec3 p1;
+    uint original;  // triangle identity (DESIGN.md) for AOVs and statistics
+    vec3 p2;
+    uint pad0;
 };
-struct GpuTriangleNormals {  // 48 bytes: unit vertex normals, w unused
-    vec4 n0, n1, n2;
+
+VKRAY_STRUCT(GpuTriangleNormals) {  // 48 bytes: unit vertex normals, w unused
+    vec4 n0;
+    vec4 n1;
+    vec4 n2;
 };
-struct GpuMaterial {        // 96 bytes
-    vec4 ambientShininess;  // rgb = ambient, w = shininess
-    vec4 diffuseIor;        // rgb = diffuse, w = index of refraction
-    vec4 specular;          // rgb, w unused
-    vec4 emission;          // rgb, w unused
-    vec4 reflect;           // rgb mirror weight, w unused
-    vec4 transmit;          // rgb transmission weight, w unused
+
+VKRAY_STRUCT(GpuMaterial) {  // 96 bytes
+    vec3 ambient;
+    float shininess;
+    vec3 diffuse;
+    float ior;        // index of refraction of the inside
+    vec4 specular;    // rgb, w unused
+    vec4 emission;    // rgb, w unused
+    vec4 reflect;     // rgb mirror weight, w unused
+    vec4 transmit;    // rgb transmission weight, w unused
 };
-struct GpuLight {           // 32 bytes
-    vec4 vectorType;        // xyz = position (point) or direction towards the light; w = type
-    vec4 color;             // rgb, w unused
+
+VKRAY_STRUCT(GpuLight) {  // 32 bytes
+    vec3 vector;  // position (point) or direction towards the light (directional)
+    uint type;    // VKRAY_LIGHT_POINT or VKRAY_LIGHT_DIRECTIONAL
+    vec3 color;
+    float pad0;
 };
-struct GpuPixel {           // 32 bytes
-    vec4 colorDepth;        // rgb = radiance, w = primary-hit t (+inf on a miss)
-    vec4 normalPrim;        // xyz = primary shading normal, w = triangle index (intBitsToFloat), -1 = miss
+
+VKRAY_STRUCT(GpuPixel) {  // 48 bytes
+    vec3 color;   // radiance
+    float depth;  // primary-hit t, +inf on a miss
+    vec3 normal;  // primary shading normal, 0 on a miss
+    int primId;   // triangle identity of the primary hit, -1 on a miss
+    uint flags;   // VKRAY_PIXEL_* bits
+    uint rays;    // rays traced for this pixel (camera and secondary; shadow rays not counted)
+    uint pad0;
+    uint pad1;
 };
+
 // Push constants: 112 bytes, under the 128 every Vulkan device guarantees.
-struct GpuFrameParams {
+VKRAY_STRUCT(GpuFrameParams) {
     vec4 eye;          // xyz eye, w unused
     vec4 u;            // xyz camera u, w = tanX
     vec4 v;            // xyz camera v, w = tanY
     vec4 w;            // xyz camera w (points backwards), w unused
     vec4 attenuation;  // xyz = constant, linear, quadratic
     uvec4 imageTile;   // x, y = image width, height; z, w = this tile's origin in pixels
-    uvec4 counts;      // x = triangles, y = lights, z = first GpuPixel of this tile, w = tile width
+    uvec4 counts;      // x = triangles, y = lights, z = first GpuPixel of this tile, w = tile row pitch
 };
 
-static_assert(sizeof(GpuTriangle) == 48 && offsetof(GpuTriangle, p2) == 32);
+#ifdef __cplusplus
+static_assert(sizeof(GpuTriangle) == 48 && offsetof(GpuTriangle, material) == 12 &&
+              offsetof(GpuTriangle, p1) == 16 && offsetof(GpuTriangle, original) == 28 &&
+              offsetof(GpuTriangle, p2) == 32);
 static_assert(sizeof(GpuTriangleNormals) == 48);
-static_assert(sizeof(GpuMaterial) == 96 && offsetof(GpuMaterial, transmit) == 80);
-static_assert(sizeof(GpuLight) == 32 && offsetof(GpuLight, color) == 16);
-static_assert(sizeof(GpuPixel) == 32 && offsetof(GpuPixel, normalPrim) == 16);
+static_assert(sizeof(GpuMaterial) == 96 && offsetof(GpuMaterial, shininess) == 12 &&
+              offsetof(GpuMaterial, diffuse) == 16 && offsetof(GpuMaterial, ior) == 28 &&
+              offsetof(GpuMaterial, specular) == 32 && offsetof(GpuMaterial, transmit) == 80);
+static_assert(sizeof(GpuLight) == 32 && offsetof(GpuLight, type) == 12 && offsetof(GpuLight, color) == 16);
+static_assert(sizeof(GpuPixel) == 48 && offsetof(GpuPixel, depth) == 12 &&
+              offsetof(GpuPixel, normal) == 16 && offsetof(GpuPixel, primId) == 28 &&
+              offsetof(GpuPixel, flags) == 32);
 static_assert(sizeof(GpuFrameParams) == 112 && offsetof(GpuFrameParams, imageTile) == 80 &&
               offsetof(GpuFrameParams, counts) == 96);
 }  // namespace vkray::gpu
-
-#else  // GLSL
-
-struct GpuTriangle { vec4 p0Material; vec4 p1Original; vec4 p2; };
-struct GpuTriangleNormals { vec4 n0; vec4 n1; vec4 n2; };
-struct GpuMaterial {
-    vec4 ambientShininess; vec4 diffuseIor; vec4 specular; vec4 emission; vec4 reflect; vec4 transmit;
-};
-struct GpuLight { vec4 vectorType; vec4 color; };
-struct GpuPixel { vec4 colorDepth; vec4 normalPrim; };
-struct GpuFrameParams {
-    vec4 eye; vec4 u; vec4 v; vec4 w; vec4 attenuation; uvec4 imageTile; uvec4 counts;
-};
-
 #endif
+#undef VKRAY_STRUCT
+
 #endif  // VKRAY_GPU_LAYOUT_H
