@@ -15,20 +15,20 @@ bool gLoopCutShort = false;
 
 const uint kBruteBatch = 4;
 
-void closestOf(uint i, uint count, vec3 origin, vec3 dir, inout Hit best) {
+void closestOf(uint i, uint count, WatertightRay ray, inout Hit best) {
     float t;
     vec2 uv;
-    if (i < count && intersectTriangle(origin, dir, triangles[i], best.t, t, uv)) {
+    if (i < count && intersectTriangle(ray, triangles[i], best.t, t, uv)) {
         best.t = t;
         best.uv = uv;
         best.triangle = int(i);
     }
 }
 
-bool occludes(uint i, uint count, vec3 origin, vec3 dir, float tmax) {
+bool occludes(uint i, uint count, WatertightRay ray, float tmax) {
     float t;
     vec2 uv;
-    return i < count && intersectTriangle(origin, dir, triangles[i], tmax, t, uv);
+    return i < count && intersectTriangle(ray, triangles[i], tmax, t, uv);
 }
 
 // Closest hit in (0, tmax). Ties in t go to the lowest triangle index (strict <, in index order),
@@ -38,12 +38,13 @@ Hit traceClosest(vec3 origin, vec3 dir, float tmax) {
     best.t = tmax;
     best.triangle = -1;
     const uint count = params.counts.x;
+    const WatertightRay ray = makeWatertightRay(origin, dir);
     uint i = 0;
     for (; i < count; i += kBruteBatch) {
-        closestOf(i, count, origin, dir, best);
-        closestOf(i + 1, count, origin, dir, best);
-        closestOf(i + 2, count, origin, dir, best);
-        closestOf(i + 3, count, origin, dir, best);
+        closestOf(i, count, ray, best);
+        closestOf(i + 1, count, ray, best);
+        closestOf(i + 2, count, ray, best);
+        closestOf(i + 3, count, ray, best);
     }
     if (i < count) gLoopCutShort = true;
     return best;
@@ -52,11 +53,12 @@ Hit traceClosest(vec3 origin, vec3 dir, float tmax) {
 // Any hit in (0, tmax): shadow rays stop at the first occluder.
 bool traceAny(vec3 origin, vec3 dir, float tmax) {
     const uint count = params.counts.x;
+    const WatertightRay ray = makeWatertightRay(origin, dir);
     bool occluded = false;
     uint i = 0;
     for (; i < count && !occluded; i += kBruteBatch)
-        occluded = occludes(i, count, origin, dir, tmax) || occludes(i + 1, count, origin, dir, tmax) ||
-                   occludes(i + 2, count, origin, dir, tmax) || occludes(i + 3, count, origin, dir, tmax);
+        occluded = occludes(i, count, ray, tmax) || occludes(i + 1, count, ray, tmax) ||
+                   occludes(i + 2, count, ray, tmax) || occludes(i + 3, count, ray, tmax);
     if (!occluded && i < count) gLoopCutShort = true;
     return occluded;
 }

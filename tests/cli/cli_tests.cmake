@@ -53,5 +53,7 @@ add_test(NAME cli.compare_gpu_cpu
 set_tests_properties(cli.compare_gpu_cpu PROPERTIES FIXTURES_REQUIRED default_renders)
 add_test(NAME cli.compare_primid_gpu_cpu
          COMMAND $<TARGET_FILE:vkray> compare ${CLI_OUT}/primid.pfm ${CLI_OUT}/primid-cpu.pfm
-                 --threshold 0 --max-bad-fraction 0.001)
+                 --threshold 0 --max-bad-fraction 0.002)
+# 0.2%: pixel centres on the edges where the box walls meet (exact ties, measured 0.11% at
+# 96x96); tests/gpu/gpu_vs_cpu_test.cpp tells ties from disagreements and asks 99.9%.
 set_tests_properties(cli.compare_primid_gpu_cpu PROPERTIES FIXTURES_REQUIRED default_renders)
