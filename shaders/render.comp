@@ -46,8 +46,18 @@ void secondaryRays(PendingRay ray, SurfacePoint s, GpuMaterial m, out PendingRay
                            ray.weight * reflectWeight, ray.depth + 1);
 }
 
+// Lavapipe splits a dispatch into contiguous runs of workgroups, one per worker thread, so a tile
+// whose top rows are empty and bottom rows full leaves one thread idle. Interleaving workgroup rows
+// (the first half of the groups takes even rows of blocks, the second half odd rows) gives every
+// run the same mix; on other GPUs it only renames rows.
+uvec2 pixelInTile() {
+    const uint rows = gl_NumWorkGroups.y, half_ = (rows + 1) / 2, gy = gl_WorkGroupID.y;
+    const uint blockRow = gy < half_ ? 2 * gy : 2 * (gy - half_) + 1;
+    return uvec2(gl_GlobalInvocationID.x, blockRow * VKRAY_WORKGROUP_Y + gl_LocalInvocationID.y);
+}
+
 void main() {
-    const uvec2 local = gl_GlobalInvocationID.xy;
+    const uvec2 local = pixelInTile();
     const uvec2 imageSize = params.imageTile.xy;
     const uvec2 pixel = params.imageTile.zw + local;
     if (local.x >= VKRAY_TILE_SIZE || local.y >= VKRAY_TILE_SIZE ||
