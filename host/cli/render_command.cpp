@@ -107,9 +107,16 @@ RenderOptions resolveOptions(const RenderArgs& args, const Scene& scene) {
     return o;
 }
 
-void printProgress(uint32_t done, uint32_t total) {
+// A progress line on stderr for long renders (only on a terminal: logs stay clean).
+void printTileProgress(uint32_t done, uint32_t total) {
     std::fprintf(stderr, "\rrendering: tile %u/%u", done, total);
-    if (done == total) std::fprintf(stderr, "\n");
+    if (done == total) std::fprintf(stderr, "\r%*s\r", 40, "");
+}
+
+void printRowProgress(int done, int total) {
+    if (done % 16 != 0 && done != total) return;
+    std::fprintf(stderr, "\rrendering: row %d/%d", done, total);
+    if (done == total) std::fprintf(stderr, "\r%*s\r", 40, "");
 }
 
 void runRender(const RenderArgs& args) {
@@ -135,7 +142,7 @@ void runRender(const RenderArgs& args) {
             throw Error("--cpu: accelerator '" + options.accel + "' is not implemented on the CPU yet (available: brute)");
         deviceName = "CPU reference (double precision)";
         t0 = Clock::now();
-        frame = renderReference(scene, options);
+        frame = renderReference(scene, options, showProgress ? RenderProgress(printRowProgress) : RenderProgress());
         renderMs = msSince(t0);
     } else {
         if (!gpu::gpuSupportsAccel(options.accel))
@@ -145,14 +152,15 @@ void runRender(const RenderArgs& args) {
         gpu::GpuRenderReport rep;
         t0 = Clock::now();
         frame = gpu::renderOnGpu(ctx, scene, options, &rep,
-                                 showProgress ? gpu::TileProgress(printProgress) : gpu::TileProgress());
+                                 showProgress ? gpu::TileProgress(printTileProgress) : gpu::TileProgress());
         renderMs = msSince(t0);
         nlohmann::json features = nlohmann::json::object();
         for (const auto& [name, on] : rep.features.list()) features[name] = on;
         report["gpu"] = {{"tiles", rep.tiles}, {"submissions", rep.submissions},
                          {"bytes_uploaded", rep.bytesUploaded}, {"upload_ms", rep.uploadMs},
                          {"pipeline_ms", rep.pipelineMs}, {"gpu_ms", rep.gpuMs},
-                         {"dispatch_ms", rep.renderMs}, {"features", features}};
+                         {"dispatch_ms", rep.renderMs}, {"rays", rep.raysTraced},
+                         {"features", features}};
     }
 
     writeColorImage(out, frame.width, frame.height, frame.color);
@@ -192,9 +200,10 @@ void runRender(const RenderArgs& args) {
             (enabled.get<bool>() ? on : off) += (name + ", ");
         auto trim = [](std::string s) { return s.empty() ? std::string("none") : s.substr(0, s.size() - 2); };
         std::printf("kernel:      compiled in: %s; left out: %s\n", trim(on).c_str(), trim(off).c_str());
-        std::printf("gpu:         %u tiles in %u submissions, %.2f MiB uploaded\n",
+        std::printf("gpu:         %u tiles in %u submissions, %.2f MiB uploaded, %llu camera and secondary rays\n",
                     g["tiles"].get<unsigned>(), g["submissions"].get<unsigned>(),
-                    g["bytes_uploaded"].get<double>() / (1 << 20));
+                    g["bytes_uploaded"].get<double>() / (1 << 20),
+                    (unsigned long long)g["rays"].get<uint64_t>());
         std::printf("timing:      upload %.1f ms, pipeline %.1f ms, gpu %.1f ms (timestamps), dispatch+readback %.1f ms\n",
                     g["upload_ms"].get<double>(), g["pipeline_ms"].get<double>(),
                     g["gpu_ms"].get<double>(), g["dispatch_ms"].get<double>());
