@@ -2,6 +2,7 @@
 // and the requested AOVs, report what was done.
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <filesystem>

@@ -72,8 +72,9 @@ void ComputeKernel::dispatch(const vk::raii::CommandBuffer& cmd, const void* pus
     cmd.bindPipeline(vk::PipelineBindPoint::eCompute, *pipeline_);
     cmd.bindDescriptorSets(vk::PipelineBindPoint::eCompute, *layout_, 0, *set_, nullptr);
     if (pushConstantBytes_)
-        vkCmdPushConstants(*cmd, *layout_, VK_SHADER_STAGE_COMPUTE_BIT, 0, pushConstantBytes_,
-                           pushConstants);
+        cmd.pushConstants<uint8_t>(*layout_, vk::ShaderStageFlagBits::eCompute, 0,
+                                   vk::ArrayProxy<const uint8_t>(pushConstantBytes_,
+                                                                 static_cast<const uint8_t*>(pushConstants)));
     cmd.dispatch(groupsX, groupsY, 1);
 }
 
