@@ -3,6 +3,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cctype>
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
@@ -88,6 +89,20 @@ std::filesystem::path outputPath(const RenderArgs& args, const Scene& scene) {
     return std::filesystem::path(args.scene).stem().string() + ".png";
 }
 
+// Refuse an output the writers cannot produce before spending minutes on the render.
+void checkWritable(const std::filesystem::path& file, const std::vector<std::string>& extensions) {
+    std::string ext = file.extension().string();
+    std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
+    if (std::find(extensions.begin(), extensions.end(), ext) == extensions.end()) {
+        std::string list;
+        for (const auto& e : extensions) list += (list.empty() ? "" : ", ") + e;
+        throw Error(file.string() + ": unsupported image file extension '" + ext + "' (supported: " + list + ")");
+    }
+    const std::filesystem::path dir = file.parent_path();
+    if (!dir.empty() && !std::filesystem::is_directory(dir))
+        throw Error(file.string() + ": cannot write: directory " + dir.string() + " does not exist");
+}
+
 void checkRenderable(const Scene& scene, const std::string& file) {
     if (!scene.hasCamera) throw Error(FileLoc{file}, "the scene has no 'camera' line");
     if (scene.triangles.empty()) throw Error(FileLoc{file}, "the scene has no triangles (nothing to render)");
@@ -132,6 +147,8 @@ void runRender(const RenderArgs& args) {
     checkRenderable(scene, args.scene);
     const RenderOptions options = resolveOptions(args, scene);
     const std::filesystem::path out = outputPath(args, scene);
+    checkWritable(out, {".png", ".bmp", ".pfm"});
+    for (const auto& [name, file] : aovFiles) checkWritable(file, {".pfm"});
 
     nlohmann::json report;
     std::string deviceName;
