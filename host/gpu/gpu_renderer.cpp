@@ -76,6 +76,7 @@ Frame renderOnGpu(const VulkanContext& ctx, const Scene& scene, const RenderOpti
         throw Error("accelerator '" + options.accel + "' is not implemented on the GPU yet (available: brute)");
     GpuRenderReport local;
     GpuRenderReport& rep = report ? *report : local;
+    rep = GpuRenderReport{};
     const GpuFrameParams baseParams = frameParams(scene, options);  // validates camera and size
 
     auto start = Clock::now();
@@ -116,7 +117,6 @@ Frame renderOnGpu(const VulkanContext& ctx, const Scene& scene, const RenderOpti
     Frame frame;
     frame.resize(options.width, options.height);
     rep.tiles = uint32_t(tiles.size());
-    rep.submissions = 0;
     rep.gpuMs = timestamps ? 0.0 : -1.0;
     start = Clock::now();
     for (size_t first = 0; first < tiles.size(); first += perSubmission) {
