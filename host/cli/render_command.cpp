@@ -3,7 +3,6 @@
 #include <unistd.h>
 
 #include <algorithm>
-#include <cctype>
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
@@ -57,23 +56,20 @@ std::pair<int, int> parseSize(const std::string& text) {
     if (!std::regex_match(text, m, pattern))
         throw Error("--size " + text + ": expected WIDTHxHEIGHT, for example 640x480");
     const long long w = std::stoll(m[1]), h = std::stoll(m[2]);
-    if (w < 1 || h < 1 || w > kMaxImageSide || h > kMaxImageSide || w * h > kMaxImagePixels)
-        throw Error("--size " + text + ": each side must be 1.." + std::to_string(kMaxImageSide) +
-                    " and the image at most " + std::to_string(kMaxImagePixels) + " pixels");
+    if (const auto problem = imageSizeProblem(w, h)) throw Error("--size " + text + ": " + *problem);
     return {int(w), int(h)};
 }
 
-// "depth=d.pfm" -> {"depth", "d.pfm"}; names checked when written.
+// "depth=d.pfm" -> {"depth", "d.pfm"}, names and file names checked by image_io's rules.
 std::map<std::string, std::string> parseAovs(const std::vector<std::string>& specs) {
     std::map<std::string, std::string> out;
     for (const std::string& s : specs) {
         const auto eq = s.find('=');
         if (eq == std::string::npos || eq == 0 || eq + 1 == s.size())
             throw Error("--aov " + s + ": expected NAME=FILE.pfm (names: depth, primid, normal)");
-        const std::string name = s.substr(0, eq);
-        if (name != "depth" && name != "primid" && name != "normal")
-            throw Error("--aov " + s + ": unknown AOV '" + name + "' (names: depth, primid, normal)");
-        out[name] = s.substr(eq + 1);
+        const std::string name = s.substr(0, eq), file = s.substr(eq + 1);
+        checkAovPath(file, name);
+        out[name] = file;
     }
     return out;
 }
@@ -87,20 +83,6 @@ std::filesystem::path outputPath(const RenderArgs& args, const Scene& scene) {
         return p;
     }
     return std::filesystem::path(args.scene).stem().string() + ".png";
-}
-
-// Refuse an output the writers cannot produce before spending minutes on the render.
-void checkWritable(const std::filesystem::path& file, const std::vector<std::string>& extensions) {
-    std::string ext = file.extension().string();
-    std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
-    if (std::find(extensions.begin(), extensions.end(), ext) == extensions.end()) {
-        std::string list;
-        for (const auto& e : extensions) list += (list.empty() ? "" : ", ") + e;
-        throw Error(file.string() + ": unsupported image file extension '" + ext + "' (supported: " + list + ")");
-    }
-    const std::filesystem::path dir = file.parent_path();
-    if (!dir.empty() && !std::filesystem::is_directory(dir))
-        throw Error(file.string() + ": cannot write: directory " + dir.string() + " does not exist");
 }
 
 void checkRenderable(const Scene& scene, const std::string& file) {
@@ -147,8 +129,7 @@ void runRender(const RenderArgs& args) {
     checkRenderable(scene, args.scene);
     const RenderOptions options = resolveOptions(args, scene);
     const std::filesystem::path out = outputPath(args, scene);
-    checkWritable(out, {".png", ".bmp", ".pfm"});
-    for (const auto& [name, file] : aovFiles) checkWritable(file, {".pfm"});
+    checkColorImagePath(out);  // refuse a bad output before spending minutes on the render
 
     nlohmann::json report;
     std::string deviceName;

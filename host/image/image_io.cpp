@@ -43,6 +43,12 @@ Format formatFor(const fs::path& path) {
                               "' (supported: .png, .bmp, .pfm)");
 }
 
+void checkDirectoryExists(const fs::path& path) {
+    const fs::path dir = path.parent_path();
+    if (!dir.empty() && !fs::is_directory(dir))
+        throw fileError(path, "cannot write: directory " + dir.string() + " does not exist");
+}
+
 void checkSize(const fs::path& path, int width, int height, int channels) {
     if (width <= 0 || height <= 0 || (channels != 1 && channels != 3))
         throw fileError(path, "cannot write a " + std::to_string(width) + "x" + std::to_string(height) + " image with " +
@@ -300,11 +306,21 @@ const std::vector<std::string_view>& aovNames() {
     return names;
 }
 
-void writeAov(const fs::path& path, const Frame& frame, std::string_view name) {
+void checkColorImagePath(const fs::path& path) {
+    formatFor(path);
+    checkDirectoryExists(path);
+}
+
+void checkAovPath(const fs::path& path, std::string_view name) {
     if (std::find(aovNames().begin(), aovNames().end(), name) == aovNames().end())
         throw Error("unknown AOV '" + std::string(name) + "' (valid: depth, primid, normal)");
     // AOVs carry +inf and -1, which no 8-bit format can hold: insist on the PFM name.
     if (lowerExtension(path) != ".pfm") throw fileError(path, "AOV files are PFM: the name must end in .pfm");
+    checkDirectoryExists(path);
+}
+
+void writeAov(const fs::path& path, const Frame& frame, std::string_view name) {
+    checkAovPath(path, name);
     const size_t n = size_t(frame.width) * size_t(frame.height);
     auto missing = [&] { return fileError(path, "the frame has no " + std::string(name) + " AOV of its size"); };
     if (name == "depth") {

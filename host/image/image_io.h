@@ -40,6 +40,12 @@ void writePfm(const std::filesystem::path& path, int width, int height, int chan
 // top row first.
 Image readImage(const std::filesystem::path& path);
 
+// Throws the vkray::Error that writeColorImage / writeAov would throw for this path's name (an
+// unsupported extension, an AOV name that is not .pfm, a directory that does not exist), so a
+// caller can refuse a bad output before spending minutes on a render.
+void checkColorImagePath(const std::filesystem::path& path);
+void checkAovPath(const std::filesystem::path& path, std::string_view name);
+
 // The AOV names writeAov accepts: depth, primid, normal.
 const std::vector<std::string_view>& aovNames();
 

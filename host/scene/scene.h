@@ -5,6 +5,7 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -17,6 +18,15 @@ namespace vkray {
 inline constexpr int kMaxImageSide = 16384;
 inline constexpr long long kMaxImagePixels = 1LL << 26;  // 8192 x 8192
 inline constexpr int kMaxDepthLimit = 64;
+
+// Why w x h is not an image vkray renders, or nothing when it is (the `size` command and --size).
+inline std::optional<std::string> imageSizeProblem(long long w, long long h) {
+    if (w >= 1 && h >= 1 && w <= kMaxImageSide && h <= kMaxImageSide && w * h <= kMaxImagePixels)
+        return std::nullopt;
+    return "image size " + std::to_string(w) + "x" + std::to_string(h) +
+           " is invalid: each side must be 1.." + std::to_string(kMaxImageSide) +
+           " and the total at most " + std::to_string(kMaxImagePixels) + " pixels (2^26)";
+}
 
 // Material state of the .scene format (CSE167 conventions, seed 001), resolved at the time a
 // primitive is created: `reflect` already holds the specular colour when the scene never set it.

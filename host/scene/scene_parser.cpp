@@ -199,11 +199,8 @@ void Parser::added(bool ok, const SceneLine& line) const {
 
 void Parser::size(const SceneLine& line) {
     const int64_t w = line.integer(1), h = line.integer(2);
-    if (w < 1 || h < 1 || w > kMaxImageSide || h > kMaxImageSide || w * h > kMaxImagePixels)
-        line.fail("image size " + std::to_string(w) + "x" + std::to_string(h) +
-                      " is invalid: each side must be 1.." + std::to_string(kMaxImageSide) +
-                      " and the total at most " + std::to_string(kMaxImagePixels) + " pixels (2^26)",
-                  w < 1 || w > kMaxImageSide ? 1 : 2);
+    if (const auto problem = imageSizeProblem(w, h))
+        line.fail(*problem, w < 1 || w > kMaxImageSide ? 1 : 2);
     scene().width = int(w);
     scene().height = int(h);
 }

@@ -33,7 +33,7 @@ vkray_expect_error(unknown_aov "unknown AOV 'albedo'" render ${CLI_DATA}/one_tri
 vkray_expect_error(unknown_device "--device 999" render ${CLI_DATA}/one_triangle.scene --device 999 -o ${CLI_OUT}/x.png)
 vkray_expect_error(unwritable_output "${CLI_OUT}/no/such/dir/x\\.png" render ${CLI_DATA}/one_triangle.scene -o ${CLI_OUT}/no/such/dir/x.png)
 vkray_expect_error(unsupported_output "x\\.jpg.*supported: \\.png" render ${CLI_DATA}/one_triangle.scene -o ${CLI_OUT}/x.jpg)
-vkray_expect_error(aov_not_pfm "d\\.png.*supported: \\.pfm" render ${CLI_DATA}/one_triangle.scene --aov depth=${CLI_OUT}/d.png -o ${CLI_OUT}/x.png)
+vkray_expect_error(aov_not_pfm "d\\.png: AOV files are PFM: the name must end in \\.pfm" render ${CLI_DATA}/one_triangle.scene --aov depth=${CLI_OUT}/d.png -o ${CLI_OUT}/x.png)
 vkray_expect_error(compare_missing "missing\\.png" compare ${CLI_OUT}/missing.png ${CLI_OUT}/missing2.png)
 
 # Success paths: devices, a GPU render with AOVs, the CPU reference, and compare between them.
