@@ -14,6 +14,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "accel/accel.h"
 #include "cli/commands.h"
 #include "core/error.h"
 #include "cpu/reference_renderer.h"
@@ -26,14 +27,15 @@
 namespace vkray::cli {
 namespace {
 
-// Every accelerator name of DESIGN.md; those not built yet are refused with a clear message.
-const std::vector<std::string> kAccelNames = {"brute", "bvh", "bvh-fast", "bvh-hq",
-                                              "kd-restart", "kd-backtrack", "kd-stack"};
-
 struct RenderArgs {
     std::string scene;
     std::string output;
     std::string accel = "brute";
+    int aacDelta = 0;
+    double aacEpsilon = 0.0;
+    double kdTraversalCost = 0.0, kdIntersectionCost = 0.0, kdEmptyBonus = -1.0;
+    int kdMaxDepth = 0;
+    bool counters = false;
     bool cpu = false;
     std::string device;
     std::string size;
@@ -102,7 +104,31 @@ RenderOptions resolveOptions(const RenderArgs& args, const Scene& scene) {
     if (args.threads < 0) throw Error("--threads must be 0 (all cores) or positive");
     o.threads = args.threads;
     o.accel = args.accel;
+    o.countTraversal = args.counters;
     return o;
+}
+
+accel::AccelSpec resolveAccel(const RenderArgs& args) {
+    accel::AccelSpec spec;
+    try {
+        spec = accel::parseAccel(args.accel);
+    } catch (const Error& e) {
+        throw Error("--accel " + args.accel + ": " + e.what());
+    }
+    if (args.aacDelta < 0) throw Error("--aac-delta must be positive");
+    if (args.aacEpsilon < 0.0 || args.aacEpsilon >= 0.5)
+        throw Error("--aac-epsilon must be in [0, 0.5) (alpha = 1/2 - epsilon must stay positive)");
+    if (args.kdTraversalCost < 0.0 || args.kdIntersectionCost < 0.0)
+        throw Error("--kd-traversal-cost and --kd-intersection-cost must be positive");
+    if (args.kdEmptyBonus > 1.0) throw Error("--kd-empty-bonus must be in [0, 1]");
+    if (args.kdMaxDepth < 0 || args.kdMaxDepth > 64) throw Error("--kd-max-depth must be 1..64");
+    spec.aacDelta = args.aacDelta;
+    spec.aacEpsilon = args.aacEpsilon;
+    spec.kdTraversalCost = args.kdTraversalCost;
+    spec.kdIntersectionCost = args.kdIntersectionCost;
+    spec.kdEmptyBonus = args.kdEmptyBonus;
+    spec.kdMaxDepth = args.kdMaxDepth;
+    return spec;
 }
 
 // A progress line on stderr for long renders (only on a terminal: logs stay clean).
@@ -111,17 +137,28 @@ void printTileProgress(uint32_t done, uint32_t total) {
     if (done == total) std::fprintf(stderr, "\r%*s\r", 40, "");
 }
 
+void printBuildProgress(const std::string& phase, double fraction) {
+    std::fprintf(stderr, "\rbuilding: %-24s %3d%%", phase.c_str(), int(fraction * 100.0 + 0.5));
+}
+
+void clearProgressLine() { std::fprintf(stderr, "\r%*s\r", 48, ""); }
+
 void printRowProgress(int done, int total) {
     if (done % 16 != 0 && done != total) return;
     std::fprintf(stderr, "\rrendering: row %d/%d", done, total);
     if (done == total) std::fprintf(stderr, "\r%*s\r", 40, "");
 }
 
+void printAccelStats(const nlohmann::json& accelJson, const std::vector<accel::AccelStat>& stats) {
+    std::printf("accel:       %s, built in %.1f ms\n", accelJson["name"].get<std::string>().c_str(),
+                accelJson["build_ms"].get<double>());
+    for (const accel::AccelStat& st : stats)
+        std::printf("  %-22s %.6g %s\n", st.key.c_str(), st.value, st.unit.c_str());
+}
+
 void runRender(const RenderArgs& args) {
     const auto aovFiles = parseAovs(args.aovs);
-    if (std::find(kAccelNames.begin(), kAccelNames.end(), args.accel) == kAccelNames.end())
-        throw Error("--accel " + args.accel + ": unknown accelerator (brute, bvh, bvh-fast, bvh-hq, "
-                    "kd-restart, kd-backtrack, kd-stack)");
+    const accel::AccelSpec spec = resolveAccel(args);
 
     auto t0 = Clock::now();
     const Scene scene = loadScene(args.scene);
@@ -136,30 +173,53 @@ void runRender(const RenderArgs& args) {
     Frame frame;
     double renderMs = 0.0;
     const bool showProgress = !args.json && isatty(STDERR_FILENO);
-    if (args.cpu) {
-        if (options.accel != "brute")
-            throw Error("--cpu: accelerator '" + options.accel + "' is not implemented on the CPU yet (available: brute)");
+    // The device first: a missing or unknown device fails before a long build.
+    std::optional<gpu::VulkanContext> ctx;
+    if (!args.cpu) {
+        ctx.emplace(gpu::ContextOptions{.validation = gpu::validationRequestedByEnvironment(), .device = args.device});
+        deviceName = ctx->info().name + " (" + ctx->info().driver + ")";
+    } else {
         deviceName = "CPU reference (double precision)";
+    }
+
+    // Only the structure this render uses is built.
+    t0 = Clock::now();
+    const auto built = accel::buildAccel(
+        scene, spec,
+        accel::BuildOptions{.threads = options.threads,
+                            .progress = showProgress ? accel::BuildProgress(printBuildProgress)
+                                                     : accel::BuildProgress()});
+    const double buildMs = msSince(t0);
+    if (showProgress && spec.family != accel::Family::Brute) clearProgressLine();
+    report["accel"] = {{"name", spec.name}, {"build_ms", buildMs}};
+    for (const accel::AccelStat& st : built->stats()) report["accel"][st.key] = st.value;
+
+    if (args.cpu) {
         t0 = Clock::now();
-        frame = renderReference(scene, options, showProgress ? RenderProgress(printRowProgress) : RenderProgress());
+        frame = renderReference(scene, options, built->tracer(),
+                                showProgress ? RenderProgress(printRowProgress) : RenderProgress());
         renderMs = msSince(t0);
     } else {
-        if (!gpu::gpuSupportsAccel(options.accel))
-            throw Error("--accel " + options.accel + ": not implemented on the GPU yet (available: brute)");
-        gpu::VulkanContext ctx({.validation = gpu::validationRequestedByEnvironment(), .device = args.device});
-        deviceName = ctx.info().name + " (" + ctx.info().driver + ")";
         gpu::GpuRenderReport rep;
         t0 = Clock::now();
-        frame = gpu::renderOnGpu(ctx, scene, options, &rep,
+        frame = gpu::renderOnGpu(*ctx, scene, options, built->gpuData(), &rep,
                                  showProgress ? gpu::TileProgress(printTileProgress) : gpu::TileProgress());
         renderMs = msSince(t0);
         nlohmann::json features = nlohmann::json::object();
         for (const auto& [name, on] : rep.features.list()) features[name] = on;
-        report["gpu"] = {{"tiles", rep.tiles}, {"submissions", rep.submissions},
-                         {"bytes_uploaded", rep.bytesUploaded}, {"upload_ms", rep.uploadMs},
-                         {"pipeline_ms", rep.pipelineMs}, {"gpu_ms", rep.gpuMs},
-                         {"dispatch_ms", rep.renderMs}, {"rays", rep.raysTraced},
+        report["gpu"] = {{"kernel", rep.kernel}, {"tiles", rep.tiles}, {"submissions", rep.submissions},
+                         {"bytes_uploaded", rep.bytesUploaded}, {"accel_bytes", rep.accelBytes},
+                         {"upload_ms", rep.uploadMs}, {"pipeline_ms", rep.pipelineMs},
+                         {"gpu_ms", rep.gpuMs}, {"dispatch_ms", rep.renderMs}, {"rays", rep.raysTraced},
+                         {"shadow_rays", rep.shadowRays}, {"capped_rays", rep.cappedRays},
                          {"features", features}};
+        if (options.countTraversal)
+            report["gpu"]["traversal"] = {{"nodes", rep.nodesVisited}, {"leaves", rep.leavesVisited},
+                                          {"triangles", rep.trianglesTested}, {"restarts", rep.restarts}};
+        if (rep.cappedRays > 0)
+            std::fprintf(stderr, "warning: %llu rays reached the traversal's iteration cap and were ended "
+                                 "there; their pixels may be wrong\n",
+                         (unsigned long long)rep.cappedRays);
     }
 
     writeColorImage(out, frame.width, frame.height, frame.color);
@@ -167,7 +227,6 @@ void runRender(const RenderArgs& args) {
 
     report["scene"] = args.scene;
     report["device"] = deviceName;
-    report["accel"] = options.accel;
     report["width"] = options.width;
     report["height"] = options.height;
     report["maxdepth"] = options.maxDepth;
@@ -192,6 +251,7 @@ void runRender(const RenderArgs& args) {
     if (!args.stats) return;
     std::printf("scene:       %zu triangles, %zu materials, %zu lights (loaded in %.1f ms)\n",
                 scene.triangles.size(), scene.materials.size(), scene.lights.size(), loadMs);
+    printAccelStats(report["accel"], built->stats());
     if (report.contains("gpu")) {
         const auto& g = report["gpu"];
         std::string on, off;
@@ -199,10 +259,22 @@ void runRender(const RenderArgs& args) {
             (enabled.get<bool>() ? on : off) += (name + ", ");
         auto trim = [](std::string s) { return s.empty() ? std::string("none") : s.substr(0, s.size() - 2); };
         std::printf("kernel:      compiled in: %s; left out: %s\n", trim(on).c_str(), trim(off).c_str());
-        std::printf("gpu:         %u tiles in %u submissions, %.2f MiB uploaded, %llu camera and secondary rays\n",
-                    g["tiles"].get<unsigned>(), g["submissions"].get<unsigned>(),
-                    g["bytes_uploaded"].get<double>() / (1 << 20),
-                    (unsigned long long)g["rays"].get<uint64_t>());
+        std::printf("gpu:         kernel render_%s, %u tiles in %u submissions, %.2f MiB uploaded "
+                    "(%.2f MiB structure)\n",
+                    g["kernel"].get<std::string>().c_str(), g["tiles"].get<unsigned>(),
+                    g["submissions"].get<unsigned>(), g["bytes_uploaded"].get<double>() / (1 << 20),
+                    g["accel_bytes"].get<double>() / (1 << 20));
+        const auto rays = g["rays"].get<uint64_t>(), shadow = g["shadow_rays"].get<uint64_t>();
+        std::printf("rays:        %llu camera and secondary, %llu shadow, %llu capped\n",
+                    (unsigned long long)rays, (unsigned long long)shadow,
+                    (unsigned long long)g["capped_rays"].get<uint64_t>());
+        if (g.contains("traversal")) {
+            const double all = double(std::max<uint64_t>(rays + shadow, 1));
+            const auto& t = g["traversal"];
+            std::printf("traversal:   per ray %.2f nodes, %.2f leaves, %.2f triangle tests, %.3f restarts\n",
+                        t["nodes"].get<double>() / all, t["leaves"].get<double>() / all,
+                        t["triangles"].get<double>() / all, t["restarts"].get<double>() / all);
+        }
         std::printf("timing:      upload %.1f ms, pipeline %.1f ms, gpu %.1f ms (timestamps), dispatch+readback %.1f ms\n",
                     g["upload_ms"].get<double>(), g["pipeline_ms"].get<double>(),
                     g["gpu_ms"].get<double>(), g["dispatch_ms"].get<double>());
@@ -216,7 +288,16 @@ void registerRenderCommand(CLI::App& app, int& exitCode) {
     auto* cmd = app.add_subcommand("render", "Render a .scene file to an image");
     cmd->add_option("scene", args->scene, "Scene file (.scene, or a CSE167 .test file)")->required();
     cmd->add_option("-o,--output", args->output, "Output image (.png, .bmp or .pfm); default: the scene's 'output' or SCENE.png");
-    cmd->add_option("--accel", args->accel, "Acceleration structure: brute (bvh, kd-* come with their issues)");
+    std::string accelList;
+    for (const std::string& n : accel::accelNames()) accelList += (accelList.empty() ? "" : ", ") + n;
+    cmd->add_option("--accel", args->accel, "Acceleration structure: " + accelList)->default_str(args->accel);
+    cmd->add_option("--aac-delta", args->aacDelta, "AAC: leaf-range size delta (overrides the preset)");
+    cmd->add_option("--aac-epsilon", args->aacEpsilon, "AAC: reduction exponent epsilon, alpha = 1/2 - epsilon (overrides the preset)");
+    cmd->add_option("--kd-traversal-cost", args->kdTraversalCost, "kd-tree SAH: cost of a traversal step (overrides the default)");
+    cmd->add_option("--kd-intersection-cost", args->kdIntersectionCost, "kd-tree SAH: cost of a triangle test (overrides the default)");
+    cmd->add_option("--kd-empty-bonus", args->kdEmptyBonus, "kd-tree SAH: bonus for cutting off empty space, 0..1 (overrides the default)");
+    cmd->add_option("--kd-max-depth", args->kdMaxDepth, "kd-tree: maximum depth (default 8 + 1.3 log2 N)");
+    cmd->add_flag("--counters", args->counters, "GPU: compile traversal counters in and report nodes, leaves and triangle tests per ray (slower)");
     cmd->add_flag("--cpu", args->cpu, "Render with the CPU reference renderer (double precision)");
     cmd->add_option("--device", args->device, "Vulkan device: index or name substring (see `vkray devices`)");
     cmd->add_option("--size", args->size, "Image size WIDTHxHEIGHT (overrides the scene's 'size')");

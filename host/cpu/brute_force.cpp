@@ -17,8 +17,9 @@ BruteForceTracer::BruteForceTracer(const Scene& scene) : triangles_(triangleVert
 BruteForceTracer::BruteForceTracer(std::vector<TriangleVertices> triangles)
     : triangles_(std::move(triangles)) {}
 
-Hit BruteForceTracer::closest(const Ray& ray, double tmax) const {
+Hit BruteForceTracer::closest(const Ray& ray, double tmax, TraversalCounters* counters) const {
     const WatertightRay wray(ray);
+    if (counters) counters->triangles += triangles_.size();
     Hit best;
     best.t = tmax;
     // Triangles in index order with the interval shrinking to (0, best.t): a later triangle at
@@ -32,10 +33,14 @@ Hit BruteForceTracer::closest(const Ray& ray, double tmax) const {
     return best;
 }
 
-bool BruteForceTracer::occluded(const Ray& ray, double tmax) const {
+bool BruteForceTracer::occluded(const Ray& ray, double tmax, TraversalCounters* counters) const {
     const WatertightRay wray(ray);
-    for (const TriangleVertices& tri : triangles_)
-        if (wray.intersect(tri, 0.0, tmax)) return true;
+    for (size_t k = 0; k < triangles_.size(); ++k)
+        if (wray.intersect(triangles_[k], 0.0, tmax)) {
+            if (counters) counters->triangles += k + 1;
+            return true;
+        }
+    if (counters) counters->triangles += triangles_.size();
     return false;
 }
 

@@ -19,8 +19,8 @@ public:
     explicit BruteForceTracer(const Scene& scene);
     explicit BruteForceTracer(std::vector<TriangleVertices> triangles);
 
-    Hit closest(const Ray& ray, double tmax) const override;
-    bool occluded(const Ray& ray, double tmax) const override;
+    Hit closest(const Ray& ray, double tmax, TraversalCounters* counters = nullptr) const override;
+    bool occluded(const Ray& ray, double tmax, TraversalCounters* counters = nullptr) const override;
 
     size_t size() const { return triangles_.size(); }
 

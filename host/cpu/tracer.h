@@ -19,16 +19,36 @@ struct Hit {
     bool found() const { return triangle >= 0; }
 };
 
+// Work done by a traversal, for the statistics of the BVH and kd-tree comparisons (issue text:
+// "mean nodes visited, leaves visited and triangles tested per ray"). Counted only when asked for.
+struct TraversalCounters {
+    uint64_t nodes = 0;      // nodes visited (inner and leaf)
+    uint64_t leaves = 0;     // leaves visited
+    uint64_t triangles = 0;  // ray-triangle tests
+    uint64_t restarts = 0;   // kd-restart restarts / kd-backtrack climbs
+    uint64_t capped = 0;     // rays ended by the traversal's iteration cap (never silently)
+
+    TraversalCounters& operator+=(const TraversalCounters& o) {
+        nodes += o.nodes;
+        leaves += o.leaves;
+        triangles += o.triangles;
+        restarts += o.restarts;
+        capped += o.capped;
+        return *this;
+    }
+};
+
 class Tracer {
 public:
     virtual ~Tracer() = default;
 
     // The hit with the smallest t in (0, tmax); among hits at exactly the same t, the lowest
     // triangle index, so the answer never depends on traversal order (or thread count).
-    virtual Hit closest(const Ray& ray, double tmax) const = 0;
+    // `counters`, when given, accumulates the work done.
+    virtual Hit closest(const Ray& ray, double tmax, TraversalCounters* counters = nullptr) const = 0;
 
     // Whether any triangle is hit with t in (0, tmax): shadow rays (docs/shading.md, "vis").
-    virtual bool occluded(const Ray& ray, double tmax) const = 0;
+    virtual bool occluded(const Ray& ray, double tmax, TraversalCounters* counters = nullptr) const = 0;
 };
 
 }  // namespace vkray::cpu

@@ -8,7 +8,7 @@
 #include "gpu/buffer.h"
 #include "gpu/compute_kernel.h"
 #include "gpu/scene_buffers.h"
-#include "render_spv.h"  // generated at build time from shaders/render.comp
+#include "render_kernels.h"  // generated at build time from shaders/render_*.comp
 #include "scene/camera.h"
 #include "shared/gpu_layout.h"
 
@@ -22,7 +22,7 @@ double msSince(Clock::time_point start) {
 
 constexpr uint32_t kTilePixels = VKRAY_TILE_SIZE * VKRAY_TILE_SIZE;
 // Few tiles per submission: progress is reported per submission, and read-back overlaps nothing
-// anyway; 4 tiles = 12 MiB of GpuPixel.
+// anyway; 4 tiles = 16 MiB of GpuPixel.
 constexpr uint32_t kMaxTilesPerSubmission = 4;
 
 struct Tile {
@@ -62,33 +62,57 @@ void readTile(const GpuPixel* src, const Tile& tile, Frame& frame, GpuRenderRepo
             frame.normal[i] = px.normal;
             frame.primId[i] = px.primId;
             rep.raysTraced += px.rays;
+            rep.shadowRays += px.shadowRays;
+            rep.cappedRays += px.capped;
+            rep.nodesVisited += px.nodes;
+            rep.leavesVisited += px.leaves;
+            rep.trianglesTested += px.triangles;
+            rep.restarts += px.restarts;
             rep.pixelsCutShort += (px.flags & VKRAY_PIXEL_CUT_SHORT) != 0;
         }
 }
 
+const generated::RenderKernelSpirv* findKernel(const std::string& name) {
+    for (const auto& k : generated::kRenderKernels)
+        if (k.name == name) return &k;
+    return nullptr;
+}
+
 }  // namespace
 
-bool gpuSupportsAccel(const std::string& accel) { return accel == "brute"; }
+bool hasRenderKernel(const std::string& kernel) { return findKernel(kernel) != nullptr; }
 
 Frame renderOnGpu(const VulkanContext& ctx, const Scene& scene, const RenderOptions& options,
                   GpuRenderReport* report, const TileProgress& progress) {
-    if (!gpuSupportsAccel(options.accel))
-        throw Error("accelerator '" + options.accel + "' is not implemented on the GPU yet (available: brute)");
+    accel::BuildOptions buildOptions;
+    buildOptions.threads = options.threads;
+    const auto built = accel::buildAccel(scene, accel::parseAccel(options.accel), buildOptions);
+    return renderOnGpu(ctx, scene, options, built->gpuData(), report, progress);
+}
+
+Frame renderOnGpu(const VulkanContext& ctx, const Scene& scene, const RenderOptions& options,
+                  const accel::GpuAccelData& accel, GpuRenderReport* report, const TileProgress& progress) {
+    const generated::RenderKernelSpirv* spirv = findKernel(accel.kernel);
+    if (!spirv) throw Error("internal: no render kernel shaders/render_" + accel.kernel + ".comp");
     GpuRenderReport local;
     GpuRenderReport& rep = report ? *report : local;
     rep = GpuRenderReport{};
+    rep.kernel = accel.kernel;
     const GpuFrameParams baseParams = frameParams(scene, options);  // validates camera and size
 
     auto start = Clock::now();
-    const PackedScene packed = packScene(scene);
+    const PackedScene packed = packScene(scene, accel.triangleOrder);
     SceneBuffers sceneBuffers = uploadScene(ctx, packed);
-    rep.bytesUploaded = sceneBuffers.bytes;
+    AccelBuffers accelBuffers = uploadAccel(ctx, accel);
+    rep.accelBytes = accelBuffers.bytes;
+    rep.bytesUploaded = sceneBuffers.bytes + accelBuffers.bytes;
     rep.uploadMs = msSince(start);
 
     start = Clock::now();
     rep.features = ShaderFeatures::forScene(scene, options.maxDepth);
-    ComputeKernel kernel(ctx, std::span<const uint32_t>(render_spv, std::size(render_spv)),
-                         VKRAY_BINDING_COUNT, sizeof(GpuFrameParams), rep.features.specialization());
+    rep.features.countTraversal = options.countTraversal;
+    ComputeKernel kernel(ctx, spirv->code, VKRAY_BINDING_COUNT, sizeof(GpuFrameParams),
+                         rep.features.specialization());
     rep.pipelineMs = msSince(start);
 
     const std::vector<Tile> tiles = splitIntoTiles(uint32_t(options.width), uint32_t(options.height));
@@ -99,9 +123,15 @@ Frame renderOnGpu(const VulkanContext& ctx, const Scene& scene, const RenderOpti
         1, kMaxTilesPerSubmission));
     Buffer pixels(ctx, perSubmission * tileBytes, vk::BufferUsageFlagBits::eStorageBuffer,
                   MemoryUse::Readback, "pixels");
-    const std::array<vk::Buffer, VKRAY_BINDING_COUNT> bindings = {
-        sceneBuffers.triangles.handle(), sceneBuffers.normals.handle(),
-        sceneBuffers.materials.handle(), sceneBuffers.lights.handle(), pixels.handle()};
+    std::array<vk::Buffer, VKRAY_BINDING_COUNT> bindings{};
+    bindings[VKRAY_BINDING_TRIANGLES] = sceneBuffers.triangles.handle();
+    bindings[VKRAY_BINDING_NORMALS] = sceneBuffers.normals.handle();
+    bindings[VKRAY_BINDING_MATERIALS] = sceneBuffers.materials.handle();
+    bindings[VKRAY_BINDING_LIGHTS] = sceneBuffers.lights.handle();
+    bindings[VKRAY_BINDING_PIXELS] = pixels.handle();
+    bindings[VKRAY_BINDING_ACCEL_NODES] = accelBuffers.nodes.handle();
+    bindings[VKRAY_BINDING_ACCEL_INDICES] = accelBuffers.indices.handle();
+    bindings[VKRAY_BINDING_ACCEL_EXTRA] = accelBuffers.extra.handle();
     kernel.bindStorageBuffers(bindings);
 
     const bool timestamps = ctx.timestampValidBits() > 0;
@@ -160,12 +190,17 @@ Frame renderOnGpu(const VulkanContext& ctx, const Scene& scene, const RenderOpti
     }
     rep.renderMs = msSince(start);
     ctx.checkValidation();
-    if (rep.pixelsCutShort > 0)
+    if (rep.pixelsCutShort > 0) {
+        const std::string remedy = accel.kernel == "brute"
+                                       ? "an acceleration structure (--accel bvh), a smaller --maxdepth or "
+                                         "fewer lights"
+                                       : "a smaller --maxdepth or fewer lights";
         throw Error(std::to_string(rep.pixelsCutShort) + " pixels were cut short on '" + ctx.info().name +
                     "': its shader loops stop early (llvmpipe ends all loops of a pixel after 65535 "
-                    "iterations in total), so with --accel " + options.accel + " this scene of " +
-                    std::to_string(scene.triangles.size()) + " triangles needs a smaller --maxdepth, fewer "
-                    "triangles or lights, or another device; no image was written");
+                    "iterations in total); with --accel " + options.accel + " this scene of " +
+                    std::to_string(scene.triangles.size()) + " triangles needs " + remedy +
+                    ", or another device; no image was written");
+    }
     return frame;
 }
 

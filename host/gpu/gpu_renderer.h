@@ -6,6 +6,7 @@
 #include <functional>
 #include <string>
 
+#include "accel/accel.h"
 #include "gpu/shader_features.h"
 #include "gpu/vulkan_context.h"
 #include "render/frame.h"
@@ -15,6 +16,7 @@
 namespace vkray::gpu {
 
 struct GpuRenderReport {
+    std::string kernel;          // shaders/render_<kernel>.comp
     ShaderFeatures features;
     uint32_t tiles = 0;          // dispatches of at most VKRAY_TILE_SIZE^2 pixels
     uint32_t submissions = 0;    // batches of tiles submitted together
@@ -23,15 +25,26 @@ struct GpuRenderReport {
     double pipelineMs = 0.0;     // kernel specialisation and pipeline creation, host clock
     double gpuMs = -1.0;         // sum of the batches' timestamp intervals; -1 without timestamps
     double renderMs = 0.0;       // dispatch to read-back done, host clock
-    uint64_t raysTraced = 0;     // camera and secondary rays (shadow rays not counted)
+    uint64_t accelBytes = 0;     // of bytesUploaded, the acceleration structure's
+    uint64_t raysTraced = 0;     // camera and secondary rays (closest hit)
+    uint64_t shadowRays = 0;     // any-hit rays
+    uint64_t cappedRays = 0;     // rays a traversal ended at its iteration cap (reported, not hidden)
     uint64_t pixelsCutShort = 0; // pixels whose loops the driver cut short (then renderOnGpu throws)
+    // Traversal work over all rays; filled only with RenderOptions::countTraversal.
+    uint64_t nodesVisited = 0, leavesVisited = 0, trianglesTested = 0, restarts = 0;
 };
 
 using TileProgress = std::function<void(uint32_t tilesDone, uint32_t tilesTotal)>;
 
-// Accelerators the GPU path implements so far (the BVH and kd-tree issues add the others).
-bool gpuSupportsAccel(const std::string& accel);
+// Whether a render kernel exists for GpuAccelData::kernel.
+bool hasRenderKernel(const std::string& kernel);
 
+// Renders with an acceleration structure already built (accel::buildAccel(...)->gpuData()).
+Frame renderOnGpu(const VulkanContext& ctx, const Scene& scene, const RenderOptions& options,
+                  const accel::GpuAccelData& accel, GpuRenderReport* report = nullptr,
+                  const TileProgress& progress = {});
+
+// Builds options.accel first (all cores), then renders: the form tests use.
 Frame renderOnGpu(const VulkanContext& ctx, const Scene& scene, const RenderOptions& options,
                   GpuRenderReport* report = nullptr, const TileProgress& progress = {});
 

@@ -1,5 +1,6 @@
 #include "gpu/scene_buffers.h"
 
+#include "core/error.h"
 
 namespace vkray::gpu {
 namespace {
@@ -11,18 +12,42 @@ Buffer uploadVector(const VulkanContext& ctx, const std::vector<T>& v, const std
     return uploadStorageBuffer(ctx, v.data(), v.size() * sizeof(T), what);
 }
 
+// An order must be a permutation of the scene's triangles: a builder bug must not become a
+// kernel reading past a buffer.
+void checkPermutation(const std::vector<uint32_t>& order, size_t count) {
+    if (order.size() != count)
+        throw Error("internal: accelerator triangle order has " + std::to_string(order.size()) +
+                    " entries for " + std::to_string(count) + " triangles");
+    std::vector<bool> seen(count, false);
+    for (uint32_t k : order) {
+        if (k >= count || seen[k])
+            throw Error("internal: accelerator triangle order is not a permutation (entry " +
+                        std::to_string(k) + ")");
+        seen[k] = true;
+    }
+}
+
 }  // namespace
 
-PackedScene packScene(const Scene& scene) {
+PackedScene packScene(const Scene& scene, const std::vector<uint32_t>& triangleOrder) {
+    const size_t count = scene.triangles.size();
+    if (!triangleOrder.empty()) checkPermutation(triangleOrder, count);
+    const auto sceneIndex = [&](size_t slot) { return triangleOrder.empty() ? slot : triangleOrder[slot]; };
     PackedScene p;
-    p.triangles.reserve(scene.triangles.size());
-    for (size_t i = 0; i < scene.triangles.size(); ++i) {
+    p.triangles.reserve(count);
+    for (size_t slot = 0; slot < count; ++slot) {
+        const size_t i = sceneIndex(slot);
         const Triangle& t = scene.triangles[i];
         p.triangles.push_back({.p0 = t.p0, .material = t.material, .p1 = t.p1,
                                .original = uint32_t(i), .p2 = t.p2, .pad0 = 0});
     }
-    for (const TriangleNormals& n : scene.normals)
-        p.normals.push_back({withW(n.n0, 0.0f), withW(n.n1, 0.0f), withW(n.n2, 0.0f)});
+    if (!scene.normals.empty()) {
+        p.normals.reserve(count);
+        for (size_t slot = 0; slot < count; ++slot) {
+            const TriangleNormals& n = scene.normals.at(sceneIndex(slot));
+            p.normals.push_back({withW(n.n0, 0.0f), withW(n.n1, 0.0f), withW(n.n2, 0.0f)});
+        }
+    }
     for (const Material& m : scene.materials)
         p.materials.push_back({.ambient = m.ambient,
                                .shininess = m.shininess,
@@ -47,6 +72,14 @@ SceneBuffers uploadScene(const VulkanContext& ctx, const PackedScene& packed) {
     b.bytes = packed.triangles.size() * sizeof(GpuTriangle) +
               packed.normals.size() * sizeof(GpuTriangleNormals) +
               packed.materials.size() * sizeof(GpuMaterial) + packed.lights.size() * sizeof(GpuLight);
+    return b;
+}
+
+AccelBuffers uploadAccel(const VulkanContext& ctx, const accel::GpuAccelData& data) {
+    AccelBuffers b{uploadVector(ctx, data.nodes, "acceleration-structure nodes"),
+                   uploadVector(ctx, data.indices, "acceleration-structure triangle indices"),
+                   uploadVector(ctx, data.extra, "acceleration-structure extra data")};
+    b.bytes = data.bytes();
     return b;
 }
 

@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "accel/accel.h"
 #include "gpu/buffer.h"
 #include "scene/scene.h"
 #include "shared/gpu_layout.h"
@@ -18,7 +19,9 @@ struct PackedScene {
     std::vector<GpuLight> lights;
 };
 
-PackedScene packScene(const Scene& scene);
+// Triangles (and their vertex normals) go into slot k in the order `triangleOrder` gives (an
+// accelerator's leaf order; empty = scene order); GpuTriangle.original keeps the identity.
+PackedScene packScene(const Scene& scene, const std::vector<uint32_t>& triangleOrder = {});
 
 struct SceneBuffers {
     Buffer triangles, normals, materials, lights;
@@ -26,5 +29,13 @@ struct SceneBuffers {
 };
 
 SceneBuffers uploadScene(const VulkanContext& ctx, const PackedScene& packed);
+
+// The acceleration structure's arrays (accel::GpuAccelData), one buffer per binding.
+struct AccelBuffers {
+    Buffer nodes, indices, extra;
+    uint64_t bytes = 0;
+};
+
+AccelBuffers uploadAccel(const VulkanContext& ctx, const accel::GpuAccelData& data);
 
 }  // namespace vkray::gpu

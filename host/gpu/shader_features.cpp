@@ -33,6 +33,7 @@ Specialization ShaderFeatures::specialization() const {
     s.set(VKRAY_SPEC_HAS_POINT_LIGHTS, pointLights);
     s.set(VKRAY_SPEC_HAS_DIRECTIONAL_LIGHTS, directionalLights);
     s.set(VKRAY_SPEC_HAS_SMOOTH_NORMALS, smoothNormals);
+    s.set(VKRAY_SPEC_COUNT_TRAVERSAL, countTraversal);
     return s;
 }
 
@@ -41,7 +42,8 @@ std::vector<std::pair<std::string, bool>> ShaderFeatures::list() const {
             {"refraction", refraction},
             {"point lights", pointLights},
             {"directional lights", directionalLights},
-            {"smooth normals", smoothNormals}};
+            {"smooth normals", smoothNormals},
+            {"traversal counters", countTraversal}};
 }
 
 }  // namespace vkray::gpu

@@ -19,6 +19,7 @@ struct ShaderFeatures {
     bool pointLights = false;
     bool directionalLights = false;
     bool smoothNormals = false;
+    bool countTraversal = false;     // statistics variant (RenderOptions::countTraversal)
 
     static ShaderFeatures forScene(const Scene& scene, int maxDepth);
     Specialization specialization() const;

@@ -10,6 +10,9 @@ struct RenderOptions {
     int maxDepth = 5;           // primary rays count as depth 1
     int threads = 0;            // CPU worker threads; 0 = all cores
     std::string accel = "brute";
+    // Compile traversal counters into the kernel (nodes, leaves, triangle tests per ray): the
+    // statistics variant; off, timing runs pay nothing for counting.
+    bool countTraversal = false;
 };
 
 }  // namespace vkray

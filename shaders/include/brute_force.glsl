@@ -1,17 +1,13 @@
 // The `brute` accelerator: every ray is tested against every triangle. The reference the other
 // traversals are measured against, usable for small scenes and tests.
 //
-// llvmpipe (lavapipe) ends every loop of an invocation once its loops together ran 65535
-// iterations (Mesa gallivm LP_MAX_TGSI_LOOP_ITERATIONS). The loops below test kBruteBatch
-// triangles per iteration, which multiplies the scene size brute force handles there, and report a
-// loop that ended before its bound in gLoopCutShort, so a cut never passes silently.
+// The loops test kBruteBatch triangles per iteration, which multiplies the scene size brute force
+// handles under lavapipe's loop budget (trace_status.glsl), and report a loop cut short.
 #ifndef VKRAY_BRUTE_FORCE_GLSL
 #define VKRAY_BRUTE_FORCE_GLSL
 
+#include "trace_status.glsl"
 #include "triangle.glsl"
-
-// Set when a loop ended before its bound: the driver cut it short (see VKRAY_PIXEL_CUT_SHORT).
-bool gLoopCutShort = false;
 
 const uint kBruteBatch = 4;
 
@@ -47,6 +43,7 @@ Hit traceClosest(vec3 origin, vec3 dir, float tmax) {
         closestOf(i + 3, count, ray, best);
     }
     if (i < count) gLoopCutShort = true;
+    countTriangles(count);
     return best;
 }
 
@@ -60,6 +57,7 @@ bool traceAny(vec3 origin, vec3 dir, float tmax) {
         occluded = occludes(i, count, ray, tmax) || occludes(i + 1, count, ray, tmax) ||
                    occludes(i + 2, count, ray, tmax) || occludes(i + 3, count, ray, tmax);
     if (!occluded && i < count) gLoopCutShort = true;
+    countTriangles(min(i, count));
     return occluded;
 }
 

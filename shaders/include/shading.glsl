@@ -4,6 +4,7 @@
 #define VKRAY_SHADING_GLSL
 
 #include "ray_offset.glsl"
+#include "trace_status.glsl"
 
 #define kInfinity uintBitsToFloat(0x7F800000u)
 
@@ -76,6 +77,12 @@ LightSample sampleLight(GpuLight light, vec3 position, vec3 shadowOrigin) {
     return ls;
 }
 
+// Any-hit query of the accelerator's traceAny(), counted per pixel.
+bool traceShadowRay(vec3 origin, vec3 dir, float tmax) {
+    ++gShadowRays;
+    return traceAny(origin, dir, tmax);
+}
+
 // Emission, ambient and every light with its shadow ray (docs/shading.md, "Local shading").
 vec3 localShading(SurfacePoint s, GpuMaterial m, vec3 V) {
     const vec3 transmit = m.transmit.rgb;
@@ -87,7 +94,7 @@ vec3 localShading(SurfacePoint s, GpuMaterial m, vec3 V) {
         const LightSample ls = sampleLight(lights[i], s.position, shadowOrigin);
         const vec3 term = blinnPhong(s, m, V, transmit, ls.L, ls.radiance);
         // Shadow rays only where the light would add something.
-        if (any(greaterThan(term, vec3(0.0))) && !traceAny(shadowOrigin, ls.shadowDir, ls.shadowTmax))
+        if (any(greaterThan(term, vec3(0.0))) && !traceShadowRay(shadowOrigin, ls.shadowDir, ls.shadowTmax))
             color += term;
     }
     return color;

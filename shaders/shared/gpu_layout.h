@@ -32,7 +32,12 @@ using uvec4 = glm::uvec4;
 #define VKRAY_BINDING_MATERIALS 2  // GpuMaterial[]
 #define VKRAY_BINDING_LIGHTS 3     // GpuLight[] (one dummy entry without lights)
 #define VKRAY_BINDING_PIXELS 4     // GpuPixel[], one batch of tiles
-#define VKRAY_BINDING_COUNT 5
+// The acceleration structure, in the layout its own header defines (shared/bvh_layout.h,
+// shared/kd_layout.h); a binding the structure does not use holds a small dummy buffer.
+#define VKRAY_BINDING_ACCEL_NODES 5    // nodes
+#define VKRAY_BINDING_ACCEL_INDICES 6  // triangle-index lists of the leaves
+#define VKRAY_BINDING_ACCEL_EXTRA 7    // anything else (kd-backtrack: parent links and node boxes)
+#define VKRAY_BINDING_COUNT 8
 
 // ---- Specialization constants: what the scene does not need is compiled out --------------------
 #define VKRAY_SPEC_MAX_DEPTH 0              // int: maxdepth; also sizes the ray stack
@@ -41,7 +46,10 @@ using uvec4 = glm::uvec4;
 #define VKRAY_SPEC_HAS_POINT_LIGHTS 3       // bool
 #define VKRAY_SPEC_HAS_DIRECTIONAL_LIGHTS 4 // bool
 #define VKRAY_SPEC_HAS_SMOOTH_NORMALS 5     // bool
-#define VKRAY_SPEC_COUNT 6
+// bool: count nodes, leaves and triangle tests per pixel (GpuPixel) — the statistics variant; off,
+// the counting is compiled out so timing runs pay nothing for it.
+#define VKRAY_SPEC_COUNT_TRAVERSAL 6
+#define VKRAY_SPEC_COUNT 7
 
 // ---- GpuPixel.flags ------------------------------------------------------------------------------
 // A loop of the kernel ended before its bound: the driver cut it short (llvmpipe/lavapipe stops
@@ -97,15 +105,20 @@ VKRAY_STRUCT(GpuLight) {  // 32 bytes
     float pad0;
 };
 
-VKRAY_STRUCT(GpuPixel) {  // 48 bytes
+VKRAY_STRUCT(GpuPixel) {  // 64 bytes
     vec3 color;   // radiance
     float depth;  // primary-hit t, +inf on a miss
     vec3 normal;  // primary shading normal, 0 on a miss
     int primId;   // triangle identity of the primary hit, -1 on a miss
     uint flags;   // VKRAY_PIXEL_* bits
-    uint rays;    // rays traced for this pixel (camera and secondary; shadow rays not counted)
-    uint pad0;
-    uint pad1;
+    uint rays;    // closest-hit rays traced for this pixel (camera and secondary)
+    uint shadowRays;  // any-hit rays traced for this pixel
+    // Traversal work of all the pixel's rays; 0 unless VKRAY_SPEC_COUNT_TRAVERSAL is on.
+    uint nodes;      // nodes visited
+    uint leaves;     // leaves visited
+    uint triangles;  // ray-triangle tests
+    uint restarts;   // kd-restart restarts, kd-backtrack climbs
+    uint capped;     // rays ended by a traversal's iteration cap (reported, never hidden)
 };
 
 // Push constants: 112 bytes, under the 128 every Vulkan device guarantees.
@@ -128,9 +141,10 @@ static_assert(sizeof(GpuMaterial) == 96 && offsetof(GpuMaterial, shininess) == 1
               offsetof(GpuMaterial, diffuse) == 16 && offsetof(GpuMaterial, ior) == 28 &&
               offsetof(GpuMaterial, specular) == 32 && offsetof(GpuMaterial, transmit) == 80);
 static_assert(sizeof(GpuLight) == 32 && offsetof(GpuLight, type) == 12 && offsetof(GpuLight, color) == 16);
-static_assert(sizeof(GpuPixel) == 48 && offsetof(GpuPixel, depth) == 12 &&
+static_assert(sizeof(GpuPixel) == 64 && offsetof(GpuPixel, depth) == 12 &&
               offsetof(GpuPixel, normal) == 16 && offsetof(GpuPixel, primId) == 28 &&
-              offsetof(GpuPixel, flags) == 32);
+              offsetof(GpuPixel, flags) == 32 && offsetof(GpuPixel, shadowRays) == 40 &&
+              offsetof(GpuPixel, nodes) == 44 && offsetof(GpuPixel, capped) == 60);
 static_assert(sizeof(GpuFrameParams) == 112 && offsetof(GpuFrameParams, imageTile) == 80 &&
               offsetof(GpuFrameParams, counts) == 96);
 }  // namespace vkray::gpu

@@ -158,8 +158,8 @@ TEST(GpuRenderer, UnknownDeviceIsAnError) {
     EXPECT_THROW(gpu::VulkanContext({.validation = false, .device = "no such device name"}), Error);
 }
 
-TEST(GpuRenderer, UnimplementedAcceleratorIsAnError) {
-    RenderOptions o{.width = 8, .height = 8, .maxDepth = 1, .accel = "kd-restart"};
+TEST(GpuRenderer, UnknownAcceleratorIsAnError) {
+    RenderOptions o{.width = 8, .height = 8, .maxDepth = 1, .accel = "octree"};
     EXPECT_THROW(gpu::renderOnGpu(test::gpuContext(), litSquare(), o), Error);
 }
 

@@ -1,12 +1,15 @@
-// The render kernel: one invocation per pixel of one tile. Camera ray, closest hit, iterative
-// Whitted shading over a small stack of pending rays (GLSL has no recursion), primary-hit AOVs.
-#version 460
-#extension GL_GOOGLE_include_directive : require
+// The body of every render kernel (shaders/render_<accel>.comp): one invocation per pixel of one
+// tile. Camera ray, closest hit, iterative Whitted shading over a small stack of pending rays (GLSL
+// has no recursion), primary-hit AOVs. The kernel file includes its accelerator first, which
+// defines `Hit traceClosest(vec3 origin, vec3 dir, float tmax)` and
+// `bool traceAny(vec3 origin, vec3 dir, float tmax)` (t in (0, tmax) for both).
+#ifndef VKRAY_RENDER_MAIN_GLSL
+#define VKRAY_RENDER_MAIN_GLSL
 
-#include "include/bindings.glsl"
-#include "include/camera.glsl"
-#include "include/brute_force.glsl"
-#include "include/shading.glsl"
+#include "bindings.glsl"
+#include "camera.glsl"
+#include "shading.glsl"
+#include "trace_status.glsl"
 
 layout(local_size_x = VKRAY_WORKGROUP_X, local_size_y = VKRAY_WORKGROUP_Y) in;
 
@@ -99,5 +102,9 @@ void main() {
 
     const bool cutShort = gLoopCutShort || stackTop > 0;
     pixels[outIndex] = GpuPixel(radiance, depthAov, normalAov, primAov,
-                                cutShort ? VKRAY_PIXEL_CUT_SHORT : 0u, uint(rays), 0u, 0u);
+                                cutShort ? VKRAY_PIXEL_CUT_SHORT : 0u, uint(rays), gShadowRays,
+                                gNodesVisited, gLeavesVisited, gTrianglesTested, gRestarts,
+                                gCappedRays);
 }
+
+#endif

@@ -1,0 +1,68 @@
+#include "accel/accel.h"
+
+#include "accel/bvh/bvh_accel.h"
+#include "accel/kd/kd_accel.h"
+#include "core/error.h"
+#include "cpu/brute_force.h"
+
+namespace vkray::accel {
+namespace {
+
+// `brute`: nothing to build; the kernel and the CPU tracer test every triangle.
+class BruteAccel final : public BuiltAccel {
+public:
+    explicit BruteAccel(const Scene& scene) : tracer_(scene) {}
+    const cpu::Tracer& tracer() const override { return tracer_; }
+    GpuAccelData gpuData() const override { return GpuAccelData{}; }  // kernel "brute", no arrays
+    std::vector<AccelStat> stats() const override { return {}; }
+
+private:
+    cpu::BruteForceTracer tracer_;
+};
+
+std::string joined(const std::vector<std::string>& names) {
+    std::string s;
+    for (const std::string& n : names) s += (s.empty() ? "" : ", ") + n;
+    return s;
+}
+
+}  // namespace
+
+const std::vector<std::string>& accelNames() {
+    static const std::vector<std::string> names = {"bvh",        "bvh-fast",     "bvh-hq",   "bvh-sah",
+                                                   "kd-restart", "kd-backtrack", "kd-stack", "brute"};
+    return names;
+}
+
+AccelSpec parseAccel(const std::string& name) {
+    AccelSpec s;
+    s.name = name;
+    if (name == "brute") {
+        s.family = Family::Brute;
+    } else if (name == "bvh" || name == "bvh-fast" || name == "bvh-hq") {
+        s.family = Family::Bvh;
+    } else if (name == "bvh-sah") {
+        s.family = Family::Bvh;
+        s.bvhSahReference = true;
+    } else if (name == "kd-stack" || name == "kd-restart" || name == "kd-backtrack") {
+        s.family = Family::Kd;
+        s.kdTraversal = name == "kd-stack"     ? KdTraversal::Stack
+                        : name == "kd-restart" ? KdTraversal::Restart
+                                               : KdTraversal::Backtrack;
+    } else {
+        throw Error("unknown accelerator '" + name + "' (known: " + joined(accelNames()) + ")");
+    }
+    return s;
+}
+
+std::unique_ptr<BuiltAccel> buildAccel(const Scene& scene, const AccelSpec& spec,
+                                       const BuildOptions& options) {
+    switch (spec.family) {
+    case Family::Brute: return std::make_unique<BruteAccel>(scene);
+    case Family::Bvh: return buildBvhAccel(scene, spec, options);
+    case Family::Kd: return buildKdAccel(scene, spec, options);
+    }
+    throw Error("accelerator '" + spec.name + "': unknown family");
+}
+
+}  // namespace vkray::accel

@@ -1,0 +1,6 @@
+// Render kernel with the `brute` accelerator: every ray against every triangle.
+#version 460
+#extension GL_GOOGLE_include_directive : require
+
+#include "include/brute_force.glsl"
+#include "include/render_main.glsl"
