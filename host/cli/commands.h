@@ -10,5 +10,6 @@ namespace vkray::cli {
 void registerRenderCommand(CLI::App& app, int& exitCode);
 void registerDevicesCommand(CLI::App& app, int& exitCode);
 void registerCompareCommand(CLI::App& app, int& exitCode);
+void registerGenCommand(CLI::App& app, int& exitCode);
 
 }  // namespace vkray::cli

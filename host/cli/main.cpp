@@ -15,6 +15,7 @@ int main(int argc, char** argv) {
     vkray::cli::registerRenderCommand(app, exitCode);
     vkray::cli::registerDevicesCommand(app, exitCode);
     vkray::cli::registerCompareCommand(app, exitCode);
+    vkray::cli::registerGenCommand(app, exitCode);
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {

@@ -5,6 +5,7 @@
 #include <string_view>
 
 #include "scene/obj_loader.h"
+#include "scene/off_loader.h"
 
 namespace vkray {
 namespace {
@@ -16,9 +17,10 @@ struct MeshFormat {
     MeshReader read;
 };
 
-// Add a row here for a new format (e.g. {".off", loadOff}). Extensions compare case-insensitively.
+// One row per format; extensions compare case-insensitively.
 constexpr MeshFormat kMeshFormats[] = {
     {".obj", &loadObj},
+    {".off", &loadOff},
 };
 
 std::string lowerCase(std::string s) {

@@ -9,6 +9,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "core/error.h"
+#include "scene/generators.h"
 #include "scene/mesh_file.h"
 #include "scene/scene_builder.h"
 #include "scene/scene_line.h"
@@ -40,13 +41,14 @@ public:
     void parseLine(std::string_view text, int number);
 
 private:
-    enum class Kind { Numbers, Integers, FileName, Nothing };
+    enum class Kind { Numbers, Integers, FileName, Nothing, Generator };
     struct Command {
         std::string_view name;
         size_t args;
         Kind kind;
         std::string_view usage;
         void (Parser::*run)(const SceneLine&);
+        size_t optionalArgs = 0;  // trailing arguments that may be left out
     };
     static const Command kCommands[];
 
@@ -82,6 +84,7 @@ private:
     void pushTransform(const SceneLine&) { transforms_.push_back(transform()); }
     void popTransform(const SceneLine&);
     void geo(const SceneLine&);
+    void generate(const SceneLine&);
 
     std::string file_;
     std::filesystem::path baseDir_;
@@ -124,6 +127,7 @@ const Parser::Command Parser::kCommands[] = {
     {"popTransform", 0, Kind::Nothing, "", &Parser::popTransform},
     {"geo", 1, Kind::FileName, "", &Parser::geo},
     {"obj", 1, Kind::FileName, "", &Parser::geo},
+    {"generate", 2, Kind::Generator, "kind triangles [seed]", &Parser::generate, 1},
 };
 
 void Parser::parseLine(std::string_view text, int number) {
@@ -141,7 +145,8 @@ void Parser::parseLine(std::string_view text, int number) {
 }
 
 void Parser::checkArgCount(const Command& c, const SceneLine& line) const {
-    if (line.argCount() == c.args) return;
+    const size_t most = c.args + c.optionalArgs;
+    if (line.argCount() >= c.args && line.argCount() <= most) return;
     const bool one = c.args == 1;
     std::string expected;
     switch (c.kind) {
@@ -157,11 +162,14 @@ void Parser::checkArgCount(const Command& c, const SceneLine& line) const {
         case Kind::Nothing:
             expected = "no arguments";
             break;
+        case Kind::Generator:
+            expected = std::to_string(c.args) + " to " + std::to_string(most) + " arguments";
+            break;
     }
     const std::string usage = c.usage.empty() ? "" : " (" + std::string(c.usage) + ")";
     line.fail("expected " + expected + " after '" + std::string(c.name) + "'" + usage + ", got " +
                   std::to_string(line.argCount()),
-              line.argCount() > c.args ? c.args + 1 : 0);
+              line.argCount() > most ? most + 1 : 0);
 }
 
 void Parser::unknownCommand(const SceneLine& line) const {
@@ -348,6 +356,24 @@ void Parser::geo(const SceneLine& line) {
     MeshRequest request{file, file.lexically_normal().string(), FileLoc{file_, line.number(), 0}, transform(),
                         material_.resolve()};
     loadMeshFile(request, out_);
+}
+
+// generate KIND N [SEED]: a procedural mesh (generators.h) under the current transform and material.
+void Parser::generate(const SceneLine& line) {
+    const std::optional<GeneratorKind> kind = generatorKindFromName(line.text(1));
+    if (!kind)
+        line.fail("unknown generator '" + std::string(line.text(1)) + "' (expected one of: " + generatorNames() + ")",
+                  1);
+    const int64_t n = line.integer(2);
+    if (n < 1 || n > kMaxGeneratedTriangles)
+        line.fail("triangle count " + std::to_string(n) + " is outside 1.." + std::to_string(kMaxGeneratedTriangles),
+                  2);
+    int64_t seed = 1;
+    if (line.argCount() == 3) {
+        seed = line.integer(3);
+        if (seed < 0) line.fail("seed " + std::to_string(seed) + " is negative", 3);
+    }
+    added(generateMesh({*kind, n, uint64_t(seed)}, transform(), currentMaterial(), out_), line);
 }
 
 Scene parseText(std::string_view text, const std::string& displayName, const std::filesystem::path& baseDir) {

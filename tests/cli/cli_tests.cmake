@@ -59,3 +59,26 @@ add_test(NAME cli.compare_primid_gpu_cpu
 # 0.2%: pixel centres on the edges where the box walls meet (exact ties, measured 0.11% at
 # 96x96); tests/gpu/gpu_vs_cpu_test.cpp tells ties from disagreements and asks 99.9%.
 set_tests_properties(cli.compare_primid_gpu_cpu PROPERTIES FIXTURES_REQUIRED default_renders)
+
+# OFF meshes and procedural scenes (issue 3): the OFF reader's errors name the OFF file, its line and
+# column, and the scene line that loaded it; `vkray gen` refuses bad requests before writing.
+vkray_expect_error(off_bad_index "off_bad_index\\.off:8:7: vertex index 4 out of range.*off_bad_index\\.scene:3" render ${CLI_DATA}/off_bad_index.scene)
+vkray_expect_error(off_truncated "off_truncated\\.off:5: file ends early: 3 of the 4 vertices" render ${CLI_DATA}/off_truncated.scene)
+vkray_expect_error(off_lying_counts "off_lying_counts\\.off:2:1: counts of 900000000 vertices.*cannot fit" render ${CLI_DATA}/off_lying_counts.scene)
+vkray_expect_error(off_nan "off_nan\\.off:4:3: .*'nan', not a finite number" render ${CLI_DATA}/off_nan.scene)
+vkray_expect_error(off_variant "off_variant\\.off:1:1: unsupported OFF variant 'NOFF'" render ${CLI_DATA}/off_variant.scene)
+vkray_expect_error(off_missing "off_missing\\.scene:3: cannot open OFF file .*off_missing\\.off" render ${CLI_DATA}/off_missing.scene)
+vkray_expect_error(generate_unknown "generate_unknown\\.scene:3:10: unknown generator 'teapot'" render ${CLI_DATA}/generate_unknown.scene)
+vkray_expect_error(gen_unknown_kind "gen: unknown kind 'teapot'" gen teapot --triangles 10 -o ${CLI_OUT}/g.scene)
+vkray_expect_error(gen_zero_triangles "gen: --triangles 0 is outside" gen soup --triangles 0 -o ${CLI_OUT}/g.scene)
+vkray_expect_error(gen_not_scene "gen: -o .*g\\.txt: the output must be a \\.scene file" gen soup --triangles 10 -o ${CLI_OUT}/g.txt)
+vkray_expect_error(gen_unwritable "gen: cannot write .*no/such/dir/g\\.scene" gen soup --triangles 10 -o ${CLI_OUT}/no/such/dir/g.scene)
+
+# `vkray gen` writes a scene that renders (CPU reference, tiny: brute force over 1000 triangles).
+add_test(NAME cli.gen_terrain COMMAND $<TARGET_FILE:vkray> gen terrain --triangles 1000 --seed 3 -o ${CLI_OUT}/gen-terrain.scene)
+set_tests_properties(cli.gen_terrain PROPERTIES FIXTURES_SETUP gen_scene
+  PASS_REGULAR_EXPRESSION "terrain, 1012 triangles \\+ 2 floor, seed 3")
+add_test(NAME cli.gen_render COMMAND $<TARGET_FILE:vkray> render ${CLI_OUT}/gen-terrain.scene --cpu --size 32x24
+                                    -o ${CLI_OUT}/gen-terrain.png --stats)
+set_tests_properties(cli.gen_render PROPERTIES FIXTURES_REQUIRED gen_scene TIMEOUT 300
+  PASS_REGULAR_EXPRESSION "scene: +1014 triangles")
