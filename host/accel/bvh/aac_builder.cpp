@@ -1,0 +1,217 @@
+#include "accel/bvh/aac_builder.h"
+
+#include <algorithm>
+#include <atomic>
+#include <bit>
+#include <cmath>
+#include <limits>
+#include <span>
+#include <vector>
+
+#include <tbb/parallel_for.h>
+#include <tbb/parallel_invoke.h>
+
+#include "accel/bvh/morton.h"
+#include "core/error.h"
+
+namespace vkray::bvh {
+namespace {
+
+// Ranges at least this large split their halves into parallel tasks; smaller ones recurse on the
+// calling thread (a task costs about a microsecond; a range of 4096 primitives about 0.5 ms).
+constexpr size_t kParallelRange = 4096;
+
+// Per-thread working arrays of CombineClusters, reused across calls (one call per range).
+struct ClusterScratch {
+    std::vector<Aabb> boxes;
+    std::vector<uint32_t> closest;  // position of each cluster's closest partner
+    std::vector<float> distance;    // area of the box merging it with that partner
+    std::vector<uint8_t> stale;     // closest partner merged away: search again
+};
+
+class AacBuilder {
+public:
+    AacBuilder(const PrimitiveSet& prims, const Config& config, std::vector<MortonKey> sortedKeys)
+        : prims_(prims), config_(config), keys_(std::move(sortedKeys)) {}
+
+    BinaryTree build() {
+        const size_t n = keys_.size();
+        BinaryTree tree;
+        tree.primitives = uint32_t(n);
+        if (n == 0) return tree;
+        nodes_.resize(2 * n - 1);
+        clusters_.resize(n);
+        makePrimitiveNodes();
+        nextNode_ = uint32_t(n);
+        const size_t k = buildRange(0, n);
+        combine(0, k, 1);
+        tree.root = clusters_[0];
+        tree.nodes = std::move(nodes_);
+        return tree;
+    }
+
+private:
+    // Node i is the primitive at sorted position i.
+    void makePrimitiveNodes() {
+        tbb::parallel_for(size_t(0), keys_.size(), [&](size_t i) {
+            const uint32_t prim = keyPrimitive(keys_[i]);
+            nodes_[i].box = prims_.boxes[prim];
+            nodes_[i].child[0] = prim;
+            nodes_[i].child[1] = kPrimitive;
+        });
+    }
+
+    size_t reduction(size_t n) const { return aacReduction(n, config_.delta, config_.epsilon); }
+
+    // The paper's BuildTree on sorted positions [begin, end): leaves its clusters (node ids) in
+    // clusters_[begin, begin + k) and returns k.
+    size_t buildRange(size_t begin, size_t end) {
+        const size_t n = end - begin;
+        if (n <= size_t(config_.delta)) {
+            for (size_t i = begin; i < end; ++i) clusters_[i] = uint32_t(i);
+            return combine(begin, n, reduction(size_t(config_.delta)));
+        }
+        const size_t mid = splitPoint(begin, end);
+        size_t left = 0, right = 0;
+        if (n >= kParallelRange) {
+            tbb::parallel_invoke([&] { left = buildRange(begin, mid); }, [&] { right = buildRange(mid, end); });
+        } else {
+            left = buildRange(begin, mid);
+            right = buildRange(mid, end);
+        }
+        // Gather both halves' clusters into one run (the destination never overtakes the source).
+        std::copy(clusters_.begin() + std::ptrdiff_t(mid), clusters_.begin() + std::ptrdiff_t(mid + right),
+                  clusters_.begin() + std::ptrdiff_t(begin + left));
+        return combine(begin, left + right, reduction(n));
+    }
+
+    // Where [begin, end) splits: the first position whose code has the highest differing bit set
+    // (binary search), or the middle when all codes are equal.
+    size_t splitPoint(size_t begin, size_t end) const {
+        const uint32_t first = keyCode(keys_[begin]), last = keyCode(keys_[end - 1]);
+        if (first == last) return begin + (end - begin) / 2;
+        const uint32_t bit = 1u << (31 - std::countl_zero(first ^ last));
+        const auto it = std::partition_point(keys_.begin() + std::ptrdiff_t(begin), keys_.begin() + std::ptrdiff_t(end),
+                                             [bit](MortonKey k) { return (keyCode(k) & bit) == 0; });
+        return size_t(it - keys_.begin());
+    }
+
+    // The paper's CombineClusters on clusters_[begin, begin + count): merges the closest pair until
+    // `target` clusters remain, which it leaves at clusters_[begin, begin + target).
+    size_t combine(size_t begin, size_t count, size_t target) {
+        if (count <= target) return count;
+        thread_local ClusterScratch s;
+        std::span<uint32_t> ids(clusters_.data() + begin, count);
+        s.boxes.resize(count);
+        s.closest.resize(count);
+        s.distance.resize(count);
+        s.stale.assign(count, 0);
+        for (size_t i = 0; i < count; ++i) s.boxes[i] = nodes_[ids[i]].box;
+        for (size_t i = 0; i < count; ++i) findBestMatch(s, count, i);
+
+        size_t k = count;
+        while (k > target) {
+            // The closest pair; ties go to the lowest position, so the choice is deterministic.
+            size_t a = 0;
+            for (size_t i = 1; i < k; ++i)
+                if (s.distance[i] < s.distance[a]) a = i;
+            const size_t b = s.closest[a];
+            const Aabb box = Aabb::merged(s.boxes[a], s.boxes[b]);
+            const uint32_t node = newNode(ids[a], ids[b], box);
+
+            // The merged cluster takes the lower position, the last cluster fills the higher one.
+            const size_t lo = std::min(a, b), hi = std::max(a, b), last = k - 1;
+            ids[lo] = node;
+            s.boxes[lo] = box;
+            if (hi != last) {
+                ids[hi] = ids[last];
+                s.boxes[hi] = s.boxes[last];
+                s.closest[hi] = s.closest[last];
+                s.distance[hi] = s.distance[last];
+            }
+            --k;
+            if (k == 1) break;
+            // Whoever was closest to a merged cluster searches again (merging only grows boxes, so
+            // no other cluster can have become closer to the new one than to its cached partner).
+            for (size_t i = 0; i < k; ++i) {
+                if (i == lo || s.closest[i] == lo || s.closest[i] == hi) {
+                    s.stale[i] = 1;
+                } else if (s.closest[i] == last) {
+                    s.closest[i] = uint32_t(hi);
+                }
+            }
+            for (size_t i = 0; i < k; ++i)
+                if (s.stale[i]) {
+                    s.stale[i] = 0;
+                    findBestMatch(s, k, i);
+                }
+        }
+        return k;
+    }
+
+    // The partner of cluster i among the first k whose merged box has the smallest area (the
+    // paper's distance function d); ties to the lowest position.
+    static void findBestMatch(ClusterScratch& s, size_t k, size_t i) {
+        float best = std::numeric_limits<float>::infinity();
+        uint32_t partner = i == 0 ? 1u : 0u;
+        const Aabb& box = s.boxes[i];
+        for (size_t j = 0; j < k; ++j) {
+            if (j == i) continue;
+            const float d = Aabb::merged(box, s.boxes[j]).halfArea();
+            if (d < best) {
+                best = d;
+                partner = uint32_t(j);
+            }
+        }
+        s.closest[i] = partner;
+        s.distance[i] = best;
+    }
+
+    uint32_t newNode(uint32_t a, uint32_t b, const Aabb& box) {
+        const uint32_t id = nextNode_.fetch_add(1, std::memory_order_relaxed);
+        nodes_[id].box = box;
+        nodes_[id].child[0] = a;
+        nodes_[id].child[1] = b;
+        return id;
+    }
+
+    const PrimitiveSet& prims_;
+    const Config& config_;
+    std::vector<MortonKey> keys_;      // sorted by code
+    std::vector<BinaryNode> nodes_;    // primitives at [0, n), then merges in creation order
+    std::vector<uint32_t> clusters_;   // per range, its current clusters (node ids)
+    std::atomic<uint32_t> nextNode_{0};
+};
+
+std::vector<MortonKey> mortonKeys(const PrimitiveSet& prims) {
+    const std::vector<uint32_t> codes = mortonCodes(prims.centroids, prims.centroidBounds);
+    std::vector<MortonKey> keys(codes.size());
+    tbb::parallel_for(size_t(0), codes.size(), [&](size_t i) { keys[i] = (MortonKey(codes[i]) << 32) | i; });
+    return keys;
+}
+
+}  // namespace
+
+size_t aacReduction(size_t n, int delta, double epsilon) {
+    const double alpha = 0.5 - epsilon;
+    const double c = std::pow(double(delta), 0.5 + epsilon) / 2.0;
+    // The tiny slack keeps f(delta) = delta / 2 exact despite pow's rounding.
+    const double f = std::floor(c * std::pow(double(n), alpha) + 1e-9);
+    return f < 1.0 ? 1 : size_t(f);
+}
+
+void validateAacConfig(const Config& config) {
+    if (config.delta < 1)
+        throw Error("AAC delta must be at least 1 (got " + std::to_string(config.delta) + ")");
+    if (!(config.epsilon >= 0.0 && config.epsilon < 0.5))
+        throw Error("AAC epsilon must be in [0, 0.5) (got " + std::to_string(config.epsilon) + ")");
+}
+
+BinaryTree buildAac(const PrimitiveSet& prims, const Config& config, PhaseLog& log) {
+    validateAacConfig(config);
+    std::vector<MortonKey> keys = log.run("morton", 0.1, [&] { return mortonKeys(prims); });
+    log.run("sort", 0.2, [&] { radixSortByCode(keys); });
+    return log.run("cluster", 0.85, [&] { return AacBuilder(prims, config, std::move(keys)).build(); });
+}
+
+}  // namespace vkray::bvh

@@ -1,0 +1,40 @@
+// Approximate Agglomerative Clustering (Gu, He, Fatahalian and Blelloch, HPG 2013; seed 001,
+// sections 2.6 and 3.3.2, Kode Sumber 3.1-3.3 and 4.8-4.11).
+//
+// 1. Morton codes of the centroids, radix-sorted (morton.h).
+// 2. Downward phase (the paper's BuildTree): a range of more than delta primitives is split at the
+//    highest bit in which its first and last codes differ, found by binary search (the codes are
+//    sorted, so the range holds all codes with that bit clear, then all with it set); a range whose
+//    codes are all equal is split in the middle.
+// 3. Upward phase: every range clusters the clusters of its two halves agglomeratively (the
+//    paper's CombineClusters: merge the pair whose merged box has the smallest surface area,
+//    with each cluster's closest partner cached and recomputed only when that partner merges) until
+//    f(n) clusters remain for its n primitives; a range of at most delta primitives starts from
+//    its primitives and keeps f(delta) = delta / 2. The root combines what is left into one.
+//
+// Independent ranges run as oneTBB tasks. No decision depends on the thread count or on the order
+// tasks finish (node ids do, but only flattening names nodes, by position in the tree), so the
+// tree is the same for any number of threads.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+
+#include "accel/bvh/bvh.h"
+#include "accel/bvh/phase_log.h"
+#include "accel/bvh/primitives.h"
+
+namespace vkray::bvh {
+
+// The paper's cluster count reduction function: f(n) = c * n^alpha, alpha = 1/2 - epsilon,
+// c = delta^(1/2 + epsilon) / 2 (so f(delta) = delta / 2), rounded down and at least 1.
+size_t aacReduction(size_t n, int delta, double epsilon);
+
+// Throws vkray::Error when delta < 1 or epsilon is outside [0, 1/2) (alpha must stay positive).
+void validateAacConfig(const Config& config);
+
+// Builds the AAC tree of `prims` on the calling thread's oneTBB arena; phases "morton", "sort" and
+// "cluster" go to `log`.
+BinaryTree buildAac(const PrimitiveSet& prims, const Config& config, PhaseLog& log);
+
+}  // namespace vkray::bvh

@@ -1,0 +1,127 @@
+// The BVH family's shared types: boxes, the build configuration with its cited constants, the binary
+// tree both builders produce (one primitive per leaf), and the flattened tree the GPU and the CPU
+// tracer traverse.
+//
+// Pipeline (docs/bvh.md): builder (AAC, aac_builder.h, or binned SAH, sah_builder.h) -> BinaryTree
+// -> leaf collapse (leaf_collapse.h) -> flatten (flatten.h) -> FlatBvh -> BvhTracer / GPU buffers.
+#pragma once
+
+#include <cstdint>
+#include <limits>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "shared/bvh_layout.h"
+
+namespace vkray::bvh {
+
+// Axis-aligned box in float: triangle vertices are float, so float min/max are exact bounds.
+struct Aabb {
+    glm::vec3 lo{std::numeric_limits<float>::infinity()};
+    glm::vec3 hi{-std::numeric_limits<float>::infinity()};
+
+    void grow(const glm::vec3& p) {
+        lo = glm::min(lo, p);
+        hi = glm::max(hi, p);
+    }
+    void grow(const Aabb& b) {
+        lo = glm::min(lo, b.lo);
+        hi = glm::max(hi, b.hi);
+    }
+    bool empty() const { return lo.x > hi.x || lo.y > hi.y || lo.z > hi.z; }
+    bool contains(const Aabb& b) const {
+        return glm::all(glm::lessThanEqual(lo, b.lo)) && glm::all(glm::greaterThanEqual(hi, b.hi));
+    }
+    // Half the surface area (SAH ratios and AAC distances only compare areas, so the factor 2 is
+    // left out); 0 for an empty box.
+    float halfArea() const {
+        if (empty()) return 0.0f;
+        const glm::vec3 d = hi - lo;
+        return d.x * d.y + d.y * d.z + d.z * d.x;
+    }
+    static Aabb merged(const Aabb& a, const Aabb& b) {
+        Aabb m = a;
+        m.grow(b);
+        return m;
+    }
+};
+
+// Surface-area-heuristic constants (Goldsmith and Salmon 1987; MacDonald and Booth 1990): the cost
+// of a tree is sum over inner nodes of Ct * A(node) plus sum over leaves of Ci * |leaf| * A(leaf),
+// divided by A(root). Ct = Ci = 1 prices one node visit (two child slab tests) like one
+// watertight triangle test, about what the GPU kernel spends on each; the same constants decide
+// the leaf collapse and the reported sah_cost, so the builders are judged as they are built.
+struct SahConstants {
+    double traversal = 1.0;     // Ct
+    double intersection = 1.0;  // Ci
+};
+
+// How a BVH is built. AAC fields after Gu, He, Fatahalian and Blelloch, "Efficient BVH Construction
+// via Approximate Agglomerative Clustering", HPG 2013 (the paper's delta, epsilon and its cluster
+// count reduction function f; seed 001, Kode Sumber 3.2 and 4.11).
+struct Config {
+    enum class Builder { Aac, BinnedSah };
+    Builder builder = Builder::Aac;
+
+    // AAC: the downward phase stops at ranges of at most `delta` primitives (paper's delta, seed 001's
+    // "threshold"); each level keeps f(n) = c * n^alpha clusters of its n primitives, with
+    // alpha = 1/2 - epsilon and c = delta^(1/2 + epsilon) / 2, so that f(delta) = delta / 2.
+    int delta = 4;
+    double epsilon = 0.2;
+
+    // Binned SAH reference (Wald, "On fast Construction of SAH-based Bounding Volume Hierarchies",
+    // RT 2007, section 3: 16-32 bins lose little against a full sweep): bins per axis.
+    int sahBins = 32;
+
+    // Leaf collapse (both builders): a subtree of at most maxLeafSize triangles becomes one leaf
+    // where the SAH says so (leaf_collapse.h).
+    int maxLeafSize = VKRAY_BVH_MAX_LEAF_SIZE;
+    SahConstants sah;
+
+    // The paper's two presets, AAC-Fast and AAC-HQ (seed 001 instead settled on delta 6 and 12).
+    static Config aacFast() { return withAac(4, 0.2); }
+    static Config aacHq() { return withAac(20, 0.1); }
+    static Config binnedSah() {
+        Config c;
+        c.builder = Builder::BinnedSah;
+        return c;
+    }
+    static Config withAac(int delta, double epsilon) {
+        Config c;
+        c.delta = delta;
+        c.epsilon = epsilon;
+        return c;
+    }
+};
+
+// A node id in a BinaryTree whose second child is kPrimitive is a leaf holding one primitive.
+inline constexpr uint32_t kPrimitive = 0xFFFFFFFFu;
+
+// What the builders produce: a full binary tree with one primitive per leaf (2n - 1 nodes).
+struct BinaryNode {
+    Aabb box;
+    uint32_t child[2] = {kPrimitive, kPrimitive};  // leaf: {original triangle index, kPrimitive}
+
+    bool isPrimitive() const { return child[1] == kPrimitive; }
+};
+
+struct BinaryTree {
+    std::vector<BinaryNode> nodes;
+    uint32_t root = 0;
+    uint32_t primitives = 0;
+};
+
+// The flattened tree, in the GPU layout (shared/bvh_layout.h): depth-first nodes; triangle slot k
+// of the leaves holds scene triangle triangleOrder[k].
+struct FlatBvh {
+    std::vector<gpu::GpuBvhNode> nodes;
+    std::vector<uint32_t> triangleOrder;
+    uint32_t leaves = 0;
+    uint32_t maxDepth = 0;  // root = depth 0
+    double sahCost = 0.0;   // of the collapsed tree (SahConstants), normalised by the root's area
+
+    bool empty() const { return triangleOrder.empty(); }
+};
+
+}  // namespace vkray::bvh

@@ -1,0 +1,53 @@
+// The CPU traversal of the flattened BVH, so the reference renderer stays usable on big scenes. It
+// walks the same nodes as the GPU kernel (near child first, a stack of far children) but in double
+// precision with the watertight test of cpu/ray_triangle.h, and answers exactly what
+// BruteForceTracer answers, ties included:
+// - closest(): the hit with the smallest t, and among equal t the lowest original triangle index.
+//   A triangle is tested with tmax just above the best t so far, and a node is skipped only when
+//   its box is entered beyond that t, so a tie in another leaf is never lost.
+// - boxes are tested conservatively: the slab interval is widened by a relative 1e-7 (far more
+//   than the few ulps by which double-precision t or the watertight test's rounding of p - origin
+//   can move), so a box never rejects a ray that hits a triangle inside it. A direction component
+//   of +-0 is handled exactly: the ray stays in one plane, which lies inside the slab or not.
+#pragma once
+
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "accel/bvh/bvh.h"
+#include "cpu/ray_triangle.h"
+#include "cpu/tracer.h"
+#include "scene/scene.h"
+
+namespace vkray::bvh {
+
+class BvhTracer final : public cpu::Tracer {
+public:
+    // Takes the flat tree (the GPU's arrays, which bvh() then offers) and copies the scene's
+    // triangles (triangle-identity order) into leaf order; boxes and vertices are widened to double
+    // as they are tested, exactly as BruteForceTracer widens them.
+    BvhTracer(FlatBvh bvh, std::span<const Triangle> triangles);
+
+    const FlatBvh& bvh() const { return bvh_; }
+
+    cpu::Hit closest(const cpu::Ray& ray, double tmax, cpu::TraversalCounters* counters = nullptr) const override;
+    bool occluded(const cpu::Ray& ray, double tmax, cpu::TraversalCounters* counters = nullptr) const override;
+
+private:
+    struct BoxRay;
+
+    cpu::TriangleVertices vertices(uint32_t slot) const {
+        const Triangle& t = triangles_[slot];
+        return {glm::dvec3(t.p0), glm::dvec3(t.p1), glm::dvec3(t.p2)};
+    }
+    int32_t original(uint32_t slot) const { return int32_t(bvh_.triangleOrder[slot]); }
+
+    FlatBvh bvh_;
+    std::vector<Triangle> triangles_;  // leaf order
+    uint32_t stackSize_ = 0;           // deepest stack a traversal can need
+};
+
+}  // namespace vkray::bvh

@@ -1,0 +1,218 @@
+// The `bvh` accelerator (accel/bvh: AAC after Gu et al. 2013, or the binned-SAH reference): a
+// depth-first array of 32-byte nodes (shared/bvh_layout.h) over the triangle buffer in leaf order.
+//
+// Closest hit: one loop iteration per node. At an inner node both children's boxes are tested;
+// the nearer one is visited next and the farther one pushed, with its entry distance, on a short
+// stack in local memory; a popped node entered beyond the best hit so far is skipped. Leaves test
+// their triangles four per iteration of an inner loop, so a ray's iterations stay far below
+// lavapipe's budget of 65535 for all the loops of a pixel (trace_status.glsl). Any hit (shadow rays)
+// walks the same way without ordering and stops at the first triangle hit.
+#ifndef VKRAY_BVH_TRAVERSAL_GLSL
+#define VKRAY_BVH_TRAVERSAL_GLSL
+
+#include "shared/bvh_layout.h"
+#include "trace_status.glsl"
+#include "triangle.glsl"
+
+layout(std430, set = 0, binding = VKRAY_BINDING_ACCEL_NODES) readonly buffer BvhNodes {
+    GpuBvhNode bvhNodes[];
+};
+
+#define kBvhInf uintBitsToFloat(0x7F800000u)
+// Float rounding of the slab distances: the far distance is widened by about 2 gamma(3) (Ize,
+// "Robust BVH Ray Traversal", JCGT 2(2), 2013), so a box never rejects a ray that touches it.
+const float kSlabWiden = 1.0 + 4.0e-7;
+// Below this magnitude a direction component counts as zero: its inverse would overflow.
+const float kFlatDirection = 1.0e-30;
+
+// Per-ray constants of the slab test. A direction component of +-0 gets inverse 0 (never inf, so
+// no 0 * inf = NaN can reach min/max) and a flag: the ray then stays in the plane x_a = origin_a,
+// which is inside the slab for every t or for none.
+struct BoxRay {
+    vec3 origin;
+    vec3 inv;
+    bvec3 flat_;
+    bool anyFlat;
+};
+
+BoxRay makeBoxRay(vec3 origin, vec3 dir) {
+    BoxRay r;
+    r.origin = origin;
+    r.flat_ = lessThan(abs(dir), vec3(kFlatDirection));
+    r.inv = mix(1.0 / dir, vec3(0.0), r.flat_);
+    r.anyFlat = any(r.flat_);
+    return r;
+}
+
+// Whether the ray meets the node's box for t in [0, tLimit]; tEnter = where it enters.
+bool hitsBox(GpuBvhNode node, BoxRay r, float tLimit, out float tEnter) {
+    const vec3 t0 = (node.lo - r.origin) * r.inv, t1 = (node.hi - r.origin) * r.inv;
+    vec3 tNear = min(t0, t1), tFar = max(t0, t1);
+    if (r.anyFlat) {  // rare: only rays with a zero direction component pay for it
+        const bvec3 inside = bvec3(uvec3(lessThanEqual(node.lo, r.origin)) * uvec3(lessThanEqual(r.origin, node.hi)));
+        tNear = mix(tNear, mix(vec3(kBvhInf), vec3(-kBvhInf), inside), r.flat_);
+        tFar = mix(tFar, mix(vec3(-kBvhInf), vec3(kBvhInf), inside), r.flat_);
+    }
+    tEnter = max(max(tNear.x, tNear.y), max(tNear.z, 0.0));
+    const float tExit = min(min(tFar.x, tFar.y), min(tFar.z, tLimit)) * kSlabWiden;
+    return tEnter <= tExit;
+}
+
+// Closest-hit test of triangle slot i of a leaf ending at `end`.
+void bvhClosestOf(uint i, uint end, WatertightRay ray, inout Hit best) {
+    float t;
+    vec2 uv;
+    if (i < end && intersectTriangle(ray, triangles[i], best.t, t, uv)) {
+        best.t = t;
+        best.uv = uv;
+        best.triangle = int(i);
+    }
+}
+
+bool bvhOccludes(uint i, uint end, WatertightRay ray, float tmax) {
+    float t;
+    vec2 uv;
+    return i < end && intersectTriangle(ray, triangles[i], tmax, t, uv);
+}
+
+// Tests a leaf's triangles, four per iteration; false if the driver cut the loop short.
+bool closestInLeaf(GpuBvhNode leaf, WatertightRay ray, inout Hit best) {
+    const uint end = leaf.rightOrFirst + leaf.count;
+    uint i = leaf.rightOrFirst;
+    for (; i < end; i += 4) {
+        bvhClosestOf(i, end, ray, best);
+        bvhClosestOf(i + 1, end, ray, best);
+        bvhClosestOf(i + 2, end, ray, best);
+        bvhClosestOf(i + 3, end, ray, best);
+    }
+    countTriangles(leaf.count);
+    return i >= end;
+}
+
+// Closest hit in (0, tmax); Hit.triangle is a slot of the triangle buffer (leaf order).
+Hit traceClosest(vec3 origin, vec3 dir, float tmax) {
+    Hit best;
+    best.t = tmax;
+    best.triangle = -1;
+    float tRoot;
+    const BoxRay boxRay = makeBoxRay(origin, dir);
+    if (params.counts.x == 0u || !hitsBox(bvhNodes[0], boxRay, tmax, tRoot)) return best;
+    const WatertightRay ray = makeWatertightRay(origin, dir);
+
+    uint stackNode[VKRAY_BVH_STACK_SIZE];
+    float stackEnter[VKRAY_BVH_STACK_SIZE];
+    int top = 0;
+    uint node = 0;
+    // A popped node entered beyond the best hit found since it was pushed is skipped: that costs
+    // its iteration but reads no node.
+    bool skip = false, done = false;
+    int iteration = 0;
+    for (; iteration < VKRAY_BVH_MAX_ITERATIONS && !done; ++iteration) {
+        bool descend = false;
+        if (!skip) {
+            const GpuBvhNode n = bvhNodes[node];
+            countNode();
+            if (n.count > 0u) {
+                countLeaf();
+                if (!closestInLeaf(n, ray, best)) {
+                    gLoopCutShort = true;
+                    return best;
+                }
+            } else {
+                const uint left = node + 1u, right = n.rightOrFirst;
+                float tl, tr;
+                const bool hitLeft = hitsBox(bvhNodes[left], boxRay, best.t, tl);
+                const bool hitRight = hitsBox(bvhNodes[right], boxRay, best.t, tr);
+                if (hitLeft && hitRight) {
+                    if (top == VKRAY_BVH_STACK_SIZE) {  // deeper than the stack: flag, never guess
+                        gLoopCutShort = true;
+                        return best;
+                    }
+                    const bool leftFirst = tl <= tr;  // near child first, the far one waits
+                    stackNode[top] = leftFirst ? right : left;
+                    stackEnter[top] = leftFirst ? tr : tl;
+                    ++top;
+                    node = leftFirst ? left : right;
+                    descend = true;
+                } else if (hitLeft || hitRight) {
+                    node = hitLeft ? left : right;
+                    descend = true;
+                }
+            }
+        }
+        if (!descend) {
+            done = top == 0;
+            if (!done) {
+                --top;
+                node = stackNode[top];
+                skip = stackEnter[top] > best.t;
+            }
+        }
+    }
+    if (!done) {
+        if (iteration >= VKRAY_BVH_MAX_ITERATIONS) ++gCappedRays;
+        else gLoopCutShort = true;
+    }
+    return best;
+}
+
+// Any hit in (0, tmax): shadow rays stop at the first occluder.
+bool traceAny(vec3 origin, vec3 dir, float tmax) {
+    float tRoot;
+    const BoxRay boxRay = makeBoxRay(origin, dir);
+    if (params.counts.x == 0u || !hitsBox(bvhNodes[0], boxRay, tmax, tRoot)) return false;
+    const WatertightRay ray = makeWatertightRay(origin, dir);
+
+    uint stackNode[VKRAY_BVH_STACK_SIZE];
+    int top = 0;
+    uint node = 0;
+    bool done = false, occluded = false;
+    int iteration = 0;
+    for (; iteration < VKRAY_BVH_MAX_ITERATIONS && !done; ++iteration) {
+        const GpuBvhNode n = bvhNodes[node];
+        countNode();
+        bool descend = false;
+        if (n.count > 0u) {
+            countLeaf();
+            const uint end = n.rightOrFirst + n.count;
+            uint i = n.rightOrFirst;
+            for (; i < end && !occluded; i += 4)
+                occluded = bvhOccludes(i, end, ray, tmax) || bvhOccludes(i + 1, end, ray, tmax) ||
+                           bvhOccludes(i + 2, end, ray, tmax) || bvhOccludes(i + 3, end, ray, tmax);
+            countTriangles(min(i, end) - n.rightOrFirst);
+            if (!occluded && i < end) {
+                gLoopCutShort = true;
+                return false;
+            }
+            if (occluded) return true;
+        } else {
+            const uint left = node + 1u, right = n.rightOrFirst;
+            float tl, tr;
+            const bool hitLeft = hitsBox(bvhNodes[left], boxRay, tmax, tl);
+            const bool hitRight = hitsBox(bvhNodes[right], boxRay, tmax, tr);
+            if (hitLeft && hitRight) {
+                if (top == VKRAY_BVH_STACK_SIZE) {
+                    gLoopCutShort = true;
+                    return false;
+                }
+                stackNode[top++] = right;
+                node = left;
+                descend = true;
+            } else if (hitLeft || hitRight) {
+                node = hitLeft ? left : right;
+                descend = true;
+            }
+        }
+        if (!descend) {
+            done = top == 0;
+            if (!done) node = stackNode[--top];
+        }
+    }
+    if (!done) {
+        if (iteration >= VKRAY_BVH_MAX_ITERATIONS) ++gCappedRays;
+        else gLoopCutShort = true;
+    }
+    return false;
+}
+
+#endif
