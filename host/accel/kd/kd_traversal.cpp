@@ -1,0 +1,342 @@
+#include "accel/kd/kd_traversal.h"
+
+#include <array>
+#include <cmath>
+#include <limits>
+#include <utility>
+
+namespace vkray::accel::kd {
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+// Where the ray meets the plane x[axis] = plane: the one expression every traversal step and box
+// clip uses (see the header). Only called with dir[axis] != 0.
+double planeHit(const cpu::Ray& ray, int axis, float plane) {
+    return (double(plane) - ray.origin[axis]) / ray.dir[axis];
+}
+
+enum class Visit { First, Second, Both };
+
+struct SplitStep {
+    Visit visit;
+    uint32_t first, second;  // children in ray order
+    double thit;
+    int axis;
+};
+
+// One inner node of seed 000's search-split(): which children the segment [tmin, tmax] reaches.
+// A ray lying in the plane takes the side the pass's mask names and records the axis; plane hits
+// equal to an end of the segment are ordered by the pass's ranks (PassState::compare).
+SplitStep stepInner(const cpu::Ray& ray, const gpu::KdNode& node, uint32_t index, const Segment& seg,
+                    PassState& pass) {
+    const int axis = node.axis();
+    const uint32_t below = index + 1, above = node.aboveChild();
+    const double d = ray.dir[axis];
+    if (d == 0.0) {  // parallel to the plane: stays on the origin's side
+        const double o = ray.origin[axis], split = double(node.split());
+        uint32_t side = o < split ? below : above;
+        if (o == split) {  // in the plane: the mask's side, and another pass for the other one
+            pass.inPlane |= 1u << axis;
+            side = (pass.mask >> axis) & 1u ? above : below;
+        }
+        return {Visit::First, side, side, kInf, axis};
+    }
+    const uint32_t first = d > 0.0 ? below : above, second = d > 0.0 ? above : below;
+    const double thit = planeHit(ray, axis, node.split());
+    if (pass.compare(thit, axis, seg.tmax, seg.maxAxis) >= 0) return {Visit::First, first, second, thit, axis};
+    if (pass.compare(thit, axis, seg.tmin, seg.minAxis) <= 0) return {Visit::Second, first, second, thit, axis};
+    return {Visit::Both, first, second, thit, axis};
+}
+
+// Closest hit over the leaves in ray order; ends once the best hit lies at or before the leaf's exit.
+class ClosestVisitor final : public LeafVisitor {
+public:
+    ClosestVisitor(const KdTree& tree, const std::vector<cpu::TriangleVertices>& tris, const cpu::Ray& ray,
+                   double tmax, cpu::TraversalCounters& counters)
+        : tree_(tree), tris_(tris), wray_(ray), counters_(counters) {
+        best.t = tmax;
+    }
+
+    bool visit(const gpu::KdNode& leaf, double exit) override {
+        const uint32_t begin = leaf.firstIndex(), end = begin + leaf.triangleCount();
+        counters_.triangles += end - begin;
+        for (uint32_t i = begin; i < end; ++i) {
+            const uint32_t k = tree_.indices[i];
+            // (0, best.t] once a hit exists, so an equal-t triangle of lower index can still win.
+            const double upper = best.found() ? std::nextafter(best.t, kInf) : best.t;
+            const auto hit = wray_.intersect(tris_[k], 0.0, upper);
+            if (hit && (hit->t < best.t || (hit->t == best.t && int32_t(k) < best.triangle)))
+                best = cpu::Hit{int32_t(k), hit->t, hit->b0, hit->b1, hit->b2};
+        }
+        return best.found() && best.t <= exit;
+    }
+
+    cpu::Hit best;
+
+private:
+    const KdTree& tree_;
+    const std::vector<cpu::TriangleVertices>& tris_;
+    cpu::WatertightRay wray_;
+    cpu::TraversalCounters& counters_;
+};
+
+// Any hit in (0, tmax): the first occluder ends the search, wherever on the ray it lies.
+class AnyHitVisitor final : public LeafVisitor {
+public:
+    AnyHitVisitor(const KdTree& tree, const std::vector<cpu::TriangleVertices>& tris, const cpu::Ray& ray,
+                  double tmax, cpu::TraversalCounters& counters)
+        : tree_(tree), tris_(tris), wray_(ray), tmax_(tmax), counters_(counters) {}
+
+    bool visit(const gpu::KdNode& leaf, double) override {
+        const uint32_t begin = leaf.firstIndex(), end = begin + leaf.triangleCount();
+        for (uint32_t i = begin; i < end; ++i) {
+            ++counters_.triangles;
+            if (wray_.intersect(tris_[tree_.indices[i]], 0.0, tmax_)) return occluded = true;
+        }
+        return false;
+    }
+
+    bool satisfied() const override { return occluded; }
+
+    bool occluded = false;
+
+private:
+    const KdTree& tree_;
+    const std::vector<cpu::TriangleVertices>& tris_;
+    cpu::WatertightRay wray_;
+    double tmax_;
+    cpu::TraversalCounters& counters_;
+};
+
+}  // namespace
+
+std::optional<Segment> clipToBox(const cpu::Ray& ray, const glm::vec3& lo, const glm::vec3& hi, Segment s,
+                                 PassState& pass) {
+    for (int axis = 0; axis < 3; ++axis) {
+        if (ray.dir[axis] == 0.0) {  // no division by +-0 (0 * inf would be NaN): test the slab
+            if (ray.origin[axis] < double(lo[axis]) || ray.origin[axis] > double(hi[axis])) return std::nullopt;
+            continue;
+        }
+        double tNear = planeHit(ray, axis, lo[axis]), tFar = planeHit(ray, axis, hi[axis]);
+        if (ray.dir[axis] < 0.0) std::swap(tNear, tFar);
+        if (pass.compare(tNear, axis, s.tmin, s.minAxis) > 0) {
+            s.tmin = tNear;
+            s.minAxis = axis;
+        }
+        if (pass.compare(tFar, axis, s.tmax, s.maxAxis) < 0) {
+            s.tmax = tFar;
+            s.maxAxis = axis;
+        }
+    }
+    if (pass.compare(s.tmin, s.minAxis, s.tmax, s.maxAxis) > 0) return std::nullopt;
+    return s;
+}
+
+std::optional<Segment> clipToBox(const cpu::Ray& ray, const glm::vec3& lo, const glm::vec3& hi, Segment s) {
+    PassState pass;
+    return clipToBox(ray, lo, hi, s, pass);
+}
+
+namespace {
+// Tie orders: ranks of x, y, z.
+constexpr int kKdRanks[6][3] = {{0, 1, 2}, {1, 0, 2}, {0, 2, 1}, {1, 2, 0}, {2, 0, 1}, {2, 1, 0}};
+
+// The order of `order` restricted to the axes of `tied`: one bit per pair of axes both in it.
+unsigned orderSignature(int order, unsigned tied) {
+    const int* r = kKdRanks[order];
+    unsigned sig = 0;
+    if ((tied & 3u) == 3u && r[0] < r[1]) sig |= 1u;
+    if ((tied & 5u) == 5u && r[0] < r[2]) sig |= 2u;
+    if ((tied & 6u) == 6u && r[1] < r[2]) sig |= 4u;
+    return sig;
+}
+}  // namespace
+
+int nextPass(unsigned inPlane, unsigned tied, uint64_t walked) {
+    if ((inPlane | tied) == 0) return -1;  // the usual case: one pass did it all
+    uint64_t covered = 0;  // bit mask * 8 + signature
+    for (int c = 0; c < 48; ++c)
+        if ((walked >> c) & 1u) covered |= uint64_t(1) << ((c & 7) * 8 + int(orderSignature(c >> 3, tied)));
+    for (int c = 0; c < 48; ++c) {
+        if ((unsigned(c & 7) & ~inPlane) != 0) continue;
+        if (!((covered >> ((c & 7) * 8 + int(orderSignature(c >> 3, tied)))) & 1u)) return c;
+    }
+    return -1;
+}
+
+// At most 8 passes: in-plane axes have no plane crossings, so they never tie; the masks over the
+// in-plane axes times the orders of the tied ones are 8 (two in-plane axes), 4 (one, and two tied),
+// or 6 (none, three tied).
+void KdTracer::walk(const cpu::Ray& ray, Segment segment, LeafVisitor& visitor, cpu::TraversalCounters& c) const {
+    unsigned inPlane = 0, tied = 0;
+    uint64_t walked = 0;
+    int steps = 0;
+    for (int code = 0; code >= 0; code = nextPass(inPlane, tied, walked)) {
+        PassState pass;
+        pass.mask = unsigned(code & 7);
+        for (int a = 0; a < 3; ++a) pass.rank[a] = kKdRanks[code >> 3][a];
+        // The root box clip too: its faces may tie with each other.
+        const auto s = clipToBox(ray, tree_.header.lo, tree_.header.hi, segment, pass);
+        const bool ok = !s || walkPass(ray, *s, pass, visitor, c, steps);
+        inPlane |= pass.inPlane;
+        tied |= pass.tied;
+        walked |= uint64_t(1) << code;
+        if (!ok || visitor.satisfied()) return;
+    }
+}
+
+KdTracer::KdTracer(const KdTree& tree, std::vector<cpu::TriangleVertices> triangles, int maxSteps)
+    : tree_(tree), triangles_(std::move(triangles)), maxSteps_(maxSteps) {}
+
+cpu::Hit KdTracer::closest(const cpu::Ray& ray, double tmax, cpu::TraversalCounters* counters) const {
+    cpu::TraversalCounters local;
+    cpu::TraversalCounters& c = counters ? *counters : local;
+    ClosestVisitor visitor(tree_, triangles_, ray, tmax, c);
+    walk(ray, {0.0, tmax}, visitor, c);
+    cpu::Hit best = visitor.best;
+    if (!best.found()) best.t = kInf;
+    return best;
+}
+
+bool KdTracer::occluded(const cpu::Ray& ray, double tmax, cpu::TraversalCounters* counters) const {
+    cpu::TraversalCounters local;
+    cpu::TraversalCounters& c = counters ? *counters : local;
+    AnyHitVisitor visitor(tree_, triangles_, ray, tmax, c);
+    walk(ray, {0.0, tmax}, visitor, c);
+    return visitor.occluded;
+}
+
+// Seed 000, figure 9, as a loop: one iteration per node; the stack holds the far children with
+// their segments, nearest on top.
+bool KdStackTracer::walkPass(const cpu::Ray& ray, Segment seg, PassState& pass, LeafVisitor& visitor,
+                             cpu::TraversalCounters& c, int& steps) const {
+    struct Pending {
+        uint32_t node;
+        Segment seg;
+    };
+    std::array<Pending, VKRAY_KD_STACK_SIZE> stack;
+    size_t top = 0;
+    uint32_t node = 0;
+    for (;; ++steps) {
+        if (steps >= maxSteps_) {
+            ++c.capped;
+            return false;
+        }
+        ++c.nodes;
+        const gpu::KdNode& n = tree_.nodes[node];
+        if (!n.isLeaf()) {
+            const SplitStep s = stepInner(ray, n, node, seg, pass);
+            if (s.visit == Visit::Both) {
+                if (top == stack.size()) {  // deeper than any tree the builder makes: malformed
+                    ++c.capped;
+                    return false;
+                }
+                stack[top++] = {s.second, {s.thit, seg.tmax, s.axis, seg.maxAxis}};
+                seg.tmax = s.thit;
+                seg.maxAxis = s.axis;
+            }
+            node = s.visit == Visit::Second ? s.second : s.first;
+            continue;
+        }
+        ++c.leaves;
+        if (visitor.visit(n, seg.tmax) || top == 0) return true;  // continue-search(): pop or fail
+        --top;
+        node = stack[top].node;
+        seg = stack[top].seg;
+    }
+}
+
+// Foley and Sugerman 4.1: continue-search() sets tmin to the leaf's exit and restarts at the root.
+// The descent sends the segment to the first child only when the plane lies strictly beyond tmin
+// (stepInner: thit <= tmin goes second), so the leaf just left, whose exit is tmin, is never entered
+// again: every restart advances strictly past the exit, and each leaf is visited once.
+bool KdRestartTracer::walkPass(const cpu::Ray& ray, Segment global, PassState& pass, LeafVisitor& visitor,
+                               cpu::TraversalCounters& c, int& steps) const {
+    uint32_t node = 0;
+    Segment seg = global;
+    for (;; ++steps) {
+        if (steps >= maxSteps_) {
+            ++c.capped;
+            return false;
+        }
+        ++c.nodes;
+        const gpu::KdNode& n = tree_.nodes[node];
+        if (!n.isLeaf()) {
+            const SplitStep s = stepInner(ray, n, node, seg, pass);
+            if (s.visit == Visit::Both) {  // the push of the stack traversal, dropped
+                seg.tmax = s.thit;
+                seg.maxAxis = s.axis;
+            }
+            node = s.visit == Visit::Second ? s.second : s.first;
+            continue;
+        }
+        ++c.leaves;
+        if (visitor.visit(n, seg.tmax) || pass.compare(seg.tmax, seg.maxAxis, global.tmax, global.maxAxis) >= 0)
+            return true;
+        seg = {seg.tmax, global.tmax, seg.maxAxis, global.maxAxis};
+        node = 0;
+        ++c.restarts;
+    }
+}
+
+// Foley and Sugerman 4.2: after a leaf, backtrack() climbs the parent links, clipping the ray's
+// remaining segment (tmin, global tmax) to each ancestor's box, and descends from the first
+// ancestor the segment still passes through for a positive length (box exit > tmin: an ancestor
+// whose box the ray leaves exactly at tmin holds nothing new). Climbing steps share the loop (and
+// the cap) with descending steps.
+bool KdBacktrackTracer::walkPass(const cpu::Ray& ray, Segment global, PassState& pass, LeafVisitor& visitor,
+                                 cpu::TraversalCounters& c, int& steps) const {
+    uint32_t node = 0;
+    Segment seg = global;
+    bool climbing = false;
+    for (;; ++steps) {
+        if (steps >= maxSteps_) {
+            ++c.capped;
+            return false;
+        }
+        ++c.nodes;
+        if (climbing) {
+            if (node == VKRAY_KD_NO_PARENT) return true;  // climbed past the root: nothing left
+            const gpu::KdNodeExtra& e = tree_.extra[node];
+            const auto inside = clipToBox(ray, e.lo, e.hi, {seg.tmin, global.tmax, seg.minAxis, global.maxAxis}, pass);
+            if (inside && pass.compare(inside->tmax, inside->maxAxis, seg.tmin, seg.minAxis) > 0) {
+                seg = *inside;  // its tmin is at least seg.tmin: the clip started from it
+                climbing = false;
+            } else {
+                node = e.parent;
+            }
+            continue;
+        }
+        const gpu::KdNode& n = tree_.nodes[node];
+        if (!n.isLeaf()) {
+            const SplitStep s = stepInner(ray, n, node, seg, pass);
+            if (s.visit == Visit::Both) {
+                seg.tmax = s.thit;
+                seg.maxAxis = s.axis;
+            }
+            node = s.visit == Visit::Second ? s.second : s.first;
+            continue;
+        }
+        ++c.leaves;
+        if (visitor.visit(n, seg.tmax) || pass.compare(seg.tmax, seg.maxAxis, global.tmax, global.maxAxis) >= 0)
+            return true;
+        seg.tmin = seg.tmax;
+        seg.minAxis = seg.maxAxis;
+        node = tree_.extra[node].parent;
+        climbing = true;
+        ++c.restarts;
+    }
+}
+
+std::unique_ptr<KdTracer> makeKdTracer(KdTraversal traversal, const KdTree& tree,
+                                       std::vector<cpu::TriangleVertices> triangles, int maxSteps) {
+    switch (traversal) {
+    case KdTraversal::Stack: return std::make_unique<KdStackTracer>(tree, std::move(triangles), maxSteps);
+    case KdTraversal::Restart: return std::make_unique<KdRestartTracer>(tree, std::move(triangles), maxSteps);
+    case KdTraversal::Backtrack: return std::make_unique<KdBacktrackTracer>(tree, std::move(triangles), maxSteps);
+    }
+    return nullptr;
+}
+
+}  // namespace vkray::accel::kd

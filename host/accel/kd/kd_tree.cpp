@@ -1,0 +1,69 @@
+#include "accel/kd/kd_tree.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <utility>
+
+namespace vkray::accel::kd {
+
+int KdConfig::resolvedMaxDepth(size_t triangleCount) const {
+    // pbrt 3rd ed., section 4.4.2: "8 + 1.3 log2(N)" bounds the depth for any N.
+    const int depth = maxDepth > 0 ? maxDepth
+                                   : int(std::lround(8.0 + 1.3 * std::log2(double(std::max<size_t>(triangleCount, 1)))));
+    return std::clamp(depth, 0, VKRAY_KD_MAX_DEPTH);
+}
+
+std::string KdConfig::describe() const {
+    char text[96];
+    std::snprintf(text, sizeof text, "pbrt SAH: Ct=%g Ci=%g eb=%g", traversalCost, intersectionCost, emptyBonus);
+    return text;
+}
+
+double Box::surfaceArea() const {
+    const glm::dvec3 e = glm::max(glm::dvec3(hi) - glm::dvec3(lo), glm::dvec3(0.0));
+    return 2.0 * (e.x * e.y + e.y * e.z + e.z * e.x);
+}
+
+bool KdTree::operator==(const KdTree& o) const {
+    const auto sameExtra = [](const gpu::KdNodeExtra& a, const gpu::KdNodeExtra& b) {
+        return a.lo == b.lo && a.hi == b.hi && a.parent == b.parent;
+    };
+    return header.lo == o.header.lo && header.hi == o.header.hi && header.nodeCount == o.header.nodeCount &&
+           header.indexCount == o.header.indexCount && nodes == o.nodes && indices == o.indices &&
+           std::equal(extra.begin(), extra.end(), o.extra.begin(), o.extra.end(), sameExtra);
+}
+
+KdTreeFigures measureTree(const KdTree& tree, const KdConfig& config) {
+    KdTreeFigures f;
+    f.nodes = tree.nodes.size();
+    f.references = tree.indices.size();
+    const double rootArea = tree.rootBox().surfaceArea();
+    // Depth-first walk with an explicit stack of (node, depth); depth is bounded by VKRAY_KD_MAX_DEPTH.
+    std::vector<std::pair<uint32_t, int>> pending;
+    if (!tree.nodes.empty()) pending.emplace_back(0u, 0);
+    while (!pending.empty()) {
+        const auto [index, depth] = pending.back();
+        pending.pop_back();
+        const gpu::KdNode& node = tree.nodes[index];
+        f.maxDepth = std::max(f.maxDepth, depth);
+        // SAH cost of the whole tree (Wald and Havran 2006, eq. 1): every node weighted by the
+        // probability SA(node)/SA(root) that a random ray through the root meets it.
+        const double p = rootArea > 0.0 ? tree.nodeBox(index).surfaceArea() / rootArea : 1.0;
+        if (node.isLeaf()) {
+            ++f.leaves;
+            if (node.triangleCount() == 0) ++f.emptyLeaves;
+            f.sahCost += p * config.intersectionCost * node.triangleCount();
+        } else {
+            f.sahCost += p * config.traversalCost;
+            pending.emplace_back(node.aboveChild(), depth + 1);
+            pending.emplace_back(index + 1, depth + 1);
+        }
+    }
+    std::vector<uint32_t> distinct = tree.indices;
+    std::sort(distinct.begin(), distinct.end());
+    f.indexedTriangles = size_t(std::unique(distinct.begin(), distinct.end()) - distinct.begin());
+    return f;
+}
+
+}  // namespace vkray::accel::kd

@@ -1,0 +1,78 @@
+// The SAH kd-tree of vkray: its cost model (KdConfig) and the tree itself, held in exactly the
+// arrays the GPU kernels read (shaders/shared/kd_layout.h), so the CPU traversals that the unit
+// tests check walk the same bytes the GPU walks. docs/kdtree.md describes the whole family.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "shared/kd_layout.h"
+
+namespace vkray::accel::kd {
+
+// The surface area heuristic's constants, in pbrt's convention (Pharr, Jakob, Humphreys,
+// "Physically Based Rendering", 3rd ed., section 4.4.2):
+//
+//   cost(split) = Ct + Ci * (1 - eb) * (SA(L)/SA(N) * nL + SA(R)/SA(N) * nR)
+//
+// with eb = emptyBonus when one side holds no triangle and 0 otherwise, and a leaf costing Ci * n.
+// Wald and Havran (2006) use another convention (Ct 15, Ci 20, the whole cost times 0.8 when a side
+// is empty); the two are not interchangeable. Only the ratio Ci/Ct shapes the tree.
+//
+// Default Ci = 20 rather than pbrt's 80: kd-restart walks from the root again for every leaf it
+// leaves, so each extra level is paid once per leaf visited, and the GPU kernels test a leaf's
+// triangles 4 per loop iteration, both arguing for shallower trees. The GPU-time sweep on lavapipe
+// (bunny, 320x240, Ci 5/10/20/40) found Ci = 20 best for kd-restart and within the noise of the
+// best for kd-stack (docs/kdtree.md, "Cost convention and tuning").
+struct KdConfig {
+    double traversalCost = 1.0;     // Ct: one inner-node step
+    double intersectionCost = 20.0; // Ci: one ray-triangle test
+    double emptyBonus = 0.5;        // eb: discount on the intersection term when a side is empty
+    // Deepest level a node may sit at (the root is level 0); 0 = pbrt's 8 + 1.3 log2 N, rounded.
+    // Never more than VKRAY_KD_MAX_DEPTH, the kd-stack kernel's stack size.
+    int maxDepth = 0;
+
+    int resolvedMaxDepth(size_t triangleCount) const;
+    // "pbrt SAH: Ct=1 Ci=20 eb=0.5" — printed with the SAH cost in --stats.
+    std::string describe() const;
+};
+
+// An axis-aligned box in float (the scene's precision; every split lies on a float).
+struct Box {
+    glm::vec3 lo{0.0f}, hi{0.0f};
+
+    double surfaceArea() const;
+    bool operator==(const Box&) const = default;
+};
+
+// A built tree: the GPU arrays of shaders/shared/kd_layout.h. `extra` (parent links and node boxes)
+// is always filled on the CPU, where kd-backtrack needs it; only the kd-backtrack kernel uploads it.
+struct KdTree {
+    gpu::KdTreeHeader header{};
+    std::vector<gpu::KdNode> nodes;
+    std::vector<uint32_t> indices;
+    std::vector<gpu::KdNodeExtra> extra;
+
+    Box rootBox() const { return Box{header.lo, header.hi}; }
+    Box nodeBox(uint32_t node) const { return Box{extra[node].lo, extra[node].hi}; }
+    bool operator==(const KdTree&) const;
+};
+
+// Shape of a built tree, for --stats.
+struct KdTreeFigures {
+    size_t nodes = 0, leaves = 0, emptyLeaves = 0;
+    int maxDepth = 0;
+    size_t references = 0;         // entries of the triangle-index list
+    size_t indexedTriangles = 0;   // distinct triangles referenced (degenerate ones are left out)
+    double sahCost = 0.0;          // expected cost of a random ray through the root box, in KdConfig units
+    double meanTrianglesPerLeaf() const { return leaves ? double(references) / double(leaves) : 0.0; }
+    size_t duplicatedReferences() const { return references - indexedTriangles; }
+};
+
+KdTreeFigures measureTree(const KdTree& tree, const KdConfig& config);
+
+}  // namespace vkray::accel::kd

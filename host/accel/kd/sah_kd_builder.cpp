@@ -1,0 +1,386 @@
+#include "accel/kd/sah_kd_builder.h"
+
+#include <algorithm>
+#include <array>
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <memory>
+#include <mutex>
+#include <optional>
+
+#include <tbb/enumerable_thread_specific.h>
+#include <tbb/parallel_invoke.h>
+#include <tbb/parallel_sort.h>
+#include <tbb/task_arena.h>
+
+#include "cpu/ray_triangle.h"
+
+namespace vkray::accel::kd {
+namespace {
+
+// Nodes with at least this many events build their two subtrees as parallel tasks; below it the
+// task overhead outweighs the work.
+constexpr size_t kParallelEvents = 1 << 13;
+
+// Wald and Havran 2006, section 4.2: at equal positions, ends sort before planars before starts,
+// which is the order the sweep needs to count each side.
+enum class EventType : uint8_t { End = 0, Planar = 1, Start = 2 };
+
+struct Event {
+    float pos;
+    uint32_t triangle;
+    EventType type;
+};
+
+bool operator<(const Event& a, const Event& b) {
+    if (a.pos != b.pos) return a.pos < b.pos;
+    if (a.type != b.type) return a.type < b.type;
+    return a.triangle < b.triangle;  // a total order: the sort, hence the tree, is deterministic
+}
+
+using AxisEvents = std::vector<Event>;
+using NodeEvents = std::array<AxisEvents, 3>;
+
+enum class Side : uint8_t { Both, BelowOnly, AboveOnly };
+
+struct SplitChoice {
+    int axis = -1;
+    float pos = 0.0f;
+    bool planarBelow = true;  // where triangles lying in the plane go
+    double cost = std::numeric_limits<double>::infinity();
+};
+
+struct BuildNode {
+    int axis = -1;  // -1: leaf
+    float split = 0.0f;
+    std::unique_ptr<BuildNode> below, above;
+    std::vector<uint32_t> triangles;  // leaves only, ascending
+};
+
+using Clock = std::chrono::steady_clock;
+double msSince(Clock::time_point t) { return std::chrono::duration<double, std::milli>(Clock::now() - t).count(); }
+
+Box boundsOf(const Triangle& t) {
+    return Box{glm::min(t.p0, glm::min(t.p1, t.p2)), glm::max(t.p0, glm::max(t.p1, t.p2))};
+}
+
+Box intersection(const Box& a, const Box& b) { return Box{glm::max(a.lo, b.lo), glm::min(a.hi, b.hi)}; }
+
+bool isEmpty(const Box& b) { return b.lo.x > b.hi.x || b.lo.y > b.hi.y || b.lo.z > b.hi.z; }
+
+bool contains(const Box& outer, const Box& inner) {
+    return glm::all(glm::lessThanEqual(outer.lo, inner.lo)) && glm::all(glm::lessThanEqual(inner.hi, outer.hi));
+}
+
+float roundDown(double x) {
+    float f = float(x);
+    return double(f) > x ? std::nextafter(f, -std::numeric_limits<float>::infinity()) : f;
+}
+
+float roundUp(double x) {
+    float f = float(x);
+    return double(f) < x ? std::nextafter(f, std::numeric_limits<float>::infinity()) : f;
+}
+
+// Bounds of the part of the triangle inside `box` ("perfect splits", Wald and Havran 4.3):
+// Sutherland-Hodgman clipping against the six planes in double (a triangle gains at most one vertex
+// per plane), bounds rounded outwards to float, then intersected with the box. When rounding makes
+// the clipped polygon vanish or leave the box, the triangle's bounding box within `box` stands in:
+// it contains the exact clipped part, so nothing is ever lost, only bounded less tightly.
+Box clippedBounds(const Triangle& tri, const Box& box) {
+    const Box fallback = intersection(boundsOf(tri), box);
+    if (contains(box, boundsOf(tri))) return fallback;
+    std::array<glm::dvec3, 10> poly{glm::dvec3(tri.p0), glm::dvec3(tri.p1), glm::dvec3(tri.p2)}, next{};
+    size_t n = 3;
+    for (int axis = 0; axis < 3 && n > 0; ++axis)
+        for (int upper = 0; upper < 2 && n > 0; ++upper) {
+            const double plane = upper ? box.hi[axis] : box.lo[axis];
+            const auto inside = [&](const glm::dvec3& v) { return upper ? v[axis] <= plane : v[axis] >= plane; };
+            size_t m = 0;
+            for (size_t i = 0; i < n; ++i) {
+                const glm::dvec3& a = poly[i];
+                const glm::dvec3& b = poly[(i + 1) % n];
+                if (inside(a)) next[m++] = a;
+                if (inside(a) != inside(b)) {
+                    glm::dvec3 v = a + (b - a) * ((plane - a[axis]) / (b[axis] - a[axis]));
+                    v[axis] = plane;  // on the plane exactly, whatever the interpolation rounded to
+                    next[m++] = v;
+                }
+            }
+            std::swap(poly, next);
+            n = m;
+        }
+    if (n == 0) return fallback;
+    glm::dvec3 lo = poly[0], hi = poly[0];
+    for (size_t i = 1; i < n; ++i) {
+        lo = glm::min(lo, poly[i]);
+        hi = glm::max(hi, poly[i]);
+    }
+    const Box rounded{{roundDown(lo.x), roundDown(lo.y), roundDown(lo.z)}, {roundUp(hi.x), roundUp(hi.y), roundUp(hi.z)}};
+    const Box clipped = intersection(rounded, box);
+    return isEmpty(clipped) ? fallback : clipped;
+}
+
+// Events of one triangle from its clipped bounds `b` (Wald and Havran 4.2): a planar event where the
+// clipped part is flat on that axis, a start and an end otherwise. Flat clipped parts are not only
+// triangles lying in an axis plane: a triangle that meets the node only in an edge or a point on the
+// node's face is flat there too, and a planar event gives it exactly one side at any later split.
+void appendEvents(uint32_t triangle, const Box& b, NodeEvents& out) {
+    for (int k = 0; k < 3; ++k) {
+        if (b.lo[k] == b.hi[k]) {
+            out[k].push_back({b.lo[k], triangle, EventType::Planar});
+        } else {
+            out[k].push_back({b.lo[k], triangle, EventType::Start});
+            out[k].push_back({b.hi[k], triangle, EventType::End});
+        }
+    }
+}
+
+// The node's triangles: each has exactly one start or planar event on every axis.
+std::vector<uint32_t> trianglesOf(const NodeEvents& ev) {
+    std::vector<uint32_t> tris;
+    for (const Event& e : ev[0])
+        if (e.type != EventType::End) tris.push_back(e.triangle);
+    std::sort(tris.begin(), tris.end());
+    return tris;
+}
+
+std::pair<Box, Box> splitBox(const Box& box, int axis, float pos) {
+    Box below = box, above = box;
+    below.hi[axis] = pos;
+    above.lo[axis] = pos;
+    return {below, above};
+}
+
+// A float split the GPU reads back unchanged: strictly inside the box (a split on the boundary cuts
+// nothing) and not denormal (lavapipe flushes denormals to zero).
+bool usableSplit(const Box& box, int axis, float pos) {
+    return pos > box.lo[axis] && pos < box.hi[axis] && (pos == 0.0f || std::abs(pos) >= std::numeric_limits<float>::min());
+}
+
+class Builder {
+public:
+    Builder(const std::vector<Triangle>& tris, const KdConfig& config, const BuildProgress& progress)
+        : tris_(tris), config_(config), progress_(progress) {}
+
+    std::unique_ptr<BuildNode> build(NodeEvents ev, const Box& box, int depth);
+    void setMaxDepth(int d) { maxDepth_ = d; }
+
+private:
+    double splitCost(const Box& box, int axis, float pos, size_t nBelow, size_t nAbove) const;
+    void sweepAxis(int axis, const AxisEvents& ev, const Box& box, size_t n, SplitChoice& best) const;
+    SplitChoice findBestSplit(const NodeEvents& ev, const Box& box, size_t n) const;
+    std::pair<NodeEvents, NodeEvents> splitEvents(NodeEvents ev, const SplitChoice& s, const Box& below,
+                                                  const Box& above);
+    std::unique_ptr<BuildNode> makeLeaf(const NodeEvents& ev, int depth);
+
+    const std::vector<Triangle>& tris_;
+    KdConfig config_;
+    int maxDepth_ = 0;
+    // Per-thread side marks indexed by triangle (Wald and Havran 5.2); used only between setting and
+    // reading them within one node, with no task boundary in between.
+    tbb::enumerable_thread_specific<std::vector<Side>> sides_;
+
+    // Progress: a leaf at depth d completes 2^-d of the tree (the weights of a binary tree's leaves
+    // sum to 1), kept in fixed point.
+    const BuildProgress& progress_;
+    std::atomic<uint64_t> doneWeight_{0};
+    std::mutex progressMutex_;
+    double reported_ = 0.0;
+};
+
+double Builder::splitCost(const Box& box, int axis, float pos, size_t nBelow, size_t nAbove) const {
+    const auto [below, above] = splitBox(box, axis, pos);
+    const double invArea = 1.0 / box.surfaceArea();
+    const double bonus = (nBelow == 0 || nAbove == 0) ? 1.0 - config_.emptyBonus : 1.0;
+    return config_.traversalCost + config_.intersectionCost * bonus *
+                                       (below.surfaceArea() * invArea * double(nBelow) +
+                                        above.surfaceArea() * invArea * double(nAbove));
+}
+
+// The plane sweep of Wald and Havran (section 4.2, Algorithm 4) with their classification: at plane
+// p, below = triangles starting before p (those ending at p touch it from below), above = triangles
+// ending after p (those starting at p touch it from above); triangles flat in p are tried on each side.
+void Builder::sweepAxis(int axis, const AxisEvents& ev, const Box& box, size_t n, SplitChoice& best) const {
+    size_t startedBefore = 0, endingAfter = n;
+    for (size_t i = 0; i < ev.size();) {
+        const float p = ev[i].pos;
+        size_t ends = 0, planars = 0, starts = 0;
+        for (; i < ev.size() && ev[i].pos == p && ev[i].type == EventType::End; ++i) ++ends;
+        for (; i < ev.size() && ev[i].pos == p && ev[i].type == EventType::Planar; ++i) ++planars;
+        for (; i < ev.size() && ev[i].pos == p && ev[i].type == EventType::Start; ++i) ++starts;
+        endingAfter -= ends + planars;
+        if (usableSplit(box, axis, p)) {
+            const size_t below = startedBefore, above = endingAfter;
+            const double planarBelowCost = splitCost(box, axis, p, below + planars, above);
+            const double planarAboveCost = splitCost(box, axis, p, below, above + planars);
+            const bool planarBelow = planarBelowCost <= planarAboveCost;
+            const double cost = planarBelow ? planarBelowCost : planarAboveCost;
+            if (cost < best.cost) best = SplitChoice{axis, p, planarBelow, cost};
+        }
+        startedBefore += starts + planars;
+    }
+}
+
+SplitChoice Builder::findBestSplit(const NodeEvents& ev, const Box& box, size_t n) const {
+    SplitChoice best;
+    if (!(box.surfaceArea() > 0.0)) return best;
+    for (int axis = 0; axis < 3; ++axis) sweepAxis(axis, ev[axis], box, n, best);
+    return best;
+}
+
+// Wald and Havran 5.2-5.3: classify the triangles by the chosen split's axis events, hand each
+// one-sided triangle's events to its side in order, clip the straddling triangles to both children,
+// sort their few new events and merge them in. Everything stays sorted without a full sort.
+std::pair<NodeEvents, NodeEvents> Builder::splitEvents(NodeEvents ev, const SplitChoice& s, const Box& below,
+                                                       const Box& above) {
+    std::vector<Side>& side = sides_.local();
+    if (side.size() < tris_.size()) side.resize(tris_.size());
+    const AxisEvents& ek = ev[s.axis];
+    for (const Event& e : ek) side[e.triangle] = Side::Both;
+    for (const Event& e : ek) {
+        // Wald and Havran 5.1: ending at the plane = below only, starting at it = above only.
+        if (e.type == EventType::End && e.pos <= s.pos) side[e.triangle] = Side::BelowOnly;
+        if (e.type == EventType::Start && e.pos >= s.pos) side[e.triangle] = Side::AboveOnly;
+        if (e.type == EventType::Planar) {
+            const bool goesBelow = e.pos < s.pos || (e.pos == s.pos && s.planarBelow);
+            side[e.triangle] = goesBelow ? Side::BelowOnly : Side::AboveOnly;
+        }
+    }
+    std::vector<uint32_t> straddling;
+    for (const Event& e : ek)
+        if (e.type == EventType::Start && side[e.triangle] == Side::Both) straddling.push_back(e.triangle);
+
+    NodeEvents belowEv, aboveEv;
+    for (int k = 0; k < 3; ++k) {
+        for (const Event& e : ev[k]) {
+            if (side[e.triangle] == Side::BelowOnly) belowEv[k].push_back(e);
+            else if (side[e.triangle] == Side::AboveOnly) aboveEv[k].push_back(e);
+        }
+        AxisEvents().swap(ev[k]);  // free the parent's lists before the children grow theirs
+    }
+    NodeEvents newBelow, newAbove;
+    for (uint32_t t : straddling) {
+        appendEvents(t, clippedBounds(tris_[t], below), newBelow);
+        appendEvents(t, clippedBounds(tris_[t], above), newAbove);
+    }
+    const auto mergeIn = [](AxisEvents& kept, AxisEvents& fresh) {
+        std::sort(fresh.begin(), fresh.end());
+        AxisEvents merged;
+        merged.reserve(kept.size() + fresh.size());
+        std::merge(kept.begin(), kept.end(), fresh.begin(), fresh.end(), std::back_inserter(merged));
+        kept.swap(merged);
+    };
+    for (int k = 0; k < 3; ++k) {
+        mergeIn(belowEv[k], newBelow[k]);
+        mergeIn(aboveEv[k], newAbove[k]);
+    }
+    return {std::move(belowEv), std::move(aboveEv)};
+}
+
+std::unique_ptr<BuildNode> Builder::makeLeaf(const NodeEvents& ev, int depth) {
+    auto leaf = std::make_unique<BuildNode>();
+    leaf->triangles = trianglesOf(ev);
+    const uint64_t done = doneWeight_.fetch_add(uint64_t(1) << (62 - depth)) + (uint64_t(1) << (62 - depth));
+    if (progress_) {
+        const double fraction = double(done) / double(uint64_t(1) << 62);
+        std::lock_guard lock(progressMutex_);
+        if (fraction >= reported_ + 0.01) {
+            reported_ = fraction;
+            progress_("kd-tree: splitting", fraction);
+        }
+    }
+    return leaf;
+}
+
+std::unique_ptr<BuildNode> Builder::build(NodeEvents ev, const Box& box, int depth) {
+    const size_t n = ev[0].size() - size_t(std::count_if(ev[0].begin(), ev[0].end(), [](const Event& e) {
+                                                               return e.type == EventType::End;
+                                                           }));
+    if (n == 0 || depth >= maxDepth_) return makeLeaf(ev, depth);
+    const SplitChoice s = findBestSplit(ev, box, n);
+    // SAH termination (Wald and Havran, section 3): split only when it is cheaper than a leaf.
+    if (s.axis < 0 || s.cost >= config_.intersectionCost * double(n)) return makeLeaf(ev, depth);
+
+    auto node = std::make_unique<BuildNode>();
+    node->axis = s.axis;
+    node->split = s.pos;
+    const auto [belowBox, aboveBox] = splitBox(box, s.axis, s.pos);
+    const bool parallel = ev[0].size() >= kParallelEvents;
+    auto [belowEv, aboveEv] = splitEvents(std::move(ev), s, belowBox, aboveBox);
+    const auto buildBelow = [&, &bEv = belowEv, &bBox = belowBox] { node->below = build(std::move(bEv), bBox, depth + 1); };
+    const auto buildAbove = [&, &aEv = aboveEv, &aBox = aboveBox] { node->above = build(std::move(aEv), aBox, depth + 1); };
+    if (parallel) {
+        tbb::parallel_invoke(buildBelow, buildAbove);
+    } else {
+        buildBelow();
+        buildAbove();
+    }
+    return node;
+}
+
+// Depth-first layout (kd_layout.h): below child next, above child by index; parent links and boxes
+// for kd-backtrack in `extra`.
+void flatten(const BuildNode& n, uint32_t parent, const Box& box, KdTree& out) {
+    const uint32_t index = uint32_t(out.nodes.size());
+    out.nodes.emplace_back();
+    out.extra.push_back(gpu::KdNodeExtra{box.lo, parent, box.hi, 0});
+    if (n.axis < 0) {
+        out.nodes[index] = gpu::KdNode::leaf(uint32_t(out.indices.size()), uint32_t(n.triangles.size()));
+        out.indices.insert(out.indices.end(), n.triangles.begin(), n.triangles.end());
+        return;
+    }
+    const auto [below, above] = splitBox(box, n.axis, n.split);
+    flatten(*n.below, index, below, out);
+    out.nodes[index] = gpu::KdNode::inner(n.axis, n.split, uint32_t(out.nodes.size()));
+    flatten(*n.above, index, above, out);
+}
+
+}  // namespace
+
+KdBuildResult buildSahKdTree(const std::vector<Triangle>& triangles, const KdConfig& config, int threads,
+                             const BuildProgress& progress) {
+    const Clock::time_point start = Clock::now();
+    KdBuildResult result;
+    tbb::task_arena arena(threads > 0 ? threads : tbb::task_arena::automatic);
+    arena.execute([&] {
+        if (progress) progress("kd-tree: events", 0.0);
+        NodeEvents ev;
+        Box root;
+        bool any = false;
+        for (uint32_t t = 0; t < triangles.size(); ++t) {
+            const Triangle& tri = triangles[t];
+            if (cpu::isDegenerate({glm::dvec3(tri.p0), glm::dvec3(tri.p1), glm::dvec3(tri.p2)})) continue;
+            const Box b = boundsOf(tri);
+            root = any ? Box{glm::min(root.lo, b.lo), glm::max(root.hi, b.hi)} : b;
+            any = true;
+            appendEvents(t, b, ev);
+        }
+        const size_t n = ev[0].size() - size_t(std::count_if(ev[0].begin(), ev[0].end(), [](const Event& e) {
+                                                                   return e.type == EventType::End;
+                                                               }));
+        tbb::parallel_invoke([&] { tbb::parallel_sort(ev[0].begin(), ev[0].end()); },
+                             [&] { tbb::parallel_sort(ev[1].begin(), ev[1].end()); },
+                             [&] { tbb::parallel_sort(ev[2].begin(), ev[2].end()); });
+        result.times.eventsMs = msSince(start);
+
+        const Clock::time_point treeStart = Clock::now();
+        Builder builder(triangles, config, progress);
+        builder.setMaxDepth(config.resolvedMaxDepth(n));
+        const std::unique_ptr<BuildNode> tree = builder.build(std::move(ev), root, 0);
+        result.times.treeMs = msSince(treeStart);
+
+        const Clock::time_point flattenStart = Clock::now();
+        if (progress) progress("kd-tree: flattening", 1.0);
+        flatten(*tree, VKRAY_KD_NO_PARENT, root, result.tree);
+        result.tree.header = gpu::KdTreeHeader{root.lo, uint32_t(result.tree.nodes.size()), root.hi,
+                                               uint32_t(result.tree.indices.size())};
+        result.times.flattenMs = msSince(flattenStart);
+    });
+    result.times.totalMs = msSince(start);
+    return result;
+}
+
+}  // namespace vkray::accel::kd

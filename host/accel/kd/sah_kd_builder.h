@@ -1,0 +1,49 @@
+// SAH kd-tree construction in O(N log N) after Wald and Havran, "On building fast kd-Trees for Ray
+// Tracing, and on doing that in O(N log N)", IEEE Symposium on Interactive Ray Tracing 2006:
+//  - one event list per axis, sorted once (section 5.1); each split partitions the lists in order
+//    and only the triangles that straddle the plane get new events, sorted and merged (5.2-5.3);
+//  - "perfect splits" (4.3): a straddling triangle is clipped to each child's box, and its clipped
+//    bounds (not its bounding box) give its events below;
+//  - the SAH of KdConfig with the empty-space bonus, termination when no split is cheaper than a leaf
+//    (section 3), and a maximum depth (pbrt's 8 + 1.3 log2 N by default).
+//
+// Classification (Wald and Havran 4.2 and 5.1; docs/kdtree.md, "Which side a triangle goes to"):
+//  - A triangle whose clipped part ends at the split plane goes below only, one that starts at it
+//    above only: a triangle that merely touches the plane is referenced on one side, never both.
+//  - A triangle whose clipped part is flat in the split plane (lying in it, or meeting the node only
+//    in an edge or a point there) goes to the side the SAH prefers (ties: below), never nowhere.
+//  - A ray lying in a split plane may need either side: the traversals walk it once per choice of
+//    side at such planes (kd_traversal.h, "in-plane rays").
+//  - Clipped bounds are computed in double and rounded outwards to float; splits are floats.
+//  - Degenerate (zero-area) triangles are left out: the ray-triangle test never reports them.
+//
+// Independent subtrees are built as oneTBB tasks inside a task arena of `threads` workers; every
+// decision depends only on the node's own data, so the tree is identical for any thread count.
+#pragma once
+
+#include <vector>
+
+#include "accel/accel.h"
+#include "accel/kd/kd_tree.h"
+#include "scene/scene.h"
+
+namespace vkray::accel::kd {
+
+struct KdBuildTimes {
+    double eventsMs = 0.0;   // bounds, initial events, the three sorts
+    double treeMs = 0.0;     // recursive SAH splitting
+    double flattenMs = 0.0;  // the GPU arrays
+    double totalMs = 0.0;
+};
+
+struct KdBuildResult {
+    KdTree tree;
+    KdBuildTimes times;
+};
+
+// `threads`: workers of the task arena, 0 = all cores. `progress` (may be empty) hears phase names
+// and fractions, from one thread at a time.
+KdBuildResult buildSahKdTree(const std::vector<Triangle>& triangles, const KdConfig& config, int threads = 0,
+                             const BuildProgress& progress = {});
+
+}  // namespace vkray::accel::kd

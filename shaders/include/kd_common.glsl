@@ -1,0 +1,239 @@
+// What the three kd-tree traversals share (Foley and Sugerman, "KD-Tree Acceleration Structures
+// for a GPU Raytracer", Graphics Hardware 2005; seed 000): the buffers of shared/kd_layout.h, node
+// accessors, the ray-box clip, one inner-node step, and the leaf test. The float twins of
+// host/accel/kd/kd_traversal.cpp, whose header explains the robustness rules; in short:
+//  - children in ray order by the direction's sign; [tmin, tmax] goes first only if thit >= tmax,
+//    second only if thit <= tmin (a plane behind the origin has thit < 0 <= tmin), else both;
+//  - direction components of +-0 (or denormal: lavapipe flushes them) never divide: such a ray
+//    stays on its origin's side; one lying in the plane (origin == split exactly) takes the side of
+//    the pass's mask, and plane hits exactly equal to a segment end of another axis are ordered by
+//    the pass's ranks; a walk repeats with the other masks and orders the ray met (KdPass, at most
+//    8 passes; one for almost every ray);
+//  - planes are always hit at (plane - origin) * invDir, `precise`, so a leaf's exit and the split
+//    that made it compare equal exactly;
+//  - a leaf's triangles are tested on the whole ray (0, best.t); the search ends once the best hit
+//    lies at or before the current leaf's exit (a hit beyond the leaf does not end it).
+// Loops: one iteration per node step, leaf triangles 4 per iteration, because llvmpipe ends all
+// loops of an invocation after 65535 iterations in total (trace_status.glsl).
+#ifndef VKRAY_KD_COMMON_GLSL
+#define VKRAY_KD_COMMON_GLSL
+
+#include "bindings.glsl"
+#include "shared/kd_layout.h"
+#include "trace_status.glsl"
+#include "triangle.glsl"
+
+layout(std430, set = 0, binding = VKRAY_BINDING_ACCEL_NODES) readonly buffer KdNodes {
+    KdTreeHeader kdTree;  // root box
+    uvec2 kdNodes[];      // KdNode: (word0, word1), see kd_layout.h
+};
+layout(std430, set = 0, binding = VKRAY_BINDING_ACCEL_INDICES) readonly buffer KdIndices {
+    uint kdIndices[];
+};
+
+bool kdIsLeaf(uvec2 n) { return (n.y & 3u) == VKRAY_KD_LEAF_TAG; }
+uint kdAxis(uvec2 n) { return n.y & 3u; }
+float kdSplit(uvec2 n) { return uintBitsToFloat(n.x); }
+uint kdAboveChild(uvec2 n) { return n.y >> 2; }
+uint kdFirstIndex(uvec2 n) { return n.x; }
+uint kdTriangleCount(uvec2 n) { return n.y >> 2; }
+
+const float kKdSmallestNormal = 1.17549435e-38;
+#define kKdInfinity uintBitsToFloat(0x7F800000u)
+
+struct KdRay {
+    vec3 origin;
+    vec3 dir;
+    vec3 invDir;     // 0 where parallel (never used there)
+    bvec3 parallel;  // direction component +-0 or denormal
+};
+
+KdRay makeKdRay(vec3 origin, vec3 dir) {
+    KdRay r;
+    r.origin = origin;
+    r.dir = dir;
+    r.parallel = lessThan(abs(dir), vec3(kKdSmallestNormal));
+    r.invDir = mix(1.0 / mix(dir, vec3(1.0), r.parallel), vec3(0.0), r.parallel);
+    return r;
+}
+
+float kdPlaneHit(KdRay r, uint axis, float plane) {
+    precise const float t = (plane - r.origin[axis]) * r.invDir[axis];
+    return t;
+}
+
+// One pass of a walk (kd_traversal.h, PassState): side mask for in-plane nodes, rank order for
+// ties between planes of different axes, and what the walk met. code = mask | order << 3.
+struct KdPass {
+    uint code;
+    uint mask;
+    uint ranks;    // 2 bits per axis (x: bits 0-1): the tie order; bit fields, not an indexed array
+    uint inPlane;  // axes of the in-plane nodes met, over all passes so far
+    uint tied;     // axes of planes that tied with another axis' plane, over all passes so far
+};
+
+// The 6 tie orders of kd_traversal.cpp's kKdRanks as rank bit fields, 6 bits each: orders 0-4 packed
+// in one constant, order 5 is (2, 1, 0) = 6. Dynamic indexing of an array or vector held per
+// invocation made llvmpipe keep the pass state in memory (the walk ran 2-3x slower).
+uint kdRankBits(uint order) { return order < 5u ? (304449636u >> (6u * order)) & 63u : 6u; }
+uint kdRank(uint ranks, uint axis) { return (ranks >> (2u * axis)) & 3u; }
+const uint kKdHardBound = 3u;  // a segment end on no plane: 0 or the caller's tmax
+
+KdPass kdFirstPass() {
+    KdPass p;
+    p.code = 0u;
+    p.mask = 0u;
+    p.ranks = kdRankBits(0u);
+    p.inPlane = 0u;
+    p.tied = 0u;
+    return p;
+}
+
+// -1, 0, +1 as plane (t0, a0) is crossed before, with, after plane (t1, a1).
+int kdCompare(inout KdPass p, float t0, uint a0, float t1, uint a1) {
+    if (t0 != t1) return t0 < t1 ? -1 : 1;
+    if (a0 == a1 || a0 == kKdHardBound || a1 == kKdHardBound) return 0;
+    p.tied |= (1u << a0) | (1u << a1);
+    return kdRank(p.ranks, a0) < kdRank(p.ranks, a1) ? -1 : 1;
+}
+
+uint kdOrderSignature(uint order, uint tied) {
+    const uint r = kdRankBits(order), x = kdRank(r, 0u), y = kdRank(r, 1u), z = kdRank(r, 2u);
+    uint sig = 0u;
+    if ((tied & 3u) == 3u && x < y) sig |= 1u;
+    if ((tied & 5u) == 5u && x < z) sig |= 2u;
+    if ((tied & 6u) == 6u && y < z) sig |= 4u;
+    return sig;
+}
+
+bool kdBit64(uvec2 set, uint i) { return ((i < 32u ? set.x >> i : set.y >> (i - 32u)) & 1u) != 0u; }
+uvec2 kdSetBit64(uvec2 set, uint i) { return i < 32u ? uvec2(set.x | (1u << i), set.y) : uvec2(set.x, set.y | (1u << (i - 32u))); }
+
+// Marks the pass just walked and moves `p` to the next one (nextPass() of kd_traversal.cpp); false
+// when none is left. Loops only for the rare rays that met an in-plane node or a tie.
+bool kdNextPass(inout KdPass p, inout uvec2 walked) {
+    walked = kdSetBit64(walked, p.code);
+    if ((p.inPlane | p.tied) == 0u) return false;
+    uvec2 covered = uvec2(0u);
+    for (uint c = 0u; c < 48u; ++c)
+        if (kdBit64(walked, c)) covered = kdSetBit64(covered, (c & 7u) * 8u + kdOrderSignature(c >> 3, p.tied));
+    for (uint c = 0u; c < 48u; ++c) {
+        if (((c & 7u) & ~p.inPlane) != 0u) continue;
+        if (!kdBit64(covered, (c & 7u) * 8u + kdOrderSignature(c >> 3, p.tied))) {
+            p.code = c;
+            p.mask = c & 7u;
+            p.ranks = kdRankBits(c >> 3);
+            return true;
+        }
+    }
+    return false;
+}
+
+// One slab of the box clip; false when the ray runs parallel to it outside. Ends carry their axis.
+bool kdClipSlab(KdRay r, uint axis, float lo, float hi, inout float tmin, inout uint tminAxis, inout float tmax,
+                inout uint tmaxAxis, inout KdPass p) {
+    if (r.parallel[axis]) return r.origin[axis] >= lo && r.origin[axis] <= hi;
+    float tNear = kdPlaneHit(r, axis, lo), tFar = kdPlaneHit(r, axis, hi);
+    if (r.dir[axis] < 0.0) {
+        const float swap = tNear;
+        tNear = tFar;
+        tFar = swap;
+    }
+    if (kdCompare(p, tNear, axis, tmin, tminAxis) > 0) {
+        tmin = tNear;
+        tminAxis = axis;
+    }
+    if (kdCompare(p, tFar, axis, tmax, tmaxAxis) < 0) {
+        tmax = tFar;
+        tmaxAxis = axis;
+    }
+    return true;
+}
+
+// [tmin, tmax] narrowed to the closed box; false when nothing is left. Unrolled: no loop iterations.
+bool kdClipBox(KdRay r, vec3 lo, vec3 hi, inout float tmin, inout uint tminAxis, inout float tmax,
+               inout uint tmaxAxis, inout KdPass p) {
+    return kdClipSlab(r, 0u, lo.x, hi.x, tmin, tminAxis, tmax, tmaxAxis, p) &&
+           kdClipSlab(r, 1u, lo.y, hi.y, tmin, tminAxis, tmax, tmaxAxis, p) &&
+           kdClipSlab(r, 2u, lo.z, hi.z, tmin, tminAxis, tmax, tmaxAxis, p) &&
+           kdCompare(p, tmin, tminAxis, tmax, tmaxAxis) <= 0;
+}
+
+const int kKdFirst = 0, kKdSecond = 1, kKdBoth = 2;
+
+// Seed 000's search-split(): which children of inner node `index` the segment [tmin, tmax] reaches.
+int kdStepInner(KdRay r, uvec2 n, uint index, float tmin, uint tminAxis, float tmax, uint tmaxAxis,
+                inout KdPass p, out uint first, out uint second, out float thit) {
+    const uint axis = kdAxis(n);
+    const float split = kdSplit(n);
+    const uint below = index + 1u, above = kdAboveChild(n);
+    thit = kKdInfinity;
+    if (r.parallel[axis]) {
+        first = r.origin[axis] < split ? below : above;
+        if (r.origin[axis] == split) {  // in the plane: the mask's side; other passes take the other
+            p.inPlane |= 1u << axis;
+            first = ((p.mask >> axis) & 1u) != 0u ? above : below;
+        }
+        second = first;
+        return kKdFirst;
+    }
+    const bool up = r.dir[axis] > 0.0;
+    first = up ? below : above;
+    second = up ? above : below;
+    thit = kdPlaneHit(r, axis, split);
+    if (kdCompare(p, thit, axis, tmax, tmaxAxis) >= 0) return kKdFirst;
+    if (kdCompare(p, thit, axis, tmin, tminAxis) <= 0) return kKdSecond;
+    return kKdBoth;
+}
+
+void kdTestSlot(uint slot, uint end, WatertightRay w, inout Hit best) {
+    if (slot >= end) return;
+    const uint tri = kdIndices[slot];
+    float t;
+    vec2 uv;
+    if (intersectTriangle(w, triangles[tri], best.t, t, uv)) {
+        best.t = t;
+        best.uv = uv;
+        best.triangle = int(tri);
+    }
+}
+
+// The leaf's triangles against (0, best.t), 4 per iteration; with anyHit, stops at the first hit.
+void kdVisitLeaf(uvec2 n, WatertightRay w, bool anyHit, inout Hit best) {
+    countLeaf();
+    uint i = kdFirstIndex(n);
+    const uint end = i + kdTriangleCount(n);
+    uint tested = 0u;
+    for (; i < end && !(anyHit && best.triangle >= 0); i += 4u) {
+        kdTestSlot(i, end, w, best);
+        kdTestSlot(i + 1u, end, w, best);
+        kdTestSlot(i + 2u, end, w, best);
+        kdTestSlot(i + 3u, end, w, best);
+        tested += min(4u, end - i);
+    }
+    if (i < end && !(anyHit && best.triangle >= 0)) gLoopCutShort = true;
+    countTriangles(tested);
+}
+
+// Whether the search may stop after a leaf whose segment ends at `exit`.
+bool kdFinished(Hit best, bool anyHit, float exit) {
+    return best.triangle >= 0 && (anyHit || best.t <= exit);
+}
+
+// A traversal loop ended: if not by its own exit, either the cap (a runaway ray, counted) or the
+// driver (llvmpipe's loop budget: the pixel is flagged).
+void kdEndLoop(bool done, int steps) {
+    if (done) return;
+    if (steps >= VKRAY_KD_MAX_STEPS) ++gCappedRays;
+    else gLoopCutShort = true;
+}
+
+Hit kdNoHit(float tmax) {
+    Hit h;
+    h.t = tmax;
+    h.uv = vec2(0.0);
+    h.triangle = -1;
+    return h;
+}
+
+#endif

@@ -1,0 +1,6 @@
+// Render kernel with the kd-restart traversal of the SAH kd-tree (include/kd_restart.glsl).
+#version 460
+#extension GL_GOOGLE_include_directive : require
+
+#include "include/kd_restart.glsl"
+#include "include/render_main.glsl"

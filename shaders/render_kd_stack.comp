@@ -1,0 +1,6 @@
+// Render kernel with the kd-stack traversal of the SAH kd-tree (include/kd_stack.glsl).
+#version 460
+#extension GL_GOOGLE_include_directive : require
+
+#include "include/kd_stack.glsl"
+#include "include/render_main.glsl"

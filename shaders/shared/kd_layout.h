@@ -1,0 +1,102 @@
+// The one definition of the kd-tree's GPU layout, shared by the host (C++) and the kd kernels
+// (GLSL, shaders/include/kd_common.glsl). See docs/kdtree.md for the whole picture.
+//
+// Binding VKRAY_BINDING_ACCEL_NODES:   KdTreeHeader (32 bytes), then KdNode[nodeCount] (8 bytes each)
+//   in depth-first order: an inner node's first (below) child is the next node, its above child is
+//   named by index. The root is node 0.
+// Binding VKRAY_BINDING_ACCEL_INDICES: uint[] — the leaves' triangle-index lists, back to back;
+//   an entry is an index into the triangles buffer.
+// Binding VKRAY_BINDING_ACCEL_EXTRA:   KdNodeExtra[nodeCount] (32 bytes each), kd-backtrack only:
+//   parent link and node box (Foley and Sugerman 2005, section 4.2). Kept out of KdNode so that
+//   kd-stack and kd-restart read (and upload) 8 bytes per node, not 40.
+//
+// KdNode is pbrt's 8-byte node (Pharr, Jakob, Humphreys, "Physically Based Rendering", 3rd ed.,
+// section 4.4.1), two 32-bit words:
+//   inner: word0 = split position (float bits), word1 = aboveChild << 2 | axis (0, 1, 2)
+//   leaf:  word0 = first entry in the index list,  word1 = triangleCount << 2 | 3
+// The split is a plain float: the builder never chooses a denormal split, so a driver that flushes
+// denormals (lavapipe does, see gpu_layout.h) reads back exactly the value the builder used.
+#ifndef VKRAY_KD_LAYOUT_H
+#define VKRAY_KD_LAYOUT_H
+
+#ifdef __cplusplus
+#include <bit>
+#include <cstddef>
+#include <cstdint>
+#include <stdexcept>
+#include <glm/glm.hpp>
+namespace vkray::gpu {
+using vec3 = glm::vec3;
+using uint = uint32_t;
+#define VKRAY_KD_STRUCT(name) struct alignas(16) name
+#else
+#define VKRAY_KD_STRUCT(name) struct name
+#endif
+
+// word1 & 3 of a leaf; 0..2 is an inner node's split axis.
+#define VKRAY_KD_LEAF_TAG 3u
+// Largest tree depth the builder produces; the kd-stack kernel's per-ray stack holds this many
+// entries (a push happens at most once per level). 8 + 1.3 log2 N (pbrt's default) stays below it
+// for any N a 32-bit index can name.
+#define VKRAY_KD_MAX_DEPTH 56
+#define VKRAY_KD_STACK_SIZE 56
+// KdNodeExtra.parent of the root.
+#define VKRAY_KD_NO_PARENT 0xffffffffu
+// Hard caps on one traversal's loop iterations (one iteration = one node visited, or one
+// backtracking step). A ray that reaches its cap is a runaway (a malformed tree, or a floating-point
+// case nobody foresaw): it ends as a miss and is counted (GpuPixel.capped), never hidden. Far above
+// what any sane ray needs: kd-restart pays depth x leaves, e.g. 40 x 100.
+#define VKRAY_KD_MAX_STEPS 16384
+
+VKRAY_KD_STRUCT(KdTreeHeader) {  // 32 bytes, at offset 0 of the nodes binding
+    vec3 lo;         // root box (the scene's bounds)
+    uint nodeCount;
+    vec3 hi;
+    uint indexCount;
+};
+
+VKRAY_KD_STRUCT(KdNodeExtra) {  // 32 bytes
+    vec3 lo;      // the node's box
+    uint parent;  // VKRAY_KD_NO_PARENT for the root
+    vec3 hi;
+    uint pad0;
+};
+
+#ifdef __cplusplus
+#undef VKRAY_KD_STRUCT
+
+struct KdNode {  // 8 bytes
+    uint32_t word0 = 0;
+    uint32_t word1 = VKRAY_KD_LEAF_TAG;
+
+    // Range-checked factories: the packing leaves 30 bits for a child index or a triangle count.
+    static KdNode inner(int axis, float split, uint32_t aboveChild) {
+        if (axis < 0 || axis > 2 || aboveChild >= (1u << 30))
+            throw std::length_error("kd node: axis or child index out of range");
+        return KdNode{std::bit_cast<uint32_t>(split), aboveChild << 2 | uint32_t(axis)};
+    }
+    static KdNode leaf(uint32_t firstIndex, uint32_t count) {
+        if (count >= (1u << 30)) throw std::length_error("kd leaf: too many triangles");
+        return KdNode{firstIndex, count << 2 | VKRAY_KD_LEAF_TAG};
+    }
+
+    bool isLeaf() const { return (word1 & 3u) == VKRAY_KD_LEAF_TAG; }
+    int axis() const { return int(word1 & 3u); }
+    float split() const { return std::bit_cast<float>(word0); }
+    uint32_t aboveChild() const { return word1 >> 2; }
+    uint32_t firstIndex() const { return word0; }
+    uint32_t triangleCount() const { return word1 >> 2; }
+    bool operator==(const KdNode&) const = default;
+};
+
+static_assert(sizeof(KdNode) == 8 && offsetof(KdNode, word1) == 4);
+static_assert(sizeof(KdTreeHeader) == 32 && offsetof(KdTreeHeader, nodeCount) == 12 &&
+              offsetof(KdTreeHeader, hi) == 16 && offsetof(KdTreeHeader, indexCount) == 28);
+static_assert(sizeof(KdNodeExtra) == 32 && offsetof(KdNodeExtra, parent) == 12 &&
+              offsetof(KdNodeExtra, hi) == 16);
+}  // namespace vkray::gpu
+#else
+#undef VKRAY_KD_STRUCT
+#endif
+
+#endif  // VKRAY_KD_LAYOUT_H

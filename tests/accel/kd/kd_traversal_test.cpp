@@ -1,0 +1,342 @@
+// kd-stack, kd-restart and kd-backtrack against brute force: the same closest triangle (t within
+// 1e-5 relative) and the same any-hit answer, on seeded random rays, axis-parallel rays (direction
+// components exactly +0 and -0), rays lying in split planes, rays through mesh edges and vertices,
+// rays through the corners where split planes meet, and the Cornell box, whose walls lie in the
+// root box's faces. Plus the loop guarantees: each leaf visited once, and the iteration cap.
+//
+// Ties: brute force gives an exact tie in t to the lowest triangle index, and so do the kd tracers.
+// A different triangle is accepted only as an explained tie: the brute-force ray hits it too, at the
+// same t within 1e-12 relative (a shared edge or vertex whose two t values round differently; the
+// tree references a triangle touching a split plane on one side only, so at a vertex the kd tracer
+// may not test the fan triangle whose t rounds lowest); such cases are counted and printed, and
+// must stay rare (rays aimed at vertices: up to 10%).
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <memory>
+#include <random>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "accel/kd/kd_traversal.h"
+#include "cpu/brute_force.h"
+#include "kd_test_util.h"
+#include "scene/camera.h"
+
+namespace vkray::accel::kd {
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+struct Fixture {
+    Scene scene;
+    KdTree tree;
+    std::unique_ptr<cpu::BruteForceTracer> brute;
+    std::unique_ptr<KdTracer> kd;
+
+    Fixture(Scene s, KdTraversal traversal) : scene(std::move(s)) {
+        tree = buildSahKdTree(scene.triangles, KdConfig{}, 2).tree;
+        brute = std::make_unique<cpu::BruteForceTracer>(scene);
+        kd = makeKdTracer(traversal, tree, cpu::triangleVertices(scene));
+    }
+};
+
+struct Agreement {
+    size_t rays = 0, hits = 0, ties = 0, capped = 0;
+};
+
+void expectSameClosest(const Fixture& f, const cpu::Ray& ray, double tmax, Agreement& a) {
+    cpu::TraversalCounters c;
+    const cpu::Hit want = f.brute->closest(ray, tmax);
+    const cpu::Hit got = f.kd->closest(ray, tmax, &c);
+    ++a.rays;
+    a.capped += c.capped;
+    if (want.found()) ++a.hits;
+    if (got.triangle == want.triangle) {
+        if (want.found()) {
+            EXPECT_NEAR(got.t, want.t, 1e-5 * want.t);
+        }
+        return;
+    }
+    // Different triangle: only a tie explains it.
+    ASSERT_TRUE(got.found() && want.found())
+        << "origin (" << ray.origin.x << ", " << ray.origin.y << ", " << ray.origin.z << ") dir (" << ray.dir.x
+        << ", " << ray.dir.y << ", " << ray.dir.z << "): kd " << got.triangle << " brute " << want.triangle;
+    const auto again = cpu::intersectTriangle(ray, cpu::triangleVertices(f.scene)[size_t(got.triangle)], 0.0, tmax);
+    ASSERT_TRUE(again.has_value());
+    ASSERT_NEAR(again->t, want.t, 1e-12 * want.t) << "kd " << got.triangle << " brute " << want.triangle;
+    ++a.ties;
+}
+
+void expectSameOccluded(const Fixture& f, const cpu::Ray& ray, double tmax) {
+    EXPECT_EQ(f.kd->occluded(ray, tmax), f.brute->occluded(ray, tmax));
+}
+
+void report(const char* what, const Agreement& a, size_t tiesPerHundred = 1) {
+    std::printf("%s: %zu rays, %zu hits, %zu ties, %zu capped\n", what, a.rays, a.hits, a.ties, a.capped);
+    EXPECT_EQ(a.capped, 0u);
+    EXPECT_LE(a.ties, a.rays * tiesPerHundred / 100 + 1) << "ties should be rare";
+    EXPECT_GT(a.hits, a.rays / 10) << "a test whose rays miss everything proves nothing";
+}
+
+class KdTraversalTest : public ::testing::TestWithParam<KdTraversal> {};
+
+TEST_P(KdTraversalTest, RandomRaysMatchBruteForce) {
+    const Fixture f(test::randomSoup(42, 2500), GetParam());
+    std::mt19937 rng(1);
+    Agreement a;
+    for (int k = 0; k < 4000; ++k) {
+        // Origins inside and outside the scene; every fourth ray has a finite tmax.
+        const cpu::Ray ray{test::randomPointIn(rng, f.tree.header.lo, f.tree.header.hi, 1.6), test::randomDirection(rng)};
+        const double tmax = k % 4 == 0 ? 0.05 + 2.0 * std::uniform_real_distribution<double>(0, 1)(rng) : kInf;
+        expectSameClosest(f, ray, tmax, a);
+        expectSameOccluded(f, ray, tmax);
+    }
+    report("random", a);
+}
+
+TEST_P(KdTraversalTest, AxisParallelRaysMatchBruteForce) {
+    const Fixture f(test::meshScene(), GetParam());
+    std::mt19937 rng(2);
+    Agreement a;
+    for (int k = 0; k < 3000; ++k) {
+        const int axis = k % 3;
+        glm::dvec3 dir(0.0);
+        dir[axis] = (k / 3) % 2 ? 1.0 : -1.0;
+        // The other components are +0 or -0: both must work (1 / -0 is -inf).
+        if ((k / 6) % 2) dir[(axis + 1) % 3] = -0.0;
+        if ((k / 12) % 2) dir[(axis + 2) % 3] = -0.0;
+        glm::dvec3 o = test::randomPointIn(rng, f.tree.header.lo, f.tree.header.hi, 1.2);
+        if (k % 5 == 0) o = glm::round(o * 4.0) / 4.0;  // on a grid: some coordinates hit vertices and planes
+        expectSameClosest(f, {o, dir}, kInf, a);
+        expectSameOccluded(f, {o, dir}, 1.0);
+    }
+    report("axis-parallel", a);
+}
+
+// Rays lying in a split plane of the tree: direction component 0 along the split axis, origin on
+// the plane. They may hit triangles that merely touch the plane, which the builder puts on one side
+// only: the traversals' side-mask passes must find them on either.
+TEST_P(KdTraversalTest, RaysInSplitPlanesMatchBruteForce) {
+    for (const Scene& s : {test::meshScene(), test::randomSoup(9, 1500)}) {
+        const Fixture f(s, GetParam());
+        std::mt19937 rng(3);
+        Agreement a;
+        for (uint32_t i = 0; i < f.tree.nodes.size() && a.rays < 6000; ++i) {
+            const gpu::KdNode& n = f.tree.nodes[i];
+            if (n.isLeaf()) continue;
+            const gpu::KdNodeExtra& box = f.tree.extra[i];
+            for (int r = 0; r < 6; ++r) {
+                glm::dvec3 o = test::randomPointIn(rng, box.lo, box.hi, 1.0);
+                o[n.axis()] = n.split();
+                glm::dvec3 d = test::randomDirection(rng);
+                d[n.axis()] = r % 2 ? 0.0 : -0.0;
+                if (r == 4) d[(n.axis() + 1) % 3] = 0.0;  // also axis-parallel within the plane
+                expectSameClosest(f, {o, d}, kInf, a);
+                expectSameOccluded(f, {o, d}, kInf);
+            }
+        }
+        report("in split planes", a);
+    }
+}
+
+// Rays aimed exactly at mesh vertices and edge midpoints, where several triangles share the hit.
+TEST_P(KdTraversalTest, RaysThroughEdgesAndVerticesMatchBruteForce) {
+    const Fixture f(test::meshScene(), GetParam());
+    std::mt19937 rng(4);
+    Agreement a;
+    for (size_t k = 0; k < f.scene.triangles.size(); k += 3) {
+        const Triangle& t = f.scene.triangles[k];
+        const glm::dvec3 targets[] = {glm::dvec3(t.p0), (glm::dvec3(t.p1) + glm::dvec3(t.p2)) * 0.5};
+        for (const glm::dvec3& target : targets) {
+            const glm::dvec3 o = test::randomPointIn(rng, f.tree.header.lo, f.tree.header.hi, 2.0);
+            expectSameClosest(f, {o, glm::normalize(target - o)}, kInf, a);
+        }
+    }
+    // A ray aimed at a mesh vertex hits every triangle of its fan at t equal up to the last bits;
+    // brute force takes the smallest t of all, the tree tests only the fan triangles in the leaves
+    // the ray passes (each triangle touching a split plane is on one side only). A different triangle
+    // at the same t (1e-12) is the expected answer there, not a miss: allow up to 10% of the rays.
+    report("edges and vertices", a, 10);
+}
+
+// Rays through the exact corners of leaves, where two or three split planes are crossed at the same
+// t: kd-restart and kd-backtrack must step past each leaf exactly once (with `thit < tmin` instead
+// of `thit <= tmin` the restart would enter the leaf it just left, forever). The three traversals
+// visit the same leaves in the same order, so their leaf counts agree exactly.
+TEST_P(KdTraversalTest, RaysThroughLeafCornersVisitEachLeafOnce) {
+    const Fixture f(test::randomSoup(21, 2000), GetParam());
+    const auto stack = makeKdTracer(KdTraversal::Stack, f.tree, cpu::triangleVertices(f.scene));
+    std::mt19937 rng(5);
+    Agreement a;
+    for (uint32_t i = 0; i < f.tree.nodes.size(); i += 7) {
+        if (!f.tree.nodes[i].isLeaf()) continue;
+        const gpu::KdNodeExtra& box = f.tree.extra[i];
+        const glm::dvec3 corner(i % 2 ? box.lo.x : box.hi.x, i % 3 ? box.lo.y : box.hi.y, box.lo.z);
+        // Directions of +-1 per axis, and an origin 3 steps back: the ray crosses x, y and z of the
+        // corner at t = 3 exactly, with exactly equal plane hits.
+        const glm::dvec3 d(rng() % 2 ? 1.0 : -1.0, rng() % 2 ? 1.0 : -1.0, rng() % 2 ? 1.0 : -1.0);
+        const cpu::Ray ray{corner - 3.0 * d, d};
+        cpu::TraversalCounters mine, base;
+        f.kd->closest(ray, kInf, &mine);
+        stack->closest(ray, kInf, &base);
+        ASSERT_EQ(mine.capped, 0u);
+        ASSERT_EQ(mine.leaves, base.leaves) << "leaf " << i;
+        const cpu::TraversalCounters before = mine;
+        f.kd->occluded(ray, kInf, &mine);
+        ASSERT_EQ(mine.capped, before.capped);
+        expectSameClosest(f, ray, kInf, a);
+    }
+    report("leaf corners", a);
+}
+
+TEST_P(KdTraversalTest, CornellBoxCameraAndInteriorRaysMatchBruteForce) {
+    const Fixture f(test::sceneFile("cornell.scene"), GetParam());
+    const CameraFrame cam = makeCameraFrame(f.scene.camera, 48, 48);
+    Agreement a;
+    for (int j = 0; j < cam.height; ++j)
+        for (int i = 0; i < cam.width; ++i) expectSameClosest(f, {cam.eye, primaryDirection(cam, i, j)}, kInf, a);
+    // From inside the box: every ray hits a wall, many along the walls' planes and edges.
+    std::mt19937 rng(6);
+    for (int k = 0; k < 3000; ++k) {
+        glm::dvec3 o = test::randomPointIn(rng, f.tree.header.lo, f.tree.header.hi, 0.98);
+        glm::dvec3 d = test::randomDirection(rng);
+        if (k % 3 == 0) d[k % 2] = 0.0;
+        if (k % 7 == 0) o.x = -1.0;  // in the red wall's plane (a root box face)
+        expectSameClosest(f, {o, d}, kInf, a);
+        expectSameOccluded(f, {o, d}, 0.5);
+    }
+    report("cornell", a);
+}
+
+// A malformed tree whose node 0 names itself as its above child: any ray crossing the plane loops
+// for ever. The cap must end it, count it, and report a miss.
+TEST_P(KdTraversalTest, IterationCapEndsAndCountsARunawayRay) {
+    KdTree t;
+    t.header = gpu::KdTreeHeader{{-1, -1, -1}, 2, {1, 1, 1}, 0};
+    t.nodes = {gpu::KdNode::inner(0, 0.0f, 0), gpu::KdNode::leaf(0, 0)};
+    t.extra = {gpu::KdNodeExtra{{-1, -1, -1}, VKRAY_KD_NO_PARENT, {1, 1, 1}, 0},
+               gpu::KdNodeExtra{{-1, -1, -1}, 0, {0, 1, 1}, 0}};
+    const auto tracer = makeKdTracer(GetParam(), t, {}, 500);
+    const cpu::Ray ray{{-2.0, 0.1, 0.2}, {1.0, 0.0, 0.0}};
+    cpu::TraversalCounters c;
+    EXPECT_FALSE(tracer->closest(ray, kInf, &c).found());
+    EXPECT_EQ(c.capped, 1u);
+    EXPECT_LE(c.nodes, 500u);
+    EXPECT_FALSE(tracer->occluded(ray, kInf, &c));
+    EXPECT_EQ(c.capped, 2u);
+    // A ray that never crosses the plane ends normally.
+    cpu::TraversalCounters ok;
+    tracer->closest({{-0.5, 0.0, 0.0}, {0.0, 1.0, 0.0}}, kInf, &ok);
+    EXPECT_EQ(ok.capped, 0u);
+}
+
+// Counters: the stack traversal never restarts; the stackless ones restart once per leaf left.
+TEST_P(KdTraversalTest, CountersAddUp) {
+    const Fixture f(test::meshScene(), GetParam());
+    std::mt19937 rng(8);
+    cpu::TraversalCounters c;
+    for (int k = 0; k < 500; ++k)
+        f.kd->closest({test::randomPointIn(rng, f.tree.header.lo, f.tree.header.hi, 1.0), test::randomDirection(rng)},
+                      kInf, &c);
+    EXPECT_GE(c.nodes, c.leaves);
+    EXPECT_GT(c.leaves, 500u);
+    EXPECT_GT(c.triangles, 0u);
+    if (GetParam() == KdTraversal::Stack) {
+        EXPECT_EQ(c.restarts, 0u);
+    } else {
+        EXPECT_GT(c.restarts, 0u);
+    }
+}
+
+// Hand-made trees for rays lying in split planes: each triangle sits where the builder's one-sided
+// classification puts it (touching a plane from above: above only), and a decoy farther along the
+// ray sits on the other side. A traversal that walks only one side of an in-plane node returns the
+// decoy (or, for any hit, nothing before tmax).
+struct HandTree {
+    Scene scene;
+    KdTree tree;
+};
+
+gpu::KdNodeExtra boxOf(glm::vec3 lo, glm::vec3 hi, uint32_t parent) { return gpu::KdNodeExtra{lo, parent, hi, 0}; }
+
+TEST_P(KdTraversalTest, RayInSplitPlaneFindsTriangleTouchingItFromAbove) {
+    HandTree h;
+    // 0: touches x = 0 from above (an edge in the plane), hit at y = 0; 1: decoy touching from below, y = 2.
+    h.scene.triangles = {{{0, 0, -1}, {0, 0, 1}, {1, 0, 0}, 0}, {{0, 2, -1}, {0, 2, 1}, {-1, 2, 0}, 0}};
+    h.tree.header = gpu::KdTreeHeader{{-1, -1, -1}, 3, {1, 3, 1}, 2};
+    h.tree.nodes = {gpu::KdNode::inner(0, 0.0f, 2), gpu::KdNode::leaf(0, 1), gpu::KdNode::leaf(1, 1)};
+    h.tree.indices = {1, 0};
+    h.tree.extra = {boxOf({-1, -1, -1}, {1, 3, 1}, VKRAY_KD_NO_PARENT), boxOf({-1, -1, -1}, {0, 3, 1}, 0),
+                    boxOf({0, -1, -1}, {1, 3, 1}, 0)};
+    const auto kd = makeKdTracer(GetParam(), h.tree, cpu::triangleVertices(h.scene));
+    const cpu::BruteForceTracer brute(h.scene);
+    for (const double dx : {0.0, -0.0}) {
+        const cpu::Ray ray{{0.0, -1.0, 0.25}, {dx, 1.0, 0.0}};
+        const cpu::Hit want = brute.closest(ray, kInf);
+        ASSERT_EQ(want.triangle, 0);
+        const cpu::Hit got = kd->closest(ray, kInf);
+        EXPECT_EQ(got.triangle, 0);
+        EXPECT_EQ(got.t, want.t);
+        EXPECT_TRUE(kd->occluded(ray, 2.0));  // only triangle 0 lies before t = 2
+    }
+}
+
+// A ray along the line where two split planes meet (x = 0 and y = 0, direction +z): four leaves
+// hold it, and only the fourth side-mask pass (above in x and in y) reaches the nearest triangle.
+TEST_P(KdTraversalTest, RayAlongTwoSplitPlanesNeedsFourPasses) {
+    HandTree h;
+    h.scene.triangles = {{{0, 0, 1}, {1, 0, 1}, {0, 1, 1}, 0},     // x above, y above: hit at z = 1
+                         {{0, 0, 2}, {-1, 0, 2}, {0, -1, 2}, 0},   // x below, y below: z = 2
+                         {{0, 0, 3}, {-1, 0, 3}, {0, 1, 3}, 0},    // x below, y above: z = 3
+                         {{0, 0, 4}, {1, 0, 4}, {0, -1, 4}, 0}};   // x above, y below: z = 4
+    const glm::vec3 lo(-1, -1, -1), hi(1, 1, 5);
+    h.tree.header = gpu::KdTreeHeader{lo, 7, hi, 4};
+    // 0: x = 0; 1: (below) y = 0, leaves 2 and 3; 4: (above) y = 0, leaves 5 and 6.
+    h.tree.nodes = {gpu::KdNode::inner(0, 0.0f, 4), gpu::KdNode::inner(1, 0.0f, 3), gpu::KdNode::leaf(0, 1),
+                    gpu::KdNode::leaf(1, 1),        gpu::KdNode::inner(1, 0.0f, 6), gpu::KdNode::leaf(2, 1),
+                    gpu::KdNode::leaf(3, 1)};
+    h.tree.indices = {1, 2, 3, 0};
+    h.tree.extra = {boxOf(lo, hi, VKRAY_KD_NO_PARENT),  boxOf(lo, {0, 1, 5}, 0),        boxOf(lo, {0, 0, 5}, 1),
+                    boxOf({-1, 0, -1}, {0, 1, 5}, 1),   boxOf({0, -1, -1}, hi, 0),      boxOf({0, -1, -1}, {1, 0, 5}, 4),
+                    boxOf({0, 0, -1}, hi, 4)};
+    const auto kd = makeKdTracer(GetParam(), h.tree, cpu::triangleVertices(h.scene));
+    const cpu::BruteForceTracer brute(h.scene);
+    const cpu::Ray ray{{0.0, 0.0, -1.0}, {0.0, -0.0, 1.0}};
+    const cpu::Hit want = brute.closest(ray, kInf);
+    ASSERT_EQ(want.triangle, 0);
+    cpu::TraversalCounters c;
+    const cpu::Hit got = kd->closest(ray, kInf, &c);
+    EXPECT_EQ(got.triangle, 0);
+    EXPECT_EQ(got.t, want.t);
+    EXPECT_EQ(c.leaves, 4u) << "one leaf per side mask";
+    EXPECT_EQ(c.capped, 0u);
+    EXPECT_TRUE(kd->occluded(ray, 2.5));  // only triangle 0 lies before t = 2.5
+    EXPECT_FALSE(kd->occluded(ray, 1.5));
+}
+
+TEST(KdClip, ZeroDirectionComponentsNeverMakeNaN) {
+    const glm::vec3 lo(0, 0, 0), hi(1, 1, 1);
+    // Origin on the box's face, moving along it: inside (closed box), no 0 * inf.
+    const auto s = clipToBox({{0.0, 0.5, 0.5}, {0.0, 1.0, -0.0}}, lo, hi, {0.0, kInf});
+    ASSERT_TRUE(s.has_value());
+    EXPECT_EQ(s->tmin, 0.0);
+    EXPECT_EQ(s->tmax, 0.5);
+    EXPECT_FALSE(clipToBox({{-0.001, 0.5, 0.5}, {-0.0, 1.0, 0.0}}, lo, hi, {0.0, kInf}).has_value());
+}
+
+INSTANTIATE_TEST_SUITE_P(Traversals, KdTraversalTest,
+                         ::testing::Values(KdTraversal::Stack, KdTraversal::Restart, KdTraversal::Backtrack),
+                         [](const auto& info) {
+                             switch (info.param) {
+                             case KdTraversal::Stack: return std::string("Stack");
+                             case KdTraversal::Restart: return std::string("Restart");
+                             case KdTraversal::Backtrack: return std::string("Backtrack");
+                             }
+                             return std::string("Unknown");
+                         });
+
+}  // namespace
+}  // namespace vkray::accel::kd
