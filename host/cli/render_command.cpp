@@ -19,6 +19,7 @@
 #include "core/error.h"
 #include "cpu/reference_renderer.h"
 #include "gpu/gpu_renderer.h"
+#include "gpu/scene_buffers.h"
 #include "gpu/vulkan_context.h"
 #include "image/image_io.h"
 #include "scene/scene.h"
@@ -30,7 +31,7 @@ namespace {
 struct RenderArgs {
     std::string scene;
     std::string output;
-    std::string accel = "brute";
+    std::string accel = "bvh";  // DESIGN.md: the AAC BVH's default preset
     int aacDelta = 0;
     double aacEpsilon = 0.0;
     double kdTraversalCost = 0.0, kdIntersectionCost = 0.0, kdEmptyBonus = -1.0;
@@ -153,7 +154,7 @@ void printAccelStats(const nlohmann::json& accelJson, const std::vector<accel::A
     std::printf("accel:       %s, built in %.1f ms\n", accelJson["name"].get<std::string>().c_str(),
                 accelJson["build_ms"].get<double>());
     for (const accel::AccelStat& st : stats)
-        std::printf("  %-22s %.6g %s\n", st.key.c_str(), st.value, st.unit.c_str());
+        std::printf("  %-24s %.6g %s\n", st.key.c_str(), st.value, st.unit.c_str());
 }
 
 void runRender(const RenderArgs& args) {
@@ -178,6 +179,7 @@ void runRender(const RenderArgs& args) {
     if (!args.cpu) {
         ctx.emplace(gpu::ContextOptions{.validation = gpu::validationRequestedByEnvironment(), .device = args.device});
         deviceName = ctx->info().name + " (" + ctx->info().driver + ")";
+        gpu::checkSceneFits(*ctx, scene);
     } else {
         deviceName = "CPU reference (double precision)";
     }

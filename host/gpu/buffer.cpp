@@ -72,13 +72,17 @@ void OneShotCommands::submitAndWait() {
     }
 }
 
-Buffer uploadStorageBuffer(const VulkanContext& ctx, const void* data, size_t bytes,
-                           const std::string& what) {
+void checkStorageBufferFits(const VulkanContext& ctx, size_t bytes, const std::string& what) {
     const vk::DeviceSize range = ctx.info().maxStorageBufferRange;
     if (bytes > range)
         throw Error("the scene's " + what + " need " + mib(bytes) + ", more than the " + mib(range) +
                     " one storage buffer may hold on '" + ctx.info().name +
                     "' (maxStorageBufferRange)");
+}
+
+Buffer uploadStorageBuffer(const VulkanContext& ctx, const void* data, size_t bytes,
+                           const std::string& what) {
+    checkStorageBufferFits(ctx, bytes, what);
     const vk::DeviceSize size = std::max<vk::DeviceSize>(bytes, 16);
     using BU = vk::BufferUsageFlagBits;
     Buffer target(ctx, size, BU::eStorageBuffer | BU::eTransferDst, MemoryUse::DeviceLocal, what);

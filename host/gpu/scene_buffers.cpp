@@ -75,6 +75,11 @@ SceneBuffers uploadScene(const VulkanContext& ctx, const PackedScene& packed) {
     return b;
 }
 
+void checkSceneFits(const VulkanContext& ctx, const Scene& scene) {
+    checkStorageBufferFits(ctx, scene.triangles.size() * sizeof(GpuTriangle), "triangles");
+    checkStorageBufferFits(ctx, scene.normals.size() * sizeof(GpuTriangleNormals), "vertex normals");
+}
+
 AccelBuffers uploadAccel(const VulkanContext& ctx, const accel::GpuAccelData& data) {
     AccelBuffers b{uploadVector(ctx, data.nodes, "acceleration-structure nodes"),
                    uploadVector(ctx, data.indices, "acceleration-structure triangle indices"),

@@ -30,6 +30,10 @@ struct SceneBuffers {
 
 SceneBuffers uploadScene(const VulkanContext& ctx, const PackedScene& packed);
 
+// Whether the scene's own buffers fit the device, checked before anything is built or packed: a
+// scene too large for one storage buffer fails in milliseconds, not after a long build.
+void checkSceneFits(const VulkanContext& ctx, const Scene& scene);
+
 // The acceleration structure's arrays (accel::GpuAccelData), one buffer per binding.
 struct AccelBuffers {
     Buffer nodes, indices, extra;

@@ -9,6 +9,8 @@ struct RenderOptions {
     int width = 0, height = 0;  // image size (the scene's `size` unless overridden)
     int maxDepth = 5;           // primary rays count as depth 1
     int threads = 0;            // CPU worker threads; 0 = all cores
+    // Library default: brute force, the reference the tests compare against. The command line
+    // defaults to `bvh` (DESIGN.md).
     std::string accel = "brute";
     // Compile traversal counters into the kernel (nodes, leaves, triangle tests per ray): the
     // statistics variant; off, timing runs pay nothing for counting.

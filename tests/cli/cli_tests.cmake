@@ -41,13 +41,13 @@ add_test(NAME cli.devices COMMAND $<TARGET_FILE:vkray> devices)
 set_tests_properties(cli.devices PROPERTIES PASS_REGULAR_EXPRESSION "maxStorageBufferRange")
 add_test(NAME cli.render_gpu
          COMMAND $<TARGET_FILE:vkray> render ${CMAKE_SOURCE_DIR}/scenes/default.scene --size 96x96
-                 -o ${CLI_OUT}/default-gpu.png --aov depth=${CLI_OUT}/depth.pfm
+                 --accel brute -o ${CLI_OUT}/default-gpu.png --aov depth=${CLI_OUT}/depth.pfm
                  --aov primid=${CLI_OUT}/primid.pfm --aov normal=${CLI_OUT}/normal.pfm --stats)
 set_tests_properties(cli.render_gpu PROPERTIES TIMEOUT 300 ENVIRONMENT "VKRAY_VALIDATION=1"
   PASS_REGULAR_EXPRESSION "left out:" FIXTURES_SETUP default_renders)
 add_test(NAME cli.render_cpu
          COMMAND $<TARGET_FILE:vkray> render ${CMAKE_SOURCE_DIR}/scenes/default.scene --size 96x96 --cpu
-                 -o ${CLI_OUT}/default-cpu.png --aov primid=${CLI_OUT}/primid-cpu.pfm)
+                 --accel brute -o ${CLI_OUT}/default-cpu.png --aov primid=${CLI_OUT}/primid-cpu.pfm)
 set_tests_properties(cli.render_cpu PROPERTIES TIMEOUT 300 FIXTURES_SETUP default_renders)
 add_test(NAME cli.compare_gpu_cpu
          COMMAND $<TARGET_FILE:vkray> compare ${CLI_OUT}/default-gpu.png ${CLI_OUT}/default-cpu.png
@@ -82,3 +82,39 @@ add_test(NAME cli.gen_render COMMAND $<TARGET_FILE:vkray> render ${CLI_OUT}/gen-
                                     -o ${CLI_OUT}/gen-terrain.png --stats)
 set_tests_properties(cli.gen_render PROPERTIES FIXTURES_REQUIRED gen_scene TIMEOUT 300
   PASS_REGULAR_EXPRESSION "scene: +1014 triangles")
+
+# Every accelerator end to end on the GPU (default.scene, 96x96; `bvh` is the default), each image
+# compared with the CPU reference like cli.compare_gpu_cpu (primary hits are compared, ties told
+# apart, by tests/gpu/*), and the CPU renderer with a BVH (what makes --cpu usable on big meshes).
+add_test(NAME cli.render_accel.bvh
+         COMMAND $<TARGET_FILE:vkray> render ${CMAKE_SOURCE_DIR}/scenes/default.scene --size 96x96
+                 -o ${CLI_OUT}/default-bvh.png --stats)
+set_tests_properties(cli.render_accel.bvh PROPERTIES TIMEOUT 300 ENVIRONMENT "VKRAY_VALIDATION=1"
+  PASS_REGULAR_EXPRESSION "accel bvh" FIXTURES_SETUP accel_bvh)
+foreach(accel bvh bvh-fast bvh-hq bvh-sah kd-stack kd-restart kd-backtrack)
+  if(NOT accel STREQUAL "bvh")
+    add_test(NAME cli.render_accel.${accel}
+             COMMAND $<TARGET_FILE:vkray> render ${CMAKE_SOURCE_DIR}/scenes/default.scene --size 96x96
+                     --accel ${accel} -o ${CLI_OUT}/default-${accel}.png --stats)
+    set_tests_properties(cli.render_accel.${accel} PROPERTIES TIMEOUT 300 ENVIRONMENT "VKRAY_VALIDATION=1"
+      PASS_REGULAR_EXPRESSION "accel ${accel}" FIXTURES_SETUP accel_${accel})
+  endif()
+  # Bounds of tests/gpu/gpu_vs_cpu_test.cpp (measured <= 0.53% of pixels over 8/255, all on the
+  # edges where two walls meet, where float and double may pick either triangle of a tie).
+  add_test(NAME cli.compare_accel.${accel}
+           COMMAND $<TARGET_FILE:vkray> compare ${CLI_OUT}/default-${accel}.png ${CLI_OUT}/default-cpu.png
+                   --max-rmse 0.025 --max-bad-fraction 0.01 --threshold 0.0314)
+  set_tests_properties(cli.compare_accel.${accel} PROPERTIES FIXTURES_REQUIRED "accel_${accel};default_renders")
+endforeach()
+add_test(NAME cli.render_cpu_bvh
+         COMMAND $<TARGET_FILE:vkray> render ${CMAKE_SOURCE_DIR}/scenes/default.scene --size 96x96 --cpu
+                 --accel bvh -o ${CLI_OUT}/default-cpu-bvh.png)
+set_tests_properties(cli.render_cpu_bvh PROPERTIES TIMEOUT 300 FIXTURES_SETUP cpu_bvh)
+# The CPU BVH traversal answers exactly like brute force, so the two CPU images are identical.
+add_test(NAME cli.compare_cpu_bvh_brute
+         COMMAND $<TARGET_FILE:vkray> compare ${CLI_OUT}/default-cpu-bvh.png ${CLI_OUT}/default-cpu.png
+                 --max-rmse 0 --threshold 0 --max-bad-fraction 0)
+set_tests_properties(cli.compare_cpu_bvh_brute PROPERTIES FIXTURES_REQUIRED "cpu_bvh;default_renders")
+vkray_expect_error(aac_epsilon "--aac-epsilon must be in" render ${CLI_DATA}/one_triangle.scene --aac-epsilon 0.7 -o ${CLI_OUT}/x.png)
+# A scene larger than one storage buffer (lavapipe: 128 MiB) is refused before any build.
+vkray_expect_error(scene_too_large "triangles need 184 MiB.*maxStorageBufferRange" render ${CMAKE_SOURCE_DIR}/scenes/scaling/soup-4m.scene --device llvmpipe --size 8x8 -o ${CLI_OUT}/x.png)
