@@ -1,7 +1,6 @@
 #include "accel/bvh/aac_builder.h"
 
 #include <algorithm>
-#include <atomic>
 #include <bit>
 #include <cmath>
 #include <limits>
@@ -12,14 +11,17 @@
 #include <tbb/parallel_invoke.h>
 
 #include "accel/bvh/morton.h"
+#include "accel/bvh/parallel_alloc.h"
 #include "core/error.h"
 
 namespace vkray::bvh {
 namespace {
 
 // Ranges at least this large split their halves into parallel tasks; smaller ones recurse on the
-// calling thread (a task costs about a microsecond; a range of 4096 primitives about 0.5 ms).
-constexpr size_t kParallelRange = 4096;
+// calling thread. A task costs about a microsecond; a range of 1024 primitives about 0.25 ms with
+// AAC-Fast (more with AAC-HQ). 4096 left too few tasks to balance two threads on meshes of 20-90k
+// triangles, whose Morton splits are uneven near the root.
+constexpr size_t kParallelRange = 1024;
 
 // Per-thread working arrays of CombineClusters, reused across calls (one call per range).
 struct ClusterScratch {
@@ -39,10 +41,10 @@ public:
         BinaryTree tree;
         tree.primitives = uint32_t(n);
         if (n == 0) return tree;
-        nodes_.resize(2 * n - 1);
-        clusters_.resize(n);
+        resizeFirstTouched(nodes_, 2 * n - 1);
+        resizeFirstTouched(clusters_, n);
+        resizeFirstTouched(free_, n);
         makePrimitiveNodes();
-        nextNode_ = uint32_t(n);
         const size_t k = buildRange(0, n);
         combine(0, k, 1);
         tree.root = clusters_[0];
@@ -63,12 +65,26 @@ private:
 
     size_t reduction(size_t n) const { return aacReduction(n, config_.delta, config_.epsilon); }
 
+    // Node slots. The range [begin, end) of n primitives owns the merge slots
+    // [N + begin - 1, N + end - 1), or [N, N + end - 1) when begin = 0 (N = primitive count), so the
+    // halves of a range own disjoint parts of its slots and the whole tree owns [N, 2N - 1). Its
+    // subtree merges exactly n - k times (k = the clusters it returns), which its n (n - 1 at
+    // begin = 0, where k >= 1) slots always hold. The slots a range leaves unused, k of them
+    // (k - 1 at begin = 0), are listed at free_[begin, ...), parallel to its clusters; a combine
+    // takes them in list order. So node ids depend only on the Morton order, never on the thread
+    // count, and threads write nodes in disjoint regions of nodes_ without any shared counter.
+    static size_t spare(size_t begin, size_t k) { return begin == 0 ? k - 1 : k; }
+
     // The paper's BuildTree on sorted positions [begin, end): leaves its clusters (node ids) in
-    // clusters_[begin, begin + k) and returns k.
+    // clusters_[begin, begin + k), its unused slots in free_[begin, begin + spare(begin, k)), and
+    // returns k.
     size_t buildRange(size_t begin, size_t end) {
         const size_t n = end - begin;
         if (n <= size_t(config_.delta)) {
+            const size_t first = keys_.size() + begin - (begin == 0 ? 0 : 1);
+            const size_t slots = begin == 0 ? n - 1 : n;
             for (size_t i = begin; i < end; ++i) clusters_[i] = uint32_t(i);
+            for (size_t i = 0; i < slots; ++i) free_[begin + i] = uint32_t(first + i);
             return combine(begin, n, reduction(size_t(config_.delta)));
         }
         const size_t mid = splitPoint(begin, end);
@@ -79,9 +95,12 @@ private:
             left = buildRange(begin, mid);
             right = buildRange(mid, end);
         }
-        // Gather both halves' clusters into one run (the destination never overtakes the source).
+        // Gather both halves' clusters and free slots into one run each (the destination never
+        // overtakes the source).
         std::copy(clusters_.begin() + std::ptrdiff_t(mid), clusters_.begin() + std::ptrdiff_t(mid + right),
                   clusters_.begin() + std::ptrdiff_t(begin + left));
+        std::copy(free_.begin() + std::ptrdiff_t(mid), free_.begin() + std::ptrdiff_t(mid + right),
+                  free_.begin() + std::ptrdiff_t(begin + spare(begin, left)));
         return combine(begin, left + right, reduction(n));
     }
 
@@ -97,11 +116,13 @@ private:
     }
 
     // The paper's CombineClusters on clusters_[begin, begin + count): merges the closest pair until
-    // `target` clusters remain, which it leaves at clusters_[begin, begin + target).
+    // `target` clusters remain, which it leaves at clusters_[begin, begin + target); the merges
+    // take the first free slots of free_[begin, ...), the rest move to its front.
     size_t combine(size_t begin, size_t count, size_t target) {
         if (count <= target) return count;
         thread_local ClusterScratch s;
         std::span<uint32_t> ids(clusters_.data() + begin, count);
+        uint32_t* slot = free_.data() + begin;
         s.boxes.resize(count);
         s.closest.resize(count);
         s.distance.resize(count);
@@ -117,7 +138,10 @@ private:
                 if (s.distance[i] < s.distance[a]) a = i;
             const size_t b = s.closest[a];
             const Aabb box = Aabb::merged(s.boxes[a], s.boxes[b]);
-            const uint32_t node = newNode(ids[a], ids[b], box);
+            const uint32_t node = *slot++;
+            nodes_[node].box = box;
+            nodes_[node].child[0] = ids[a];
+            nodes_[node].child[1] = ids[b];
 
             // The merged cluster takes the lower position, the last cluster fills the higher one.
             const size_t lo = std::min(a, b), hi = std::max(a, b), last = k - 1;
@@ -146,6 +170,8 @@ private:
                     findBestMatch(s, k, i);
                 }
         }
+        // count - k merges took count - k slots; the spare(begin, k) left move to the front.
+        std::copy(slot, slot + spare(begin, k), free_.data() + begin);
         return k;
     }
 
@@ -167,25 +193,18 @@ private:
         s.distance[i] = best;
     }
 
-    uint32_t newNode(uint32_t a, uint32_t b, const Aabb& box) {
-        const uint32_t id = nextNode_.fetch_add(1, std::memory_order_relaxed);
-        nodes_[id].box = box;
-        nodes_[id].child[0] = a;
-        nodes_[id].child[1] = b;
-        return id;
-    }
-
     const PrimitiveSet& prims_;
     const Config& config_;
     std::vector<MortonKey> keys_;      // sorted by code
-    std::vector<BinaryNode> nodes_;    // primitives at [0, n), then merges in creation order
+    std::vector<BinaryNode> nodes_;    // primitives at [0, n), then merges in the slots of their ranges
     std::vector<uint32_t> clusters_;   // per range, its current clusters (node ids)
-    std::atomic<uint32_t> nextNode_{0};
+    std::vector<uint32_t> free_;       // per range, its unused merge slots
 };
 
 std::vector<MortonKey> mortonKeys(const PrimitiveSet& prims) {
     const std::vector<uint32_t> codes = mortonCodes(prims.centroids, prims.centroidBounds);
-    std::vector<MortonKey> keys(codes.size());
+    std::vector<MortonKey> keys;
+    resizeFirstTouched(keys, codes.size());
     tbb::parallel_for(size_t(0), codes.size(), [&](size_t i) { keys[i] = (MortonKey(codes[i]) << 32) | i; });
     return keys;
 }

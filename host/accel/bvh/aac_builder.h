@@ -13,8 +13,8 @@
 //    its primitives and keeps f(delta) = delta / 2. The root combines what is left into one.
 //
 // Independent ranges run as oneTBB tasks. No decision depends on the thread count or on the order
-// tasks finish (node ids do, but only flattening names nodes, by position in the tree), so the
-// tree is the same for any number of threads.
+// tasks finish, and neither do node ids: each range merges into its own region of the node array
+// (aac_builder.cpp, "Node slots"), so the binary tree is byte-identical for any number of threads.
 #pragma once
 
 #include <cstddef>

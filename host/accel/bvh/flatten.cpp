@@ -3,7 +3,11 @@
 #include <algorithm>
 #include <vector>
 
+#include <tbb/blocked_range.h>
 #include <tbb/parallel_invoke.h>
+#include <tbb/parallel_reduce.h>
+
+#include "accel/bvh/parallel_alloc.h"
 
 namespace vkray::bvh {
 namespace {
@@ -84,11 +88,17 @@ FlatBvh flatten(const BinaryTree& tree, const CollapsedTree& collapsed) {
     FlatBvh flat;
     flat.sahCost = collapsed.sahCost;
     if (tree.nodes.empty()) return flat;
-    flat.nodes.resize(collapsed.flatNodes[tree.root]);
-    flat.triangleOrder.resize(tree.primitives);
+    resizeFirstTouched(flat.nodes, collapsed.flatNodes[tree.root]);
+    resizeFirstTouched(flat.triangleOrder, tree.primitives);
     flat.maxDepth = Flattener(tree, collapsed, flat).write(tree.root, 0, 0, 0);
-    flat.leaves = uint32_t(std::count_if(flat.nodes.begin(), flat.nodes.end(),
-                                         [](const gpu::GpuBvhNode& n) { return n.count > 0; }));
+    using Range = tbb::blocked_range<size_t>;
+    flat.leaves = tbb::parallel_reduce(
+        Range(0, flat.nodes.size(), 16384), 0u,
+        [&](const Range& r, uint32_t acc) {
+            for (size_t i = r.begin(); i < r.end(); ++i) acc += flat.nodes[i].count > 0 ? 1u : 0u;
+            return acc;
+        },
+        [](uint32_t a, uint32_t b) { return a + b; });
     return flat;
 }
 

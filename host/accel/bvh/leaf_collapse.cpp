@@ -2,6 +2,8 @@
 
 #include <tbb/parallel_invoke.h>
 
+#include "accel/bvh/parallel_alloc.h"
+
 namespace vkray::bvh {
 namespace {
 
@@ -56,9 +58,9 @@ private:
 CollapsedTree collapseLeaves(const BinaryTree& tree, const Config& config) {
     CollapsedTree out;
     if (tree.nodes.empty()) return out;
-    out.isLeaf.resize(tree.nodes.size());
-    out.primitives.resize(tree.nodes.size());
-    out.flatNodes.resize(tree.nodes.size());
+    resizeFirstTouched(out.isLeaf, tree.nodes.size());
+    resizeFirstTouched(out.primitives, tree.nodes.size());
+    resizeFirstTouched(out.flatNodes, tree.nodes.size());
     const double cost = Collapser(tree, config, out).visit(tree.root, 0);
     const double rootArea = tree.nodes[tree.root].box.halfArea();
     // A scene without area (all triangles on one line or point) has no meaningful ratio; report

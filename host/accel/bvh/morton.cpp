@@ -5,6 +5,8 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
+#include "accel/bvh/parallel_alloc.h"
+
 namespace vkray::bvh {
 namespace {
 
@@ -65,7 +67,8 @@ uint32_t mortonCode(const glm::vec3& p, const Aabb& bounds) {
 }
 
 std::vector<uint32_t> mortonCodes(std::span<const glm::vec3> centroids, const Aabb& centroidBounds) {
-    std::vector<uint32_t> codes(centroids.size());
+    std::vector<uint32_t> codes;
+    resizeFirstTouched(codes, centroids.size());
     tbb::parallel_for(tbb::blocked_range<size_t>(0, centroids.size(), 4096), [&](const auto& r) {
         for (size_t i = r.begin(); i < r.end(); ++i) codes[i] = mortonCode(centroids[i], centroidBounds);
     });
@@ -73,7 +76,8 @@ std::vector<uint32_t> mortonCodes(std::span<const glm::vec3> centroids, const Aa
 }
 
 void radixSortByCode(std::vector<MortonKey>& keys) {
-    std::vector<MortonKey> scratch(keys.size());
+    std::vector<MortonKey> scratch;
+    resizeFirstTouched(scratch, keys.size());
     for (int pass = 0; pass < kPasses; ++pass) {
         countingPass(keys, scratch, pass * kDigitBits);
         keys.swap(scratch);

@@ -4,6 +4,8 @@
 #include <tbb/parallel_for.h>
 #include <tbb/parallel_reduce.h>
 
+#include "accel/bvh/parallel_alloc.h"
+
 namespace vkray::bvh {
 namespace {
 
@@ -15,8 +17,8 @@ struct BoundsPair {
 
 PrimitiveSet primitivesOf(std::span<const Triangle> triangles) {
     PrimitiveSet set;
-    set.boxes.resize(triangles.size());
-    set.centroids.resize(triangles.size());
+    resizeFirstTouched(set.boxes, triangles.size());
+    resizeFirstTouched(set.centroids, triangles.size());
     using Range = tbb::blocked_range<size_t>;
     const BoundsPair all = tbb::parallel_reduce(
         Range(0, triangles.size(), 4096), BoundsPair{},

@@ -11,6 +11,7 @@
 #include <tbb/parallel_invoke.h>
 #include <tbb/parallel_reduce.h>
 
+#include "accel/bvh/parallel_alloc.h"
 #include "core/error.h"
 
 namespace vkray::bvh {
@@ -57,9 +58,9 @@ public:
         BinaryTree tree;
         tree.primitives = uint32_t(n);
         if (n == 0) return tree;
-        order_.resize(n);
+        resizeFirstTouched(order_, n);
         std::iota(order_.begin(), order_.end(), 0u);
-        nodes_.resize(2 * n - 1);
+        resizeFirstTouched(nodes_, 2 * n - 1);
         tree.root = buildNode(0, n);
         tree.nodes = std::move(nodes_);
         return tree;

@@ -8,9 +8,12 @@
 #include <vector>
 
 #include <gtest/gtest.h>
+#include <tbb/task_arena.h>
 
 #include "accel/accel.h"
+#include "accel/bvh/aac_builder.h"
 #include "accel/bvh/bvh_accel.h"
+#include "accel/bvh/primitives.h"
 #include "bvh_test_meshes.h"
 
 namespace vkray::bvh {
@@ -126,6 +129,41 @@ TEST(BvhStructure, SameTreeForAnyThreadCount) {
                 << threads << " threads";
             EXPECT_EQ(r.flat.triangleOrder, one.flat.triangleOrder) << threads << " threads";
             EXPECT_EQ(r.flat.sahCost, one.flat.sahCost);
+        }
+    }
+}
+
+// The AAC binary tree itself, node ids included, is the same for 1, 2 and 4 threads (each range
+// merges into its own slots of the node array), and those slots are used exactly once: every node
+// but the root is the child of exactly one inner node.
+TEST(BvhStructure, AacNodeIdsDependOnlyOnTheInput) {
+    const Scene big = test::randomSoup(5, 60000, 0.02f);
+    const PrimitiveSet prims = primitivesOf(big.triangles);
+    for (const NamedConfig& c : testConfigs()) {
+        if (c.config.builder != Config::Builder::Aac || c.name == "aac_delta1_eps0") continue;
+        SCOPED_TRACE(c.name);
+        auto build = [&](int threads) {
+            PhaseLog log;
+            return tbb::task_arena(threads).execute([&] { return buildAac(prims, c.config, log); });
+        };
+        const BinaryTree one = build(1);
+        ASSERT_EQ(one.nodes.size(), 2 * prims.size() - 1);
+        std::vector<int> parents(one.nodes.size(), 0);
+        for (const BinaryNode& node : one.nodes)
+            if (!node.isPrimitive()) {
+                ASSERT_LT(node.child[0], one.nodes.size());
+                ASSERT_LT(node.child[1], one.nodes.size());
+                ++parents[node.child[0]];
+                ++parents[node.child[1]];
+            }
+        for (size_t id = 0; id < parents.size(); ++id)
+            ASSERT_EQ(parents[id], id == one.root ? 0 : 1) << "node " << id;
+        for (int threads : {2, 4}) {
+            const BinaryTree r = build(threads);
+            EXPECT_EQ(r.root, one.root) << threads << " threads";
+            ASSERT_EQ(r.nodes.size(), one.nodes.size());
+            EXPECT_EQ(std::memcmp(r.nodes.data(), one.nodes.data(), one.nodes.size() * sizeof(BinaryNode)), 0)
+                << threads << " threads";
         }
     }
 }
