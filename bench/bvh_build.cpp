@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "accel/bvh/bvh_accel.h"
+#include "bench/spread.h"
 #include "scene/scene_parser.h"
 
 namespace {
@@ -30,11 +31,7 @@ struct Timing {
     std::map<std::string, double> phaseMedians;
 };
 
-double median(std::vector<double> v) {
-    std::sort(v.begin(), v.end());
-    const size_t n = v.size();
-    return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-}
+double median(std::vector<double> v) { return vkray::bench::spreadOf(std::move(v)).median; }
 
 Timing timeBuilds(const vkray::Scene& scene, const Config& config, int threads, int runs,
                   vkray::bvh::FlatBvh& last) {
@@ -47,8 +44,8 @@ Timing timeBuilds(const vkray::Scene& scene, const Config& config, int threads, 
         for (const auto& [name, ms] : result.phases) phases[name].push_back(ms);
         last = std::move(result.flat);
     }
-    Timing t{median(totals), *std::min_element(totals.begin(), totals.end()),
-             *std::max_element(totals.begin(), totals.end()), {}};
+    const vkray::bench::Spread total = vkray::bench::spreadOf(totals);
+    Timing t{total.median, total.min, total.max, {}};
     for (const auto& [name, v] : phases) t.phaseMedians[name] = median(v);
     return t;
 }

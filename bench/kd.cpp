@@ -20,6 +20,7 @@
 
 #include "accel/kd/kd_traversal.h"
 #include "accel/kd/sah_kd_builder.h"
+#include "bench/spread.h"
 #include "cpu/brute_force.h"
 #include "gpu/gpu_renderer.h"
 #include "gpu/vulkan_context.h"
@@ -31,15 +32,8 @@ namespace {
 using namespace vkray;
 using namespace vkray::accel;
 
-struct Spread {
-    double median = 0.0, min = 0.0, max = 0.0;
-};
-
-Spread spreadOf(std::vector<double> v) {
-    std::sort(v.begin(), v.end());
-    const size_t n = v.size();
-    return {n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]), v.front(), v.back()};
-}
+using bench::Spread;
+using bench::spreadOf;
 
 std::vector<double> numberList(const std::string& s) {
     std::vector<double> out;

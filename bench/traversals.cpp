@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "accel/accel.h"
+#include "bench/spread.h"
 #include "gpu/gpu_renderer.h"
 #include "gpu/vulkan_context.h"
 #include "scene/scene_parser.h"
@@ -62,15 +63,8 @@ Options parseArgs(int argc, char** argv) {
     return o;
 }
 
-struct Spread {
-    double median = 0.0, min = 0.0, max = 0.0;
-};
-
-Spread spreadOf(std::vector<double> v) {
-    std::sort(v.begin(), v.end());
-    const size_t n = v.size();
-    return {n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]), v.front(), v.back()};
-}
+using bench::Spread;
+using bench::spreadOf;
 
 void benchScene(const gpu::VulkanContext& ctx, const std::string& file, const Options& o) {
     const Scene scene = loadScene(file);

@@ -11,22 +11,6 @@
 
 const uint kBruteBatch = 4;
 
-void closestOf(uint i, uint count, WatertightRay ray, inout Hit best) {
-    float t;
-    vec2 uv;
-    if (i < count && intersectTriangle(ray, triangles[i], best.t, t, uv)) {
-        best.t = t;
-        best.uv = uv;
-        best.triangle = int(i);
-    }
-}
-
-bool occludes(uint i, uint count, WatertightRay ray, float tmax) {
-    float t;
-    vec2 uv;
-    return i < count && intersectTriangle(ray, triangles[i], tmax, t, uv);
-}
-
 // Closest hit in (0, tmax). Ties in t go to the lowest triangle index (strict <, in index order),
 // as on the CPU.
 Hit traceClosest(vec3 origin, vec3 dir, float tmax) {
@@ -37,10 +21,10 @@ Hit traceClosest(vec3 origin, vec3 dir, float tmax) {
     const WatertightRay ray = makeWatertightRay(origin, dir);
     uint i = 0;
     for (; i < count; i += kBruteBatch) {
-        closestOf(i, count, ray, best);
-        closestOf(i + 1, count, ray, best);
-        closestOf(i + 2, count, ray, best);
-        closestOf(i + 3, count, ray, best);
+        closestInSlot(i, count, ray, best);
+        closestInSlot(i + 1, count, ray, best);
+        closestInSlot(i + 2, count, ray, best);
+        closestInSlot(i + 3, count, ray, best);
     }
     if (i < count) gLoopCutShort = true;
     countTriangles(count);
@@ -54,8 +38,8 @@ bool traceAny(vec3 origin, vec3 dir, float tmax) {
     bool occluded = false;
     uint i = 0;
     for (; i < count && !occluded; i += kBruteBatch)
-        occluded = occludes(i, count, ray, tmax) || occludes(i + 1, count, ray, tmax) ||
-                   occludes(i + 2, count, ray, tmax) || occludes(i + 3, count, ray, tmax);
+        occluded = occludesInSlot(i, count, ray, tmax) || occludesInSlot(i + 1, count, ray, tmax) ||
+                   occludesInSlot(i + 2, count, ray, tmax) || occludesInSlot(i + 3, count, ray, tmax);
     if (!occluded && i < count) gLoopCutShort = true;
     countTriangles(min(i, count));
     return occluded;

@@ -58,32 +58,15 @@ bool hitsBox(GpuBvhNode node, BoxRay r, float tLimit, out float tEnter) {
     return tEnter <= tExit;
 }
 
-// Closest-hit test of triangle slot i of a leaf ending at `end`.
-void bvhClosestOf(uint i, uint end, WatertightRay ray, inout Hit best) {
-    float t;
-    vec2 uv;
-    if (i < end && intersectTriangle(ray, triangles[i], best.t, t, uv)) {
-        best.t = t;
-        best.uv = uv;
-        best.triangle = int(i);
-    }
-}
-
-bool bvhOccludes(uint i, uint end, WatertightRay ray, float tmax) {
-    float t;
-    vec2 uv;
-    return i < end && intersectTriangle(ray, triangles[i], tmax, t, uv);
-}
-
 // Tests a leaf's triangles, four per iteration; false if the driver cut the loop short.
 bool closestInLeaf(GpuBvhNode leaf, WatertightRay ray, inout Hit best) {
     const uint end = leaf.rightOrFirst + leaf.count;
     uint i = leaf.rightOrFirst;
     for (; i < end; i += 4) {
-        bvhClosestOf(i, end, ray, best);
-        bvhClosestOf(i + 1, end, ray, best);
-        bvhClosestOf(i + 2, end, ray, best);
-        bvhClosestOf(i + 3, end, ray, best);
+        closestInSlot(i, end, ray, best);
+        closestInSlot(i + 1, end, ray, best);
+        closestInSlot(i + 2, end, ray, best);
+        closestInSlot(i + 3, end, ray, best);
     }
     countTriangles(leaf.count);
     return i >= end;
@@ -177,8 +160,8 @@ bool traceAny(vec3 origin, vec3 dir, float tmax) {
             const uint end = n.rightOrFirst + n.count;
             uint i = n.rightOrFirst;
             for (; i < end && !occluded; i += 4)
-                occluded = bvhOccludes(i, end, ray, tmax) || bvhOccludes(i + 1, end, ray, tmax) ||
-                           bvhOccludes(i + 2, end, ray, tmax) || bvhOccludes(i + 3, end, ray, tmax);
+                occluded = occludesInSlot(i, end, ray, tmax) || occludesInSlot(i + 1, end, ray, tmax) ||
+                           occludesInSlot(i + 2, end, ray, tmax) || occludesInSlot(i + 3, end, ray, tmax);
             countTriangles(min(i, end) - n.rightOrFirst);
             if (!occluded && i < end) {
                 gLoopCutShort = true;

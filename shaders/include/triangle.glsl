@@ -5,6 +5,8 @@
 #ifndef VKRAY_TRIANGLE_GLSL
 #define VKRAY_TRIANGLE_GLSL
 
+#include "bindings.glsl"
+
 struct Hit {
     float t;
     vec2 uv;       // barycentric weights of p1 and p2; p0 gets 1 - u - v
@@ -60,6 +62,24 @@ bool intersectTriangle(WatertightRay r, GpuTriangle tri, float tmax, out float t
     t = T * inv;
     uv = vec2(V * inv, W * inv);
     return true;
+}
+
+// Slot i of the triangle buffer, when below `end` (loops test several slots per iteration, the
+// last batch partly past the end): the closest-hit update, and the any-hit test.
+void closestInSlot(uint i, uint end, WatertightRay ray, inout Hit best) {
+    float t;
+    vec2 uv;
+    if (i < end && intersectTriangle(ray, triangles[i], best.t, t, uv)) {
+        best.t = t;
+        best.uv = uv;
+        best.triangle = int(i);
+    }
+}
+
+bool occludesInSlot(uint i, uint end, WatertightRay ray, float tmax) {
+    float t;
+    vec2 uv;
+    return i < end && intersectTriangle(ray, triangles[i], tmax, t, uv);
 }
 
 #endif
