@@ -34,7 +34,8 @@ struct RenderArgs {
     std::string accel = "bvh";  // DESIGN.md: the AAC BVH's default preset
     int aacDelta = 0;
     double aacEpsilon = 0.0;
-    double kdTraversalCost = 0.0, kdIntersectionCost = 0.0, kdEmptyBonus = -1.0;
+    double kdTraversalCost = 0.0, kdIntersectionCost = 0.0;
+    std::optional<double> kdEmptyBonus;
     int kdMaxDepth = 0;
     bool counters = false;
     bool cpu = false;
@@ -116,18 +117,22 @@ accel::AccelSpec resolveAccel(const RenderArgs& args) {
     } catch (const Error& e) {
         throw Error("--accel " + args.accel + ": " + e.what());
     }
-    if (args.aacDelta < 0) throw Error("--aac-delta must be positive");
-    if (args.aacEpsilon < 0.0 || args.aacEpsilon >= 0.5)
+    // A leaf range is clustered by an all-pairs search, O(delta^2) per merge: bound it so a typo
+    // cannot turn a build into hours.
+    if (args.aacDelta < 0 || args.aacDelta > 1024) throw Error("--aac-delta must be 1..1024");
+    if (!(args.aacEpsilon >= 0.0 && args.aacEpsilon < 0.5))  // NaN fails too
         throw Error("--aac-epsilon must be in [0, 0.5) (alpha = 1/2 - epsilon must stay positive)");
-    if (args.kdTraversalCost < 0.0 || args.kdIntersectionCost < 0.0)
-        throw Error("--kd-traversal-cost and --kd-intersection-cost must be positive");
-    if (args.kdEmptyBonus > 1.0) throw Error("--kd-empty-bonus must be in [0, 1]");
+    if (!(args.kdTraversalCost >= 0.0 && args.kdTraversalCost < 1e9 && args.kdIntersectionCost >= 0.0 &&
+          args.kdIntersectionCost < 1e9))
+        throw Error("--kd-traversal-cost and --kd-intersection-cost must be finite and not negative");
+    if (args.kdEmptyBonus && !(*args.kdEmptyBonus >= 0.0 && *args.kdEmptyBonus <= 1.0))
+        throw Error("--kd-empty-bonus must be in [0, 1]");
     if (args.kdMaxDepth < 0 || args.kdMaxDepth > 64) throw Error("--kd-max-depth must be 1..64");
     spec.aacDelta = args.aacDelta;
     spec.aacEpsilon = args.aacEpsilon;
     spec.kdTraversalCost = args.kdTraversalCost;
     spec.kdIntersectionCost = args.kdIntersectionCost;
-    spec.kdEmptyBonus = args.kdEmptyBonus;
+    if (args.kdEmptyBonus) spec.kdEmptyBonus = *args.kdEmptyBonus;
     spec.kdMaxDepth = args.kdMaxDepth;
     return spec;
 }

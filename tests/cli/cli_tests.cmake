@@ -118,3 +118,6 @@ set_tests_properties(cli.compare_cpu_bvh_brute PROPERTIES FIXTURES_REQUIRED "cpu
 vkray_expect_error(aac_epsilon "--aac-epsilon must be in" render ${CLI_DATA}/one_triangle.scene --aac-epsilon 0.7 -o ${CLI_OUT}/x.png)
 # A scene larger than one storage buffer (lavapipe: 128 MiB) is refused before any build.
 vkray_expect_error(scene_too_large "triangles need 184 MiB.*maxStorageBufferRange" render ${CMAKE_SOURCE_DIR}/scenes/scaling/soup-4m.scene --device llvmpipe --size 8x8 -o ${CLI_OUT}/x.png)
+vkray_expect_error(kd_empty_bonus "--kd-empty-bonus must be in \\[0, 1\\]" render ${CLI_DATA}/one_triangle.scene --accel kd-stack --kd-empty-bonus -0.5 -o ${CLI_OUT}/x.png)
+vkray_expect_error(kd_cost_nan "--kd-traversal-cost and --kd-intersection-cost must be finite and not negative" render ${CLI_DATA}/one_triangle.scene --accel kd-stack --kd-intersection-cost nan -o ${CLI_OUT}/x.png)
+vkray_expect_error(aac_delta_absurd "--aac-delta must be 1..1024" render ${CLI_DATA}/one_triangle.scene --aac-delta 1000000 -o ${CLI_OUT}/x.png)
