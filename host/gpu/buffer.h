@@ -49,12 +49,11 @@ private:
     vk::raii::CommandBuffer cmd_{nullptr};
 };
 
-// A device-local storage buffer holding a copy of `bytes` (at least 16 bytes are allocated so an
-// empty array still binds). Throws vkray::Error naming `what` when the data exceeds the device's
-// maxStorageBufferRange.
-// Throws when `bytes` exceed the device's maxStorageBufferRange, naming `what`.
+// Throws vkray::Error naming `what` when `bytes` exceed the device's maxStorageBufferRange.
 void checkStorageBufferFits(const VulkanContext& ctx, size_t bytes, const std::string& what);
 
+// A device-local storage buffer holding a copy of `bytes` (at least 16 bytes are allocated so an
+// empty array still binds). Throws as checkStorageBufferFits does.
 Buffer uploadStorageBuffer(const VulkanContext& ctx, const void* data, size_t bytes,
                            const std::string& what);
 

@@ -184,10 +184,7 @@ int64_t generatedTriangleCount(const GeneratorSpec& spec) {
 }
 
 bool generateMesh(const GeneratorSpec& spec, const Transform& toWorld, uint32_t material, SceneBuilder& out) {
-    Scene& scene = out.scene();
-    const size_t added = size_t(generatedTriangleCount(spec));
-    scene.triangles.reserve(scene.triangles.size() + added);
-    if (scene.hasSmoothNormals()) scene.normals.reserve(scene.normals.size() + added);
+    out.reserve(size_t(generatedTriangleCount(spec)));
     Random rng(spec.seed);
     const Emitter emit{toWorld, material, out};
     switch (spec.kind) {

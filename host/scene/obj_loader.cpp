@@ -14,10 +14,6 @@
 namespace vkray {
 namespace {
 
-std::string_view withoutUtf8Bom(std::string_view s) {
-    return s.substr(0, 3) == "\xEF\xBB\xBF" ? s.substr(3) : s;
-}
-
 // Reads each `mtllib` file next to the OBJ and checks it before tinyobjloader parses it; a missing
 // one is an error here (tinyobjloader only warns and falls back to a default material).
 class CheckedMtlReader : public tinyobj::MaterialReader {

@@ -125,8 +125,7 @@ void OffReader::counts(size_t first) {
                                 " faces cannot fit in a file of " + std::to_string(fileBytes_) + " bytes");
     countsLine_ = line_;
     vertices_.reserve(size_t(nv));
-    Scene& scene = out_.scene();
-    scene.triangles.reserve(scene.triangles.size() + size_t(nf));  // exact for triangle meshes
+    out_.reserve(size_t(nf));  // exact for triangle meshes
     stage_ = vertexCount_ > 0 ? Stage::Vertices : faceCount_ > 0 ? Stage::Faces : Stage::Done;
 }
 

@@ -41,6 +41,11 @@ glm::vec3 geometricNormal(const glm::vec3& p0, const glm::vec3& p1, const glm::v
     return len > 0.0 ? glm::vec3(c / len) : glm::vec3(0.0f, 0.0f, 1.0f);
 }
 
+void SceneBuilder::reserve(size_t triangles) {
+    scene_.triangles.reserve(scene_.triangles.size() + triangles);
+    if (scene_.hasSmoothNormals()) scene_.normals.reserve(scene_.normals.size() + triangles);
+}
+
 bool SceneBuilder::append(const TriPoints& p, uint32_t material) {
     if (!fitsFloat(p[0]) || !fitsFloat(p[1]) || !fitsFloat(p[2])) return false;
     scene_.triangles.push_back({glm::vec3(p[0]), glm::vec3(p[1]), glm::vec3(p[2]), material});

@@ -25,6 +25,10 @@ public:
     // Index of `m` in scene.materials, appending it when no equal material is there yet.
     uint32_t material(const Material& m);
 
+    // Room for `triangles` more (and their normals when the scene has smooth ones): for callers
+    // that know their count up front.
+    void reserve(size_t triangles);
+
     // Append one triangle; `p` and `n` are world space, `n` unit length. Returns false (and
     // appends nothing) when a coordinate does not fit a 32-bit float, so the caller can report
     // it with its own file:line.

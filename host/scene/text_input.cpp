@@ -100,12 +100,16 @@ std::optional<std::string> readFileBytes(const std::filesystem::path& file) {
     return bytes;
 }
 
+std::string_view withoutUtf8Bom(std::string_view s) {
+    return s.substr(0, 3) == "\xEF\xBB\xBF" ? s.substr(3) : s;
+}
+
 void forEachLine(std::string_view data, const std::string& displayName, TextCheck check,
                  const std::function<void(std::string_view line, int number)>& fn) {
     if (data.size() >= 2 &&
         ((data[0] == '\xFF' && data[1] == '\xFE') || (data[0] == '\xFE' && data[1] == '\xFF')))
         throw Error(FileLoc{displayName, 1}, "UTF-16 is not supported; save as UTF-8");
-    if (data.substr(0, 3) == "\xEF\xBB\xBF") data.remove_prefix(3);
+    data = withoutUtf8Bom(data);
     int number = 0;
     while (!data.empty()) {
         const size_t end = data.find('\n');

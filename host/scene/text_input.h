@@ -22,6 +22,9 @@ enum class TextCheck {
     NoNul,  // OBJ/MTL files: exporters write Latin-1 comments, so only binary data is rejected
 };
 
+// `s` without a leading UTF-8 byte-order mark.
+std::string_view withoutUtf8Bom(std::string_view s);
+
 // Calls `fn(line, number)` for each line of `data` (1-based numbers, LF or CRLF endings, the
 // terminator removed) after rejecting UTF-16 (a byte-order mark) and skipping a UTF-8 BOM.
 // Throws vkray::Error naming `displayName`:line on binary data or invalid UTF-8.

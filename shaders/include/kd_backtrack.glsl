@@ -20,11 +20,11 @@ Hit kdBacktrackTrace(vec3 origin, vec3 dir, float tmax, const bool anyHit) {
     KdPass pass = kdFirstPass();
     uvec2 walked = uvec2(0u);
     int steps = 0;
-    bool finished = true;
+    bool passDone = true;
     for (uint passes = 0u; passes < 8u; ++passes) {
         float segMin = 0.0, segMax = tmax;
         uint minAxis = kKdHardBound, maxAxis = kKdHardBound;
-        bool passDone = !kdClipBox(r, kdTree.lo, kdTree.hi, segMin, minAxis, segMax, maxAxis, pass);
+        passDone = !kdClipBox(r, kdTree.lo, kdTree.hi, segMin, minAxis, segMax, maxAxis, pass);
         const float globalMax = segMax;
         const uint globalMaxAxis = maxAxis;
         uint node = 0u;
@@ -55,11 +55,7 @@ Hit kdBacktrackTrace(vec3 origin, vec3 dir, float tmax, const bool anyHit) {
                 uint first, second;
                 float thit;
                 const int visit = kdStepInner(r, n, node, segMin, minAxis, segMax, maxAxis, pass, first, second, thit);
-                if (visit == kKdBoth) {
-                    segMax = thit;
-                    maxAxis = kdAxis(n);
-                }
-                node = visit == kKdSecond ? second : first;
+                node = kdDescend(visit, n, first, second, thit, segMax, maxAxis);
                 continue;
             }
             kdVisitLeaf(n, w, anyHit, best);
@@ -73,13 +69,9 @@ Hit kdBacktrackTrace(vec3 origin, vec3 dir, float tmax, const bool anyHit) {
                 countRestart();
             }
         }
-        if (!passDone) {
-            finished = false;
-            break;
-        }
-        if ((anyHit && best.triangle >= 0) || !kdNextPass(pass, walked)) break;
+        if (!kdAnotherPass(passDone, anyHit, best, pass, walked)) break;
     }
-    kdEndLoop(finished, steps);
+    kdEndLoop(passDone, steps);
     return best;
 }
 

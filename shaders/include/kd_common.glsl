@@ -186,6 +186,16 @@ int kdStepInner(KdRay r, uvec2 n, uint index, float tmin, uint tminAxis, float t
     return kKdBoth;
 }
 
+// Takes the step kdStepInner chose: the child to descend to, with the segment cut at the plane when
+// both are reached (kd-stack pushes the second child first; kd-restart and kd-backtrack drop it).
+uint kdDescend(int visit, uvec2 n, uint first, uint second, float thit, inout float segMax, inout uint maxAxis) {
+    if (visit == kKdBoth) {
+        segMax = thit;
+        maxAxis = kdAxis(n);
+    }
+    return visit == kKdSecond ? second : first;
+}
+
 void kdTestSlot(uint slot, uint end, WatertightRay w, inout Hit best) {
     if (slot >= end) return;
     const uint tri = kdIndices[slot];
@@ -218,6 +228,12 @@ void kdVisitLeaf(uvec2 n, WatertightRay w, bool anyHit, inout Hit best) {
 // Whether the search may stop after a leaf whose segment ends at `exit`.
 bool kdFinished(Hit best, bool anyHit, float exit) {
     return best.triangle >= 0 && (anyHit || best.t <= exit);
+}
+
+// After a pass: whether another follows. Not when the pass was cut short (its node loop ran out:
+// the walk ends unfinished), an occluder was found, or every pass the ray needs is walked.
+bool kdAnotherPass(bool passDone, bool anyHit, Hit best, inout KdPass p, inout uvec2 walked) {
+    return passDone && !(anyHit && best.triangle >= 0) && kdNextPass(p, walked);
 }
 
 // A traversal loop ended: if not by its own exit, either the cap (a runaway ray, counted) or the

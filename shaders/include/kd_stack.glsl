@@ -18,11 +18,11 @@ Hit kdStackTrace(vec3 origin, vec3 dir, float tmax, const bool anyHit) {
     uint stackNode[VKRAY_KD_STACK_SIZE], stackAxes[VKRAY_KD_STACK_SIZE];
     float stackMin[VKRAY_KD_STACK_SIZE], stackMax[VKRAY_KD_STACK_SIZE];
     int steps = 0;
-    bool finished = true;
+    bool passDone = true;
     for (uint passes = 0u; passes < 8u; ++passes) {
         float segMin = 0.0, segMax = tmax;
         uint minAxis = kKdHardBound, maxAxis = kKdHardBound;
-        bool passDone = !kdClipBox(r, kdTree.lo, kdTree.hi, segMin, minAxis, segMax, maxAxis, pass);
+        passDone = !kdClipBox(r, kdTree.lo, kdTree.hi, segMin, minAxis, segMax, maxAxis, pass);
         int top = 0;
         uint node = 0u;
         for (; !passDone && steps < VKRAY_KD_MAX_STEPS; ++steps) {
@@ -42,10 +42,8 @@ Hit kdStackTrace(vec3 origin, vec3 dir, float tmax, const bool anyHit) {
                     stackMin[top] = thit;
                     stackMax[top] = segMax;
                     ++top;
-                    segMax = thit;
-                    maxAxis = kdAxis(n);
                 }
-                node = visit == kKdSecond ? second : first;
+                node = kdDescend(visit, n, first, second, thit, segMax, maxAxis);
                 continue;
             }
             kdVisitLeaf(n, w, anyHit, best);
@@ -60,13 +58,9 @@ Hit kdStackTrace(vec3 origin, vec3 dir, float tmax, const bool anyHit) {
                 segMax = stackMax[top];
             }
         }
-        if (!passDone) {
-            finished = false;
-            break;
-        }
-        if ((anyHit && best.triangle >= 0) || !kdNextPass(pass, walked)) break;
+        if (!kdAnotherPass(passDone, anyHit, best, pass, walked)) break;
     }
-    kdEndLoop(finished, steps);
+    kdEndLoop(passDone, steps);
     return best;
 }
 

@@ -8,8 +8,8 @@
 #include <vector>
 
 #include <tbb/parallel_for.h>
-#include <tbb/parallel_invoke.h>
 
+#include "accel/bvh/fork_join.h"
 #include "accel/bvh/morton.h"
 #include "accel/bvh/parallel_alloc.h"
 #include "core/error.h"
@@ -89,12 +89,7 @@ private:
         }
         const size_t mid = splitPoint(begin, end);
         size_t left = 0, right = 0;
-        if (n >= kParallelRange) {
-            tbb::parallel_invoke([&] { left = buildRange(begin, mid); }, [&] { right = buildRange(mid, end); });
-        } else {
-            left = buildRange(begin, mid);
-            right = buildRange(mid, end);
-        }
+        forkJoin(n >= kParallelRange, [&] { left = buildRange(begin, mid); }, [&] { right = buildRange(mid, end); });
         // Gather both halves' clusters and free slots into one run each (the destination never
         // overtakes the source).
         std::copy(clusters_.begin() + std::ptrdiff_t(mid), clusters_.begin() + std::ptrdiff_t(mid + right),

@@ -3,16 +3,11 @@
 #include <algorithm>
 #include <vector>
 
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_invoke.h>
-#include <tbb/parallel_reduce.h>
-
+#include "accel/bvh/fork_join.h"
 #include "accel/bvh/parallel_alloc.h"
 
 namespace vkray::bvh {
 namespace {
-
-constexpr int kParallelDepth = 10;
 
 gpu::GpuBvhNode makeNode(const Aabb& box, uint32_t rightOrFirst, uint32_t count) {
     gpu::GpuBvhNode n{};
@@ -44,13 +39,8 @@ public:
         const uint32_t rightFirst = first + collapsed_.primitives[left];
         out_.nodes[slot] = makeNode(node.box, rightSlot, 0);
         uint32_t dl = 0, dr = 0;
-        if (depth < kParallelDepth) {
-            tbb::parallel_invoke([&] { dl = write(left, slot + 1, first, depth + 1); },
-                                 [&] { dr = write(right, rightSlot, rightFirst, depth + 1); });
-        } else {
-            dl = write(left, slot + 1, first, depth + 1);
-            dr = write(right, rightSlot, rightFirst, depth + 1);
-        }
+        forkJoin(depth < kParallelDepth, [&] { dl = write(left, slot + 1, first, depth + 1); },
+                 [&] { dr = write(right, rightSlot, rightFirst, depth + 1); });
         return std::max(dl, dr);
     }
 
@@ -91,14 +81,7 @@ FlatBvh flatten(const BinaryTree& tree, const CollapsedTree& collapsed) {
     resizeFirstTouched(flat.nodes, collapsed.flatNodes[tree.root]);
     resizeFirstTouched(flat.triangleOrder, tree.primitives);
     flat.maxDepth = Flattener(tree, collapsed, flat).write(tree.root, 0, 0, 0);
-    using Range = tbb::blocked_range<size_t>;
-    flat.leaves = tbb::parallel_reduce(
-        Range(0, flat.nodes.size(), 16384), 0u,
-        [&](const Range& r, uint32_t acc) {
-            for (size_t i = r.begin(); i < r.end(); ++i) acc += flat.nodes[i].count > 0 ? 1u : 0u;
-            return acc;
-        },
-        [](uint32_t a, uint32_t b) { return a + b; });
+    flat.leaves = uint32_t((flat.nodes.size() + 1) / 2);  // a full binary tree: leaves = inner nodes + 1
     return flat;
 }
 

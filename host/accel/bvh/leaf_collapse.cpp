@@ -1,14 +1,10 @@
 #include "accel/bvh/leaf_collapse.h"
 
-#include <tbb/parallel_invoke.h>
-
+#include "accel/bvh/fork_join.h"
 #include "accel/bvh/parallel_alloc.h"
 
 namespace vkray::bvh {
 namespace {
-
-// Subtrees this close to the root run as parallel tasks (2^10 at most).
-constexpr int kParallelDepth = 10;
 
 class Collapser {
 public:
@@ -26,13 +22,8 @@ public:
             return config_.sah.intersection * area;
         }
         double left = 0.0, right = 0.0;
-        if (depth < kParallelDepth) {
-            tbb::parallel_invoke([&] { left = visit(node.child[0], depth + 1); },
-                                 [&] { right = visit(node.child[1], depth + 1); });
-        } else {
-            left = visit(node.child[0], depth + 1);
-            right = visit(node.child[1], depth + 1);
-        }
+        forkJoin(depth < kParallelDepth, [&] { left = visit(node.child[0], depth + 1); },
+                 [&] { right = visit(node.child[1], depth + 1); });
         const uint32_t count = out_.primitives[node.child[0]] + out_.primitives[node.child[1]];
         out_.primitives[id] = count;
         const double asInner = config_.sah.traversal * area + left + right;

@@ -8,9 +8,9 @@
 #include <vector>
 
 #include <tbb/blocked_range.h>
-#include <tbb/parallel_invoke.h>
 #include <tbb/parallel_reduce.h>
 
+#include "accel/bvh/fork_join.h"
 #include "accel/bvh/parallel_alloc.h"
 #include "core/error.h"
 
@@ -82,13 +82,8 @@ private:
         node.box = binning.bounds;
         const Split split = cheapestSplit(binning);
         const size_t mid = split.axis < 0 ? begin + (end - begin) / 2 : partition(begin, end, centroids, split);
-        if (end - begin >= kParallelNode) {
-            tbb::parallel_invoke([&] { node.child[0] = buildNode(begin, mid); },
-                                 [&] { node.child[1] = buildNode(mid, end); });
-        } else {
-            node.child[0] = buildNode(begin, mid);
-            node.child[1] = buildNode(mid, end);
-        }
+        forkJoin(end - begin >= kParallelNode, [&] { node.child[0] = buildNode(begin, mid); },
+                 [&] { node.child[1] = buildNode(mid, end); });
         return id;
     }
 

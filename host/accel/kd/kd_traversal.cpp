@@ -49,6 +49,16 @@ SplitStep stepInner(const cpu::Ray& ray, const gpu::KdNode& node, uint32_t index
     return {Visit::Both, first, second, thit, axis};
 }
 
+// Takes step `s`: the child to descend to, with the segment cut at the plane when both are reached
+// (the stack traversal pushes the second child first; the stackless ones drop it).
+uint32_t descend(const SplitStep& s, Segment& seg) {
+    if (s.visit == Visit::Both) {
+        seg.tmax = s.thit;
+        seg.maxAxis = s.axis;
+    }
+    return s.visit == Visit::Second ? s.second : s.first;
+}
+
 // Closest hit over the leaves in ray order; ends once the best hit lies at or before the leaf's exit.
 class ClosestVisitor final : public LeafVisitor {
 public:
@@ -233,10 +243,8 @@ bool KdStackTracer::walkPass(const cpu::Ray& ray, Segment seg, PassState& pass, 
                     return false;
                 }
                 stack[top++] = {s.second, {s.thit, seg.tmax, s.axis, seg.maxAxis}};
-                seg.tmax = s.thit;
-                seg.maxAxis = s.axis;
             }
-            node = s.visit == Visit::Second ? s.second : s.first;
+            node = descend(s, seg);
             continue;
         }
         ++c.leaves;
@@ -263,12 +271,7 @@ bool KdRestartTracer::walkPass(const cpu::Ray& ray, Segment global, PassState& p
         ++c.nodes;
         const gpu::KdNode& n = tree_.nodes[node];
         if (!n.isLeaf()) {
-            const SplitStep s = stepInner(ray, n, node, seg, pass);
-            if (s.visit == Visit::Both) {  // the push of the stack traversal, dropped
-                seg.tmax = s.thit;
-                seg.maxAxis = s.axis;
-            }
-            node = s.visit == Visit::Second ? s.second : s.first;
+            node = descend(stepInner(ray, n, node, seg, pass), seg);  // the stack traversal's push, dropped
             continue;
         }
         ++c.leaves;
@@ -310,12 +313,7 @@ bool KdBacktrackTracer::walkPass(const cpu::Ray& ray, Segment global, PassState&
         }
         const gpu::KdNode& n = tree_.nodes[node];
         if (!n.isLeaf()) {
-            const SplitStep s = stepInner(ray, n, node, seg, pass);
-            if (s.visit == Visit::Both) {
-                seg.tmax = s.thit;
-                seg.maxAxis = s.axis;
-            }
-            node = s.visit == Visit::Second ? s.second : s.first;
+            node = descend(stepInner(ray, n, node, seg, pass), seg);
             continue;
         }
         ++c.leaves;

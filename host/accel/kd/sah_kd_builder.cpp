@@ -138,7 +138,12 @@ void appendEvents(uint32_t triangle, const Box& b, NodeEvents& out) {
     }
 }
 
-// The node's triangles: each has exactly one start or planar event on every axis.
+// How many triangles the node holds: each has exactly one start or planar event on every axis.
+size_t triangleCount(const NodeEvents& ev) {
+    return size_t(std::count_if(ev[0].begin(), ev[0].end(), [](const Event& e) { return e.type != EventType::End; }));
+}
+
+// The node's triangles, ascending.
 std::vector<uint32_t> trianglesOf(const NodeEvents& ev) {
     std::vector<uint32_t> tris;
     for (const Event& e : ev[0])
@@ -296,9 +301,7 @@ std::unique_ptr<BuildNode> Builder::makeLeaf(const NodeEvents& ev, int depth) {
 }
 
 std::unique_ptr<BuildNode> Builder::build(NodeEvents ev, const Box& box, int depth) {
-    const size_t n = ev[0].size() - size_t(std::count_if(ev[0].begin(), ev[0].end(), [](const Event& e) {
-                                                               return e.type == EventType::End;
-                                                           }));
+    const size_t n = triangleCount(ev);
     if (n == 0 || depth >= maxDepth_) return makeLeaf(ev, depth);
     const SplitChoice s = findBestSplit(ev, box, n);
     // SAH termination (Wald and Havran, section 3): split only when it is cheaper than a leaf.
@@ -358,9 +361,7 @@ KdBuildResult buildSahKdTree(const std::vector<Triangle>& triangles, const KdCon
             any = true;
             appendEvents(t, b, ev);
         }
-        const size_t n = ev[0].size() - size_t(std::count_if(ev[0].begin(), ev[0].end(), [](const Event& e) {
-                                                                   return e.type == EventType::End;
-                                                               }));
+        const size_t n = triangleCount(ev);
         tbb::parallel_invoke([&] { tbb::parallel_sort(ev[0].begin(), ev[0].end()); },
                              [&] { tbb::parallel_sort(ev[1].begin(), ev[1].end()); },
                              [&] { tbb::parallel_sort(ev[2].begin(), ev[2].end()); });
