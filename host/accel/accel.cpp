@@ -1,5 +1,8 @@
 #include "accel/accel.h"
 
+#include <exception>
+#include <future>
+
 #include "accel/bvh/bvh_accel.h"
 #include "accel/kd/kd_accel.h"
 #include "core/error.h"
@@ -63,6 +66,31 @@ std::unique_ptr<BuiltAccel> buildAccel(const Scene& scene, const AccelSpec& spec
     case Family::Kd: return buildKdAccel(scene, spec, options);
     }
     throw Error("accelerator '" + spec.name + "': unknown family");
+}
+
+std::vector<std::unique_ptr<BuiltAccel>> buildAccelsConcurrently(const Scene& scene,
+                                                                 const std::vector<AccelSpec>& specs,
+                                                                 const BuildOptions& options) {
+    // std::async rather than one more oneTBB arena: each builder already runs its own arena of
+    // options.threads workers, and oneTBB shares its workers between arenas, so the two builds
+    // together never oversubscribe the machine.
+    BuildOptions quiet = options;
+    quiet.progress = {};  // two builds cannot share one progress line
+    std::vector<std::future<std::unique_ptr<BuiltAccel>>> pending;
+    for (const AccelSpec& spec : specs)
+        pending.push_back(std::async(std::launch::async, [&scene, spec, quiet] { return buildAccel(scene, spec, quiet); }));
+    std::vector<std::unique_ptr<BuiltAccel>> built;
+    std::exception_ptr failure;
+    for (auto& f : pending) {
+        try {
+            built.push_back(f.get());
+        } catch (...) {
+            if (!failure) failure = std::current_exception();
+            built.emplace_back();
+        }
+    }
+    if (failure) std::rethrow_exception(failure);
+    return built;
 }
 
 }  // namespace vkray::accel

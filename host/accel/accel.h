@@ -94,6 +94,14 @@ public:
 std::unique_ptr<BuiltAccel> buildAccel(const Scene& scene, const AccelSpec& spec,
                                        const BuildOptions& options = {});
 
+// Builds several structures at the same time, each on its own thread with options.threads workers
+// (the mission's "the BVH and the kd-tree are built in parallel"): a render that needs both waits
+// for the slower one instead of the sum. Results are in the order of `specs`; the first failure is
+// rethrown after every build has ended.
+std::vector<std::unique_ptr<BuiltAccel>> buildAccelsConcurrently(const Scene& scene,
+                                                                 const std::vector<AccelSpec>& specs,
+                                                                 const BuildOptions& options = {});
+
 // A typed array as raw bytes for GpuAccelData.
 template <class T>
 std::vector<std::byte> asBytes(const std::vector<T>& v) {

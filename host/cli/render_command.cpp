@@ -8,13 +8,13 @@
 #include <filesystem>
 #include <map>
 #include <optional>
-#include <regex>
 #include <string>
 #include <vector>
 
 #include <nlohmann/json.hpp>
 
 #include "accel/accel.h"
+#include "cli/cli_options.h"
 #include "cli/commands.h"
 #include "core/error.h"
 #include "cpu/reference_renderer.h"
@@ -51,17 +51,6 @@ struct RenderArgs {
 using Clock = std::chrono::steady_clock;
 double msSince(Clock::time_point t) {
     return std::chrono::duration<double, std::milli>(Clock::now() - t).count();
-}
-
-// "640x480" -> (640, 480), within the limits of scene.h.
-std::pair<int, int> parseSize(const std::string& text) {
-    std::smatch m;
-    static const std::regex pattern(R"((\d{1,9})[xX](\d{1,9}))");
-    if (!std::regex_match(text, m, pattern))
-        throw Error("--size " + text + ": expected WIDTHxHEIGHT, for example 640x480");
-    const long long w = std::stoll(m[1]), h = std::stoll(m[2]);
-    if (const auto problem = imageSizeProblem(w, h)) throw Error("--size " + text + ": " + *problem);
-    return {int(w), int(h)};
 }
 
 // "depth=d.pfm" -> {"depth", "d.pfm"}, names and file names checked by image_io's rules.
@@ -103,7 +92,8 @@ RenderOptions resolveOptions(const RenderArgs& args, const Scene& scene) {
     if (o.maxDepth < 1 || o.maxDepth > kMaxDepthLimit)
         throw Error("--maxdepth " + std::to_string(o.maxDepth) + ": must be 1.." +
                     std::to_string(kMaxDepthLimit));
-    if (args.threads < 0) throw Error("--threads must be 0 (all cores) or positive");
+    // oneTBB crashes (SIGSEGV) on an arena of more than 65535 slots; no machine has 1024 cores.
+    if (args.threads < 0 || args.threads > 1024) throw Error("--threads must be 0 (all cores) or 1..1024");
     o.threads = args.threads;
     o.accel = args.accel;
     o.countTraversal = args.counters;

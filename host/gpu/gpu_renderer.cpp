@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <chrono>
+#include <optional>
 
 #include "core/error.h"
 #include "gpu/buffer.h"
@@ -68,6 +69,7 @@ void readTile(const GpuPixel* src, const Tile& tile, Frame& frame, GpuRenderRepo
             rep.leavesVisited += px.leaves;
             rep.trianglesTested += px.triangles;
             rep.restarts += px.restarts;
+            if (!rep.nodesPerPixel.empty()) rep.nodesPerPixel[i] = px.nodes;
             rep.pixelsCutShort += (px.flags & VKRAY_PIXEL_CUT_SHORT) != 0;
         }
 }
@@ -82,6 +84,17 @@ const generated::RenderKernelSpirv* findKernel(const std::string& name) {
 
 bool hasRenderKernel(const std::string& kernel) { return findKernel(kernel) != nullptr; }
 
+KernelCache::KernelCache(const VulkanContext& ctx) : ctx_(ctx) {}
+KernelCache::~KernelCache() = default;
+
+ComputeKernel& KernelCache::kernel(const std::string& name, std::span<const uint32_t> spirv,
+                                   const Specialization& spec) {
+    auto& slot = kernels_[{name, spec.values}];
+    if (!slot)
+        slot = std::make_unique<ComputeKernel>(ctx_, spirv, VKRAY_BINDING_COUNT, sizeof(GpuFrameParams), spec);
+    return *slot;
+}
+
 Frame renderOnGpu(const VulkanContext& ctx, const Scene& scene, const RenderOptions& options,
                   GpuRenderReport* report, const TileProgress& progress) {
     accel::BuildOptions buildOptions;
@@ -91,7 +104,8 @@ Frame renderOnGpu(const VulkanContext& ctx, const Scene& scene, const RenderOpti
 }
 
 Frame renderOnGpu(const VulkanContext& ctx, const Scene& scene, const RenderOptions& options,
-                  const accel::GpuAccelData& accel, GpuRenderReport* report, const TileProgress& progress) {
+                  const accel::GpuAccelData& accel, GpuRenderReport* report, const TileProgress& progress,
+                  KernelCache* kernels) {
     const generated::RenderKernelSpirv* spirv = findKernel(accel.kernel);
     if (!spirv) throw Error("internal: no render kernel shaders/render_" + accel.kernel + ".comp");
     GpuRenderReport local;
@@ -111,8 +125,9 @@ Frame renderOnGpu(const VulkanContext& ctx, const Scene& scene, const RenderOpti
     start = Clock::now();
     rep.features = ShaderFeatures::forScene(scene, options.maxDepth);
     rep.features.countTraversal = options.countTraversal;
-    ComputeKernel kernel(ctx, spirv->code, VKRAY_BINDING_COUNT, sizeof(GpuFrameParams),
-                         rep.features.specialization());
+    std::optional<KernelCache> ownKernels;
+    if (!kernels) kernels = &ownKernels.emplace(ctx);
+    ComputeKernel& kernel = kernels->kernel(accel.kernel, spirv->code, rep.features.specialization());
     rep.pipelineMs = msSince(start);
 
     const std::vector<Tile> tiles = splitIntoTiles(uint32_t(options.width), uint32_t(options.height));
@@ -146,6 +161,7 @@ Frame renderOnGpu(const VulkanContext& ctx, const Scene& scene, const RenderOpti
 
     Frame frame;
     frame.resize(options.width, options.height);
+    if (options.countTraversal) rep.nodesPerPixel.assign(frame.color.size(), 0u);
     rep.tiles = uint32_t(tiles.size());
     rep.gpuMs = timestamps ? 0.0 : -1.0;
     start = Clock::now();

@@ -4,9 +4,14 @@
 
 #include <cstdint>
 #include <functional>
+#include <map>
+#include <memory>
+#include <span>
 #include <string>
+#include <vector>
 
 #include "accel/accel.h"
+#include "gpu/compute_kernel.h"
 #include "gpu/shader_features.h"
 #include "gpu/vulkan_context.h"
 #include "render/frame.h"
@@ -32,9 +37,31 @@ struct GpuRenderReport {
     uint64_t pixelsCutShort = 0; // pixels whose loops the driver cut short (then renderOnGpu throws)
     // Traversal work over all rays; filled only with RenderOptions::countTraversal.
     uint64_t nodesVisited = 0, leavesVisited = 0, trianglesTested = 0, restarts = 0;
+    // Nodes visited by all rays of each pixel, top row first (a traversal-cost heatmap); filled
+    // only with RenderOptions::countTraversal.
+    std::vector<uint32_t> nodesPerPixel;
 };
 
 using TileProgress = std::function<void(uint32_t tilesDone, uint32_t tilesTotal)>;
+
+// Render pipelines kept from one render to the next. Creating one costs 0.1-1 s on lavapipe (LLVM
+// compiles the SPIR-V), more than a small render: a benchmark that renders each configuration
+// several times creates each (kernel, specialization) pipeline once. Renders that share a cache
+// must not run at the same time (a kernel has one descriptor set).
+class KernelCache {
+public:
+    explicit KernelCache(const VulkanContext& ctx);
+    ~KernelCache();
+    KernelCache(const KernelCache&) = delete;
+    KernelCache& operator=(const KernelCache&) = delete;
+
+    ComputeKernel& kernel(const std::string& name, std::span<const uint32_t> spirv, const Specialization& spec);
+    size_t size() const { return kernels_.size(); }
+
+private:
+    const VulkanContext& ctx_;
+    std::map<std::pair<std::string, std::vector<std::pair<uint32_t, uint32_t>>>, std::unique_ptr<ComputeKernel>> kernels_;
+};
 
 // Whether a render kernel exists for GpuAccelData::kernel.
 bool hasRenderKernel(const std::string& kernel);
@@ -42,7 +69,7 @@ bool hasRenderKernel(const std::string& kernel);
 // Renders with an acceleration structure already built (accel::buildAccel(...)->gpuData()).
 Frame renderOnGpu(const VulkanContext& ctx, const Scene& scene, const RenderOptions& options,
                   const accel::GpuAccelData& accel, GpuRenderReport* report = nullptr,
-                  const TileProgress& progress = {});
+                  const TileProgress& progress = {}, KernelCache* kernels = nullptr);
 
 // Builds options.accel first (all cores), then renders: the form tests use.
 Frame renderOnGpu(const VulkanContext& ctx, const Scene& scene, const RenderOptions& options,

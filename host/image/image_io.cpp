@@ -82,7 +82,8 @@ void appendBytes(void* context, void* data, int size) {
     out->insert(out->end(), p, p + size);
 }
 
-void write8Bit(const fs::path& path, Format format, const Image& image) {
+// PNG or BMP bytes of an image whose size checkSize has accepted; empty when stb fails.
+std::vector<unsigned char> encode8Bit(Format format, const Image& image) {
     std::vector<unsigned char> pixels(image.data.size());
     std::transform(image.data.begin(), image.data.end(), pixels.begin(), to8Bit);
     std::vector<unsigned char> encoded;
@@ -91,7 +92,13 @@ void write8Bit(const fs::path& path, Format format, const Image& image) {
                                                 pixels.data(), image.width * image.channels)
                        : stbi_write_bmp_to_func(appendBytes, &encoded, image.width, image.height, image.channels,
                                                 pixels.data());
-    if (!ok) throw fileError(path, "cannot encode the image");
+    if (!ok) encoded.clear();
+    return encoded;
+}
+
+void write8Bit(const fs::path& path, Format format, const Image& image) {
+    const std::vector<unsigned char> encoded = encode8Bit(format, image);
+    if (encoded.empty()) throw fileError(path, "cannot encode the image");
     writeBytes(path, encoded.data(), encoded.size());
 }
 
@@ -274,6 +281,18 @@ void writeImage(const fs::path& path, const Image& image) {
         writePfm(path, image.width, image.height, image.channels, image.data.data());
     else
         write8Bit(path, format, image);
+}
+
+std::vector<unsigned char> encodePng(const Image& image) {
+    auto describe = [&] { return std::to_string(image.width) + "x" + std::to_string(image.height) + " image with " +
+                                 std::to_string(image.channels) + " channels"; };
+    if (image.width <= 0 || image.height <= 0 || (image.channels != 1 && image.channels != 3))
+        throw Error("cannot encode a " + describe() + " as PNG");
+    if (image.data.size() != image.pixelCount() * size_t(image.channels))
+        throw Error("cannot encode a " + describe() + " as PNG: its buffer does not match its size");
+    std::vector<unsigned char> encoded = encode8Bit(Format::Png, image);
+    if (encoded.empty()) throw Error("cannot encode a " + describe() + " as PNG");
+    return encoded;
 }
 
 void writeColorImage(const fs::path& path, int width, int height, const std::vector<glm::vec3>& rgbTopFirst) {

@@ -30,6 +30,11 @@ void writeColorImage(const std::filesystem::path& path, int width, int height,
 // image becomes grey in PNG/BMP and "Pf" in PFM.
 void writeImage(const std::filesystem::path& path, const Image& image);
 
+// The PNG bytes writeImage would write for this image (1 channel: grey, 3: RGB; each channel clamped
+// to [0, 1] and stored as round(255 c), NaN as 0), for embedding without a file (report.html's data
+// URIs). A vkray::Error for an image whose size or buffer is not valid.
+std::vector<unsigned char> encodePng(const Image& image);
+
 // Writes a PFM: "PF" (3 channels) or "Pf" (1 channel), little-endian (scale -1.0), rows bottom to top
 // as PFM requires; `topFirst` holds width * height * channels floats, top row first.
 void writePfm(const std::filesystem::path& path, int width, int height, int channels, const float* topFirst);

@@ -6,11 +6,13 @@
 #include <filesystem>
 #include <fstream>
 #include <limits>
+#include <memory>
 #include <random>
 #include <string>
 #include <vector>
 
 #include <gtest/gtest.h>
+#include <stb_image.h>
 
 #include "core/error.h"
 #include "image/image_io.h"
@@ -174,6 +176,46 @@ TEST(ImageIo, WriteImageHandlesOneChannel) {
     const Image pfm = readImage(out("grey.pfm"));
     ASSERT_EQ(pfm.channels, 1);
     EXPECT_EQ(pfm.data, grey.data);
+}
+
+// encodePng is what writeImage writes (same bytes), and decodes to the same clamped, rounded levels,
+// NaN as 0, top row first; one channel stays one channel (grey).
+TEST(ImageIo, EncodePngMatchesTheFileAndDecodesToTheSameLevels) {
+    const float nan = std::numeric_limits<float>::quiet_NaN();
+    Image rgb(3, 2, 3);
+    rgb.data = {-0.5f, 1.7f, nan, 0.5f, kInf, 0.2f, 1.0f / 255.0f, 0.25f, 0.75f,   // top row
+                0.0f,  1.0f, 0.12f, 0.92f, 0.33f, 0.6f, 0.4f,       0.8f,  0.05f};  // bottom row
+    const std::vector<unsigned char> png = encodePng(rgb);
+    writeImage(out("encode.png"), rgb);
+    EXPECT_EQ(png, fileBytes(out("encode.png")));
+
+    int w = 0, h = 0, comp = 0;
+    std::unique_ptr<stbi_uc, void (*)(void*)> px(
+        stbi_load_from_memory(png.data(), int(png.size()), &w, &h, &comp, 0), stbi_image_free);
+    ASSERT_TRUE(px);
+    ASSERT_EQ(w, 3);
+    ASSERT_EQ(h, 2);
+    ASSERT_EQ(comp, 3);
+    const int expected[] = {0, 255, 0, 128, 255, 51, 1, 64, 191, 0, 255, 31, 235, 84, 153, 102, 204, 13};
+    for (size_t k = 0; k < rgb.data.size(); ++k) EXPECT_EQ(int(px.get()[k]), expected[k]) << k;
+
+    Image grey(2, 1, 1);
+    grey.data = {0.5f, 1.0f};
+    const std::vector<unsigned char> greyPng = encodePng(grey);
+    std::unique_ptr<stbi_uc, void (*)(void*)> g(
+        stbi_load_from_memory(greyPng.data(), int(greyPng.size()), &w, &h, &comp, 0), stbi_image_free);
+    ASSERT_TRUE(g);
+    EXPECT_EQ(comp, 1);
+    EXPECT_EQ(int(g.get()[0]), 128);
+    EXPECT_EQ(int(g.get()[1]), 255);
+}
+
+TEST(ImageIo, EncodePngRejectsInvalidImages) {
+    expectError([] { encodePng(Image()); }, {"0x0", "PNG"});
+    expectError([] { encodePng(Image(2, 2, 2)); }, {"2 channels"});
+    Image shortBuffer(2, 2, 3);
+    shortBuffer.data.pop_back();
+    expectError([&] { encodePng(shortBuffer); }, {"buffer"});
 }
 
 TEST(ImageIo, AovWritersFollowDesign) {

@@ -1,0 +1,130 @@
+// Everything `vkray bench` measures (issue 6), as plain data: the runner (bench_runner.h) fills it,
+// the writers (report.h) turn it into bench.json, bench.md and report.html. Figures that could not
+// be measured are empty optionals (JSON null) with a note, never a made-up number.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "accel/accel.h"
+#include "bench/spread.h"
+#include "image/image.h"
+
+namespace vkray::bench {
+
+// A rendered image against the reference (BenchScene::reference): colour error and primary hits.
+struct ImageError {
+    double rmse = 0.0;                // over RGB, values clamped to [0, 1] as in the PNG
+    std::optional<double> psnr;       // dB, peak 1; empty when rmse == 0 (identical)
+    double maxError = 0.0;            // largest channel difference
+    double primaryMismatch = 0.0;     // fraction of pixels whose primary hit (primid) differs
+};
+
+// Rays of one kind in the whole render and how fast they were traced. Primary rates come from a
+// render with only camera rays, shadow rates from the extra time a depth-1 render with lights
+// takes, secondary rates (reflected and refracted rays with their own shadow rays) from the extra
+// time of the full render: differences of medians, so a difference within the noise is empty.
+struct RayKindFigures {
+    std::string kind;                       // "primary", "shadow", "secondary"
+    uint64_t rays = 0;                      // in the full render
+    std::optional<double> mraysPerSecond;   // empty when there are no such rays or not resolved
+    std::string note;                       // why mraysPerSecond is empty
+};
+
+// Build time at one thread count.
+struct ThreadTiming {
+    int threads = 0;
+    Spread ms;
+};
+
+// One accelerator on one scene, at the scene's maxdepth.
+struct AccelResult {
+    std::string accel;                  // --accel name, e.g. "bvh-hq", "kd-restart"
+    std::string kernel;                 // shaders/render_<kernel>.comp
+    std::vector<ThreadTiming> build;    // CPU build time per thread count, ascending threads
+    std::vector<accel::AccelStat> buildStats;  // of the build with the most threads
+    uint64_t structureBytes = 0;        // on the GPU: nodes, index lists, extra arrays
+
+    Spread traceMs;                     // full Whitted render, GPU timestamps
+    Spread primaryOnlyMs;               // camera rays only (maxdepth 1, no lights)
+    Spread depthOneMs;                  // camera rays and their shadow rays (maxdepth 1)
+    std::vector<RayKindFigures> rayKinds;  // primary, shadow, secondary
+    double mraysPerSecond = 0.0;        // all rays of the full render / its median time
+
+    // Statistics variant of the kernel, full render; per ray over all kinds together.
+    double nodesPerRay = 0.0, leavesPerRay = 0.0, trianglesPerRay = 0.0, restartsPerRay = 0.0;
+    // The same for camera rays alone (from the primary-only statistics render).
+    double primaryNodesPerRay = 0.0, primaryTrianglesPerRay = 0.0;
+    uint64_t cappedRays = 0;            // rays a traversal ended at its iteration cap
+
+    ImageError error;                   // the full render against the reference
+    Image image;                        // the full render, 3 channels, linear RGB
+    Image diff;                         // makeDiffImage(image, reference, 2/255)
+    std::vector<uint32_t> nodesPerPixel;  // nodes visited by all rays of each pixel, top row first
+};
+
+// One point of the error-against-time plot.
+struct ErrorPoint {
+    std::string label;         // "kd-restart", "aac delta 8", "bvh maxdepth 2", "CPU double"
+    std::string group;         // "accelerator", "aac-delta", "maxdepth", "cpu-reference"
+    std::string accel;         // structure used
+    int delta = 0;             // AAC delta of the aac-delta group; 0 otherwise
+    int maxDepth = 0;
+    std::string precision;     // "float (GPU)" or "double (CPU)"
+    double buildMs = 0.0;      // median, all threads
+    double traceMs = 0.0;      // median GPU time (CPU render time for the CPU reference)
+    double totalMs() const { return buildMs + traceMs; }
+    ImageError error;
+    bool pareto = false;       // on the front: no other point is both faster and more accurate
+};
+
+// Seed 001, Tables 5.5 and 5.6: the AAC BVH against its delta.
+struct DeltaResult {
+    int delta = 0;
+    double epsilon = 0.0;
+    Spread buildMs;            // all threads
+    Spread traceMs;            // full render, GPU
+    double nodesPerRay = 0.0, trianglesPerRay = 0.0;  // seed 001 counts both as intersection tests
+    double sahCost = 0.0;
+};
+
+// The BVH and the kd-tree built one after the other and at the same time (each with all threads).
+struct ConcurrentBuild {
+    std::string bvhAccel, kdAccel;
+    Spread bvhMs, kdMs;        // each alone
+    Spread concurrentMs;       // both at once, wall clock
+};
+
+struct SceneResult {
+    std::string file;          // as given on the command line
+    std::string name;          // file stem, for headings and image names
+    uint64_t triangles = 0;
+    int width = 0, height = 0, maxDepth = 0;
+
+    // The high-quality reference: the CPU renderer in double precision at the scene's maxdepth,
+    // tracing with the CPU traversal of `referenceAccel` (exact: same hits as brute force).
+    std::string referenceAccel;
+    double referenceBuildMs = 0.0, referenceRenderMs = 0.0;
+    Image reference;
+
+    std::vector<AccelResult> accels;
+    std::vector<DeltaResult> deltas;
+    std::vector<ErrorPoint> errorPoints;
+    std::optional<ConcurrentBuild> concurrent;
+};
+
+struct BenchResults {
+    std::string vkrayVersion, revision;   // VKRAY_VERSION, git revision at build time
+    std::string commandLine;
+    std::string startedAt;                // ISO 8601, UTC
+    double elapsedSeconds = 0.0;
+    std::string device, driver, deviceType, vulkanApi;
+    int hardwareThreads = 0;
+    int repeat = 0;                       // timed repeats after one warm-up
+    std::vector<int> threadCounts;        // build-scaling thread counts
+    std::vector<SceneResult> scenes;
+};
+
+}  // namespace vkray::bench

@@ -1,0 +1,513 @@
+#include "bench/bench_runner.h"
+
+#include <algorithm>
+#include <chrono>
+#include <ctime>
+#include <cmath>
+#include <filesystem>
+#include <map>
+#include <memory>
+#include <thread>
+
+#include "accel/accel.h"
+#include "bench/report.h"
+#include "core/error.h"
+#include "cpu/reference_renderer.h"
+#include "gpu/gpu_renderer.h"
+#include "gpu/scene_buffers.h"
+#include "image/compare.h"
+#include "scene/scene_parser.h"
+#include "vkray_revision.h"  // generated at build time by scripts/revision.cmake
+
+namespace vkray::bench {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double msSince(Clock::time_point start) {
+    return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+}
+
+// Differences within this many 8-bit levels are what float vs double rounding gives
+// (tests/golden): the difference images show them blue, beyond it red.
+constexpr double kDiffThreshold = 2.0 / 255.0;
+
+// The colour of a frame as the PNG stores it: clamped to [0, 1], NaN as 0.
+Image colorImage(const Frame& frame) {
+    Image img(frame.width, frame.height, 3);
+    for (size_t i = 0; i < frame.color.size(); ++i)
+        for (int c = 0; c < 3; ++c) {
+            const float v = frame.color[i][c];
+            img.data[i * 3 + size_t(c)] = std::isnan(v) ? 0.0f : std::clamp(v, 0.0f, 1.0f);
+        }
+    return img;
+}
+
+ImageError imageError(const Frame& frame, const Image& image, const Frame& reference, const Image& refImage) {
+    const CompareStats s = compareImages(image, refImage, kDiffThreshold);
+    ImageError e;
+    e.rmse = s.rmse;
+    if (s.rmse > 0.0) e.psnr = s.psnr;
+    e.maxError = s.maxError;
+    size_t differ = 0;
+    for (size_t i = 0; i < frame.primId.size(); ++i) differ += frame.primId[i] != reference.primId[i];
+    e.primaryMismatch = frame.primId.empty() ? 0.0 : double(differ) / double(frame.primId.size());
+    return e;
+}
+
+int maxThreads(const std::vector<int>& counts) { return *std::max_element(counts.begin(), counts.end()); }
+
+double statValue(const std::vector<accel::AccelStat>& stats, const std::string& key) {
+    for (const auto& s : stats)
+        if (s.key == key) return s.value;
+    return 0.0;
+}
+
+// Builds of one structure are timed once, whatever traversal walks it: kd-stack, kd-restart and
+// kd-backtrack share the tree (their build differs only in the arrays gpuData() flattens).
+std::string structureKey(const accel::AccelSpec& spec) {
+    if (spec.family == accel::Family::Kd) return "kd";
+    return spec.name == "bvh" ? "bvh-hq" : spec.name;
+}
+
+// A render's figures that one GPU run gives.
+struct GpuRun {
+    Frame frame;
+    gpu::GpuRenderReport report;
+};
+
+class Runner {
+public:
+    Runner(const gpu::VulkanContext& ctx, const BenchOptions& options, const BenchProgressFn& progress)
+        : ctx_(ctx), options_(options), progress_(progress), start_(Clock::now()) {}
+
+    SceneResult runScene(const std::string& file, int index, int count) {
+        sceneIndex_ = index;
+        sceneCount_ = count;
+        sceneName_ = std::filesystem::path(file).stem().string();
+        step("load");
+        const Scene scene = loadScene(file);
+        gpu::checkSceneFits(ctx_, scene);
+        SceneResult result;
+        result.file = file;
+        result.name = sceneName_;
+        result.triangles = scene.triangles.size();
+        result.width = options_.width > 0 ? options_.width : scene.width;
+        result.height = options_.height > 0 ? options_.height : scene.height;
+        result.maxDepth = scene.maxDepth;
+
+        RenderOptions render;
+        render.width = result.width;
+        render.height = result.height;
+        render.maxDepth = scene.maxDepth;
+
+        // Camera rays alone: the scene without its lights (no shadow rays) at maxdepth 1.
+        Scene dark = scene;
+        dark.lights.clear();
+
+        const Frame reference = renderReferenceImage(scene, render, result);
+        for (const std::string& name : options_.accels)
+            result.accels.push_back(runAccel(scene, dark, render, accel::parseAccel(name), reference, result));
+        for (const AccelResult& a : result.accels) result.errorPoints.push_back(acceleratorPoint(a, scene.maxDepth));
+        result.concurrent = runConcurrentBuild(scene);
+        for (int delta : options_.deltas) runDelta(scene, render, delta, reference, result);
+        if (options_.maxDepthSweep) runMaxDepthSweep(scene, render, reference, result);
+        result.errorPoints.push_back(cpuReferencePoint(result));
+        markParetoFront(result.errorPoints);
+        return result;
+    }
+
+private:
+    void step(const std::string& what, int repeat = 0, int repeats = 0) {
+        if (!progress_) return;
+        progress_(BenchProgress{sceneIndex_, sceneCount_, sceneName_, what, repeat, repeats,
+                                msSince(start_) / 1000.0});
+    }
+
+    const std::vector<int>& threadCounts() const { return threads_; }
+
+    // The high-quality reference: the CPU renderer (double precision) with the exact CPU traversal
+    // of the default BVH, timed like everything else for the "CPU double" point of the plot.
+    Frame renderReferenceImage(const Scene& scene, const RenderOptions& render, SceneResult& result) {
+        result.referenceAccel = "bvh";
+        step("reference: build bvh");
+        auto t0 = Clock::now();
+        const auto built = accel::buildAccel(scene, accel::parseAccel("bvh"), {});
+        result.referenceBuildMs = msSince(t0);
+        Frame frame;
+        std::vector<double> ms;
+        for (int r = 0; r <= options_.repeat; ++r) {  // run 0 warms up and gives the image
+            step("reference: CPU render (double)", r, options_.repeat);
+            t0 = Clock::now();
+            frame = renderReference(scene, render, built->tracer());
+            if (r > 0) ms.push_back(msSince(t0));
+        }
+        result.referenceRenderMs = spreadOf(ms).median;
+        result.reference = colorImage(frame);
+        return frame;
+    }
+
+    struct Built {
+        std::unique_ptr<accel::BuiltAccel> accel;
+        std::vector<ThreadTiming> timings;
+    };
+
+    // Warm-up, then `repeat` timed builds at each thread count; returns the last build with the
+    // most threads.
+    Built timeBuilds(const Scene& scene, const accel::AccelSpec& spec, const std::vector<int>& counts) {
+        Built b;
+        for (size_t k = 0; k < counts.size(); ++k) {
+            std::vector<double> ms;
+            for (int r = k == 0 ? 0 : 1; r <= options_.repeat; ++r) {
+                step("build " + spec.name + " (" + std::to_string(counts[k]) + (counts[k] == 1 ? " thread)" : " threads)"),
+                     r, options_.repeat);
+                const auto t0 = Clock::now();
+                b.accel = accel::buildAccel(scene, spec, {.threads = counts[k], .progress = {}});
+                if (r > 0) ms.push_back(msSince(t0));
+            }
+            b.timings.push_back({counts[k], spreadOf(ms)});
+        }
+        return b;
+    }
+
+    Built buildOnce(const Scene& scene, const accel::AccelSpec& spec, std::vector<ThreadTiming> timings) {
+        step("build " + spec.name);
+        return {accel::buildAccel(scene, spec, {.threads = maxThreads(threads_), .progress = {}}), std::move(timings)};
+    }
+
+    Built buildTimed(const Scene& scene, const accel::AccelSpec& spec) {
+        const std::string key = structureKey(spec);
+        if (const auto it = buildTimings_.find(key); it != buildTimings_.end())
+            return buildOnce(scene, spec, it->second);
+        Built b = timeBuilds(scene, spec, threads_);
+        buildTimings_[key] = b.timings;
+        return b;
+    }
+
+    GpuRun render(const Scene& scene, const RenderOptions& render, const accel::GpuAccelData& data) {
+        GpuRun run;
+        run.frame = gpu::renderOnGpu(ctx_, scene, render, data, &run.report, {}, &kernels_);
+        if (run.report.gpuMs < 0.0)
+            throw Error("device '" + ctx_.info().name + "' has no timestamp queries: vkray bench times "
+                        "the GPU with them");
+        return run;
+    }
+
+    // The three timed variants, interleaved in every repeat so that a drift of the machine's speed
+    // touches them alike.
+    struct Traced {
+        Spread fullMs, primaryMs, depthOneMs;
+        GpuRun full, depthOne;
+    };
+    Traced traceTimed(const Scene& scene, const Scene& dark, const RenderOptions& render,
+                      const accel::GpuAccelData& data, const std::string& label, bool rayKinds) {
+        RenderOptions primary = render, depthOne = render;
+        primary.maxDepth = depthOne.maxDepth = 1;
+        Traced t;
+        std::vector<double> full, prim, one;
+        for (int r = 0; r <= options_.repeat; ++r) {  // run 0 is the warm-up
+            step("trace " + label, r, options_.repeat);
+            t.full = this->render(scene, render, data);
+            if (r > 0) full.push_back(t.full.report.gpuMs);
+            if (!rayKinds) continue;
+            const GpuRun p = this->render(dark, primary, data);
+            t.depthOne = this->render(scene, depthOne, data);
+            if (r > 0) {
+                prim.push_back(p.report.gpuMs);
+                one.push_back(t.depthOne.report.gpuMs);
+            }
+        }
+        t.fullMs = spreadOf(full);
+        if (rayKinds) {
+            t.primaryMs = spreadOf(prim);
+            t.depthOneMs = spreadOf(one);
+        }
+        return t;
+    }
+
+    // Traversal work per ray (all kinds together) from one render with the statistics variant.
+    struct Counted {
+        double nodesPerRay = 0.0, leavesPerRay = 0.0, trianglesPerRay = 0.0, restartsPerRay = 0.0;
+        std::vector<uint32_t> nodesPerPixel;
+    };
+    Counted countTraversal(const Scene& scene, const RenderOptions& render, const accel::GpuAccelData& data,
+                           const std::string& label) {
+        step("count " + label);
+        RenderOptions counting = render;
+        counting.countTraversal = true;
+        GpuRun c = this->render(scene, counting, data);
+        const double rays = double(std::max<uint64_t>(c.report.raysTraced + c.report.shadowRays, 1));
+        return {double(c.report.nodesVisited) / rays, double(c.report.leavesVisited) / rays,
+                double(c.report.trianglesTested) / rays, double(c.report.restarts) / rays,
+                std::move(c.report.nodesPerPixel)};
+    }
+
+    static std::optional<double> mrays(double rays, double ms) {
+        if (rays <= 0.0 || !(ms > 0.0)) return std::nullopt;
+        return rays / (ms * 1e3);
+    }
+
+    static std::vector<RayKindFigures> rayKindFigures(const Traced& t, uint64_t pixels) {
+        const gpu::GpuRenderReport& full = t.full.report;
+        const uint64_t secondary = full.raysTraced - std::min(full.raysTraced, pixels);
+        const uint64_t shadowOfPrimary = t.depthOne.report.shadowRays;
+        const uint64_t secondaryWithShadows = secondary + (full.shadowRays - std::min(full.shadowRays, shadowOfPrimary));
+        const double shadowMs = t.depthOneMs.median - t.primaryMs.median;
+        const double secondaryMs = t.fullMs.median - t.depthOneMs.median;
+        std::vector<RayKindFigures> kinds(3);
+        kinds[0] = {"primary", pixels, mrays(double(pixels), t.primaryMs.median), ""};
+        kinds[1] = {"shadow", full.shadowRays, mrays(double(shadowOfPrimary), shadowMs), ""};
+        kinds[2] = {"secondary", secondary, mrays(double(secondaryWithShadows), secondaryMs), ""};
+        for (RayKindFigures& k : kinds)
+            if (!k.mraysPerSecond)
+                k.note = k.rays == 0 ? "none in this scene" : "time difference within the noise";
+        return kinds;
+    }
+
+    AccelResult runAccel(const Scene& scene, const Scene& dark, const RenderOptions& render,
+                         const accel::AccelSpec& spec, const Frame& reference, const SceneResult& result) {
+        AccelResult a;
+        a.accel = spec.name;
+        Built built = buildTimed(scene, spec);
+        a.build = built.timings;
+        a.buildStats = built.accel->stats();
+        const accel::GpuAccelData data = built.accel->gpuData();
+        built.accel.reset();  // the CPU side is not needed any more: free it before tracing
+        a.kernel = data.kernel;
+        a.structureBytes = data.bytes();
+
+        const Traced t = traceTimed(scene, dark, render, data, spec.name, true);
+        a.traceMs = t.fullMs;
+        a.primaryOnlyMs = t.primaryMs;
+        a.depthOneMs = t.depthOneMs;
+        const uint64_t pixels = uint64_t(render.width) * uint64_t(render.height);
+        a.rayKinds = rayKindFigures(t, pixels);
+        const gpu::GpuRenderReport& rep = t.full.report;
+        a.mraysPerSecond = mrays(double(rep.raysTraced + rep.shadowRays), t.fullMs.median).value_or(0.0);
+        a.cappedRays = rep.cappedRays;
+        a.image = colorImage(t.full.frame);
+        a.error = imageError(t.full.frame, a.image, reference, result.reference);
+        a.diff = makeDiffImage(a.image, result.reference, kDiffThreshold);
+
+        const Counted c = countTraversal(scene, render, data, spec.name);
+        a.nodesPerRay = c.nodesPerRay;
+        a.leavesPerRay = c.leavesPerRay;
+        a.trianglesPerRay = c.trianglesPerRay;
+        a.restartsPerRay = c.restartsPerRay;
+        a.nodesPerPixel = c.nodesPerPixel;
+        RenderOptions counting = render;
+        counting.countTraversal = true;
+        counting.maxDepth = 1;
+        const GpuRun p = this->render(dark, counting, data);
+        a.primaryNodesPerRay = double(p.report.nodesVisited) / double(std::max<uint64_t>(pixels, 1));
+        a.primaryTrianglesPerRay = double(p.report.trianglesTested) / double(std::max<uint64_t>(pixels, 1));
+        return a;
+    }
+
+    static ErrorPoint acceleratorPoint(const AccelResult& a, int maxDepth) {
+        ErrorPoint p;
+        p.maxDepth = maxDepth;
+        p.label = a.accel;
+        p.group = "accelerator";
+        p.accel = a.accel;
+        p.precision = "float (GPU)";
+        p.buildMs = a.build.back().ms.median;
+        p.traceMs = a.traceMs.median;
+        p.error = a.error;
+        return p;
+    }
+
+    static ErrorPoint cpuReferencePoint(const SceneResult& s) {
+        ErrorPoint p;
+        p.label = "CPU double";
+        p.group = "cpu-reference";
+        p.accel = s.referenceAccel;
+        p.maxDepth = s.maxDepth;
+        p.precision = "double (CPU)";
+        p.buildMs = s.referenceBuildMs;
+        p.traceMs = s.referenceRenderMs;
+        return p;  // the reference itself: error 0
+    }
+
+    // The BVH and the kd-tree at the same time, each with all threads, against each alone.
+    std::optional<ConcurrentBuild> runConcurrentBuild(const Scene& scene) {
+        std::optional<accel::AccelSpec> bvh, kd;
+        for (const std::string& name : options_.accels) {
+            const accel::AccelSpec spec = accel::parseAccel(name);
+            if (spec.family == accel::Family::Bvh && !bvh) bvh = spec;
+            if (spec.family == accel::Family::Kd && !kd) kd = spec;
+        }
+        if (!bvh || !kd) return std::nullopt;
+        ConcurrentBuild c;
+        c.bvhAccel = bvh->name;
+        c.kdAccel = kd->name;
+        c.bvhMs = buildTimings_.at(structureKey(*bvh)).back().ms;
+        c.kdMs = buildTimings_.at(structureKey(*kd)).back().ms;
+        std::vector<double> ms;
+        const accel::BuildOptions all{.threads = maxThreads(threads_), .progress = {}};
+        for (int r = 0; r <= options_.repeat; ++r) {
+            step("build " + c.bvhAccel + " and " + c.kdAccel + " concurrently", r, options_.repeat);
+            const auto t0 = Clock::now();
+            const auto built = accel::buildAccelsConcurrently(scene, {*bvh, *kd}, all);
+            if (r > 0) ms.push_back(msSince(t0));
+        }
+        c.concurrentMs = spreadOf(ms);
+        return c;
+    }
+
+    // One point of seed 001's threshold sweep: AAC-HQ's epsilon with another delta.
+    void runDelta(const Scene& scene, const RenderOptions& render, int delta, const Frame& reference,
+                  SceneResult& result) {
+        accel::AccelSpec spec = accel::parseAccel("bvh");
+        spec.aacDelta = delta;
+        const std::string label = "aac delta " + std::to_string(delta);
+        DeltaResult d;
+        d.delta = delta;
+        std::unique_ptr<accel::BuiltAccel> built;
+        std::vector<double> ms;
+        for (int r = 0; r <= options_.repeat; ++r) {
+            step("build " + label, r, options_.repeat);
+            const auto t0 = Clock::now();
+            built = accel::buildAccel(scene, spec, {.threads = maxThreads(threads_), .progress = {}});
+            if (r > 0) ms.push_back(msSince(t0));
+        }
+        d.buildMs = spreadOf(ms);
+        const std::vector<accel::AccelStat> stats = built->stats();
+        d.epsilon = statValue(stats, "aac_epsilon");
+        d.sahCost = statValue(stats, "sah_cost");
+        const accel::GpuAccelData data = built->gpuData();
+        built.reset();
+        const Traced t = traceTimed(scene, scene, render, data, label, false);
+        d.traceMs = t.fullMs;
+
+        const Counted c = countTraversal(scene, render, data, label);
+        d.nodesPerRay = c.nodesPerRay;
+        d.trianglesPerRay = c.trianglesPerRay;
+        result.deltas.push_back(d);
+
+        ErrorPoint p;
+        p.label = label;
+        p.group = "aac-delta";
+        p.accel = "bvh";
+        p.delta = delta;
+        p.maxDepth = render.maxDepth;
+        p.precision = "float (GPU)";
+        p.buildMs = d.buildMs.median;
+        p.traceMs = d.traceMs.median;
+        const Image image = colorImage(t.full.frame);
+        p.error = imageError(t.full.frame, image, reference, result.reference);
+        result.errorPoints.push_back(p);
+    }
+
+    // Fewer bounces trade error for time: each depth below the scene's, with the first BVH of the
+    // run (or the first accelerator when there is none).
+    void runMaxDepthSweep(const Scene& scene, const RenderOptions& render, const Frame& reference,
+                          SceneResult& result) {
+        std::vector<int> depths = options_.maxDepths;
+        if (depths.empty())
+            for (int d = 1; d < scene.maxDepth; ++d) depths.push_back(d);
+        std::erase_if(depths, [&](int d) { return d < 1 || d >= scene.maxDepth; });
+        if (depths.empty() || result.accels.empty()) return;
+        std::string name = result.accels.front().accel;
+        for (const AccelResult& a : result.accels)
+            if (accel::parseAccel(a.accel).family == accel::Family::Bvh) {
+                name = a.accel;
+                break;
+            }
+        const accel::AccelSpec spec = accel::parseAccel(name);
+        const Built built = buildOnce(scene, spec, {});
+        const accel::GpuAccelData data = built.accel->gpuData();
+        double buildMs = 0.0;
+        for (const AccelResult& a : result.accels)
+            if (a.accel == name) buildMs = a.build.back().ms.median;
+        for (int depth : depths) {
+            RenderOptions shallow = render;
+            shallow.maxDepth = depth;
+            const std::string label = name + " maxdepth " + std::to_string(depth);
+            const Traced t = traceTimed(scene, scene, shallow, data, label, false);
+            ErrorPoint p;
+            p.label = label;
+            p.group = "maxdepth";
+            p.accel = name;
+            p.maxDepth = depth;
+            p.precision = "float (GPU)";
+            p.buildMs = buildMs;
+            p.traceMs = t.fullMs.median;
+            const Image image = colorImage(t.full.frame);
+            p.error = imageError(t.full.frame, image, reference, result.reference);
+            result.errorPoints.push_back(p);
+        }
+    }
+
+    const gpu::VulkanContext& ctx_;
+    const BenchOptions& options_;
+    const BenchProgressFn& progress_;
+    const Clock::time_point start_;
+    std::vector<int> threads_ = options_.threads.empty() ? defaultThreadCounts() : options_.threads;
+    std::map<std::string, std::vector<ThreadTiming>> buildTimings_;  // per structureKey, per scene
+    gpu::KernelCache kernels_{ctx_};  // pipelines are not what the bench measures
+    int sceneIndex_ = 0, sceneCount_ = 0;
+    std::string sceneName_;
+
+public:
+    void startScene() { buildTimings_.clear(); }
+    const std::vector<int>& threads() const { return threads_; }
+};
+
+std::string isoTimeUtc() {
+    const std::time_t now = std::time(nullptr);
+    char text[32];
+    std::strftime(text, sizeof text, "%Y-%m-%dT%H:%M:%SZ", std::gmtime(&now));
+    return text;
+}
+
+void checkOptions(const BenchOptions& o) {
+    if (o.scenes.empty()) throw Error("vkray bench: no scene given");
+    if (o.accels.empty()) throw Error("vkray bench: --accel names no accelerator");
+    if (o.repeat < 1 || o.repeat > 1000) throw Error("--repeat " + std::to_string(o.repeat) + ": expected 1..1000");
+    for (const std::string& a : o.accels) accel::parseAccel(a);  // an unknown name fails before any work
+    for (int t : o.threads)
+        if (t < 1 || t > 1024) throw Error("--threads " + std::to_string(t) + ": expected 1..1024");
+    for (int d : o.deltas)
+        if (d < 1 || d > 1024) throw Error("--deltas " + std::to_string(d) + ": expected 1..1024");
+    for (int d : o.maxDepths)
+        if (d < 1 || d > 64) throw Error("--maxdepths " + std::to_string(d) + ": expected 1..64");
+}
+
+}  // namespace
+
+std::vector<int> defaultThreadCounts() {
+    const int all = int(std::max(1u, std::thread::hardware_concurrency()));
+    std::vector<int> counts;
+    for (int t = 1; t < all; t *= 2) counts.push_back(t);
+    counts.push_back(all);
+    return counts;
+}
+
+BenchResults runBench(const gpu::VulkanContext& ctx, const BenchOptions& options,
+                      const std::string& commandLine, const BenchProgressFn& progress) {
+    checkOptions(options);
+    for (const std::string& file : options.scenes)
+        if (!std::filesystem::is_regular_file(file)) throw Error(file + ": no such scene file");
+    const auto start = Clock::now();
+    BenchResults results;
+    results.vkrayVersion = VKRAY_VERSION;
+    results.revision = VKRAY_REVISION;
+    results.commandLine = commandLine;
+    results.startedAt = isoTimeUtc();
+    results.device = ctx.info().name;
+    results.driver = ctx.info().driver;
+    results.deviceType = ctx.info().type;
+    results.vulkanApi = ctx.info().apiVersion;
+    results.hardwareThreads = int(std::thread::hardware_concurrency());
+    results.repeat = options.repeat;
+    Runner runner(ctx, options, progress);
+    results.threadCounts = runner.threads();
+    for (size_t i = 0; i < options.scenes.size(); ++i) {
+        runner.startScene();
+        results.scenes.push_back(runner.runScene(options.scenes[i], int(i) + 1, int(options.scenes.size())));
+    }
+    results.elapsedSeconds = msSince(start) / 1000.0;
+    return results;
+}
+
+}  // namespace vkray::bench

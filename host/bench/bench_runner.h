@@ -1,0 +1,51 @@
+// `vkray bench` (issue 6): every accelerator on every scene, measured the same way (DESIGN.md,
+// "Performance measurements"): CPU build time over thread counts, GPU trace time from timestamp
+// queries split by ray kind, traversal work per ray from the statistics variant of the kernels,
+// and the image error of each configuration against a double-precision CPU reference, so time can
+// be weighed against error. The results go to report.h's writers.
+#pragma once
+
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "bench/bench_results.h"
+#include "gpu/vulkan_context.h"
+
+namespace vkray::bench {
+
+struct BenchOptions {
+    std::vector<std::string> scenes;
+    // Accelerators compared at the scene's maxdepth; each is built and traced on its own.
+    std::vector<std::string> accels = {"bvh-fast", "bvh-hq", "kd-stack", "kd-restart", "kd-backtrack"};
+    int width = 0, height = 0;   // 0: the scene's own size
+    int repeat = 3;              // timed runs after one warm-up; medians with min-max
+    std::vector<int> threads;    // build-scaling thread counts; empty: 1, 2, 4, ... up to all cores
+    // AAC deltas of the sweep after seed 001 (Tables 5.5, 5.6), built as `bvh` (AAC-HQ's epsilon)
+    // with --aac-delta; empty: no sweep.
+    std::vector<int> deltas = {4, 8, 12, 20, 30, 50};
+    // Depths of the maxdepth sweep; empty: 1 .. scene maxdepth - 1. Depths at or above the scene's
+    // are left out (the reference is rendered at the scene's maxdepth).
+    std::vector<int> maxDepths;
+    bool maxDepthSweep = true;
+};
+
+// What the runner is doing, for a progress line.
+struct BenchProgress {
+    int scene = 0, scenes = 0;     // 1-based
+    std::string sceneName;
+    std::string step;              // "reference", "build bvh-hq (2 threads)", "trace kd-restart"...
+    int repeat = 0, repeats = 0;   // 1-based; 0 when the step is not repeated
+    double elapsedSeconds = 0.0;
+};
+using BenchProgressFn = std::function<void(const BenchProgress&)>;
+
+// The default build-scaling thread counts for this machine: 1, 2, 4, ... and all cores.
+std::vector<int> defaultThreadCounts();
+
+// Runs the whole benchmark. Throws vkray::Error (a scene that does not load or does not fit the
+// device, an unknown accelerator, a render the device cuts short) before writing anything.
+BenchResults runBench(const gpu::VulkanContext& ctx, const BenchOptions& options,
+                      const std::string& commandLine, const BenchProgressFn& progress = {});
+
+}  // namespace vkray::bench

@@ -1,0 +1,27 @@
+// The inline SVG plots of report.html, one function per plot, each from one scene's results.
+// Internal to host/bench.
+#pragma once
+
+#include <string>
+
+#include "bench/bench_results.h"
+#include "bench/report_images.h"
+
+namespace vkray::bench {
+
+// Error against run time: x = build + trace ms (log), y = RMSE (log; 0 on an "identical (0)" row
+// below the axis), one colour and marker per group, the Pareto front joined by a step line and
+// emphasised, every point with a tooltip. Empty when the scene has no error points.
+std::string errorPlotSvg(const SceneResult& scene);
+
+// Build speed-up against threads, one line per accelerator, the ideal linear speed-up dashed.
+// Empty when fewer than two thread counts were measured.
+std::string scalingPlotSvg(const SceneResult& scene);
+
+// Build and trace ms against the AAC delta (seed 001, Figure 5.1). Empty without a sweep.
+std::string deltaPlotSvg(const SceneResult& scene);
+
+// The heatmap's colour bar with its numbers, 0 to scale.max.
+std::string colourBarSvg(const HeatmapScale& scale);
+
+}  // namespace vkray::bench

@@ -1,0 +1,82 @@
+// What bench.md and report.html both show (report.h), built once from BenchResults as plain-text
+// cells and sentences; each writer only renders them as Markdown or HTML, so the two cannot drift.
+// Internal to host/bench.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "bench/bench_results.h"
+
+namespace vkray::bench {
+
+// What an optional or unmeasured figure prints.
+inline constexpr const char* kMissing = "—";
+// The marker of the Pareto front and of the best delta.
+inline constexpr const char* kStar = "★";
+
+struct Table {
+    std::string title;
+    std::vector<std::string> columns;
+    std::vector<bool> numeric;                   // per column: right-aligned
+    std::vector<std::vector<std::string>> rows;
+    std::vector<bool> marked;                    // per row: highlighted (carries a ★ in a cell too)
+    std::vector<std::string> notes;              // shown below the table
+    std::string whenEmpty;                       // shown instead of a table without rows
+};
+
+// Label and value pairs.
+using Facts = std::vector<std::pair<std::string, std::string>>;
+
+// The run: device, driver, vkray version and revision, command line, date, repeats, threads.
+Facts runFacts(const BenchResults& results);
+// The scene: file, triangles, size, maxdepth, the reference render.
+Facts sceneFacts(const SceneResult& scene);
+
+// The tables of one scene, in report order: accelerators, build scaling, concurrent build, AAC
+// delta sweep, error against run time.
+Table acceleratorTable(const SceneResult& scene);
+Table buildScalingTable(const SceneResult& scene);
+Table concurrentBuildTable(const SceneResult& scene);
+Table deltaSweepTable(const SceneResult& scene);
+Table errorTable(const SceneResult& scene);
+std::vector<Table> sceneTables(const SceneResult& scene);
+
+// Which traversal traces fastest, from the median trace times: the fastest BVH against the fastest
+// kd traversal with their ratio, then the kd traversals among themselves; says what is missing
+// when a family was not run.
+std::string whoWins(const SceneResult& scene);
+
+// The thread counts of the scene's build timings, ascending, and the one speed-ups are relative
+// to (1 when measured, else the smallest).
+std::vector<int> buildThreadCounts(const SceneResult& scene);
+// median(base threads) / median(threads); empty when either is missing or not positive.
+std::optional<double> buildSpeedup(const AccelResult& accel, int baseThreads, int threads);
+
+// Index of the delta with the lowest build + trace total (medians); empty without deltas.
+std::optional<size_t> bestDelta(const SceneResult& scene);
+
+// ---- Number formatting (shared so every figure reads the same in both files) ------------------
+
+// Milliseconds, rates and other magnitudes: 2 significant digits under 1, 1 decimal under 100,
+// an integer above ("0.042", "12.3", "1234").
+std::string formatNumber(double v);
+// "12.3 (11.9–13.0)": the median with the min–max spread.
+std::string formatSpread(const Spread& s);
+// "2.40x"
+std::string formatRatio(double r);
+// "512 B", "12.3 KiB", "4.56 MiB", "1.20 GiB"
+std::string formatBytes(uint64_t bytes);
+// Per-ray counts: 2 decimals under 10, 1 above.
+std::string formatPerRay(double v);
+// RMSE with 3 significant digits ("0.0123", "1.23e-05"), exactly "0" when identical.
+std::string formatRmse(double rmse);
+// dB with 1 decimal, "identical" when empty.
+std::string formatPsnr(const std::optional<double>& psnr);
+// A fraction as a percentage with 2 decimals ("0.25 %").
+std::string formatPercent(double fraction);
+
+}  // namespace vkray::bench

@@ -1,0 +1,151 @@
+// `vkray bench SCENE...`: the accelerators against each other on one Vulkan device (issue 6):
+// build and trace time, work per ray, error against run time; writes bench.json, bench.md,
+// report.html and images/ into --out.
+#include <unistd.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "accel/accel.h"
+#include "bench/bench_runner.h"
+#include "bench/report.h"
+#include "cli/cli_options.h"
+#include "cli/commands.h"
+#include "core/error.h"
+#include "gpu/vulkan_context.h"
+
+namespace vkray::cli {
+namespace {
+
+struct BenchArgs {
+    std::vector<std::string> scenes;
+    std::string accels;
+    std::string device;
+    std::string size;
+    int repeat = 3;
+    std::string out = "vkray-bench";
+    std::string threads;
+    std::string deltas;
+    std::string maxDepths;
+    bool quiet = false;
+};
+
+bench::BenchOptions resolveOptions(const BenchArgs& args) {
+    bench::BenchOptions o;
+    o.scenes = args.scenes;
+    if (!args.accels.empty()) o.accels = parseNameList(args.accels, "--accel");
+    for (const std::string& a : o.accels) accel::parseAccel(a);
+    if (!args.size.empty()) std::tie(o.width, o.height) = parseSize(args.size);
+    if (args.repeat < 1 || args.repeat > 1000)
+        throw Error("--repeat " + std::to_string(args.repeat) + ": expected 1..1000");
+    o.repeat = args.repeat;
+    if (!args.threads.empty()) o.threads = parseIntList(args.threads, "--threads", 1, 1024, false);
+    if (!args.deltas.empty()) o.deltas = parseIntList(args.deltas, "--deltas", 1, 1024, true);
+    if (args.maxDepths == "none") o.maxDepthSweep = false;
+    else if (!args.maxDepths.empty()) o.maxDepths = parseIntList(args.maxDepths, "--maxdepths", 1, 64, false);
+    return o;
+}
+
+std::string joinCommandLine(int argc, const char* const* argv) {
+    std::string line;
+    for (int i = 0; i < argc; ++i) line += (i ? " " : "") + std::string(argv[i]);
+    return line;
+}
+
+// The progress line: rewritten in place on a terminal; in a log, one line per step (repeats of a
+// step are not repeated there).
+class ProgressLine {
+public:
+    explicit ProgressLine(bool quiet) : quiet_(quiet), terminal_(isatty(STDERR_FILENO)) {}
+    void operator()(const bench::BenchProgress& p) {
+        if (quiet_) return;
+        char line[256];
+        const std::string repeat = p.repeats > 0 ? (p.repeat == 0 ? " warm-up" : " " + std::to_string(p.repeat) + "/" + std::to_string(p.repeats)) : "";
+        std::snprintf(line, sizeof line, "bench: scene %d/%d %s | %s%s | %.1f s", p.scene, p.scenes,
+                      p.sceneName.c_str(), p.step.c_str(), repeat.c_str(), p.elapsedSeconds);
+        if (terminal_) {
+            std::fprintf(stderr, "\r%-100s", line);
+        } else if (p.step != lastStep_ || p.sceneName != lastScene_) {
+            std::fprintf(stderr, "%s\n", line);
+        }
+        lastStep_ = p.step;
+        lastScene_ = p.sceneName;
+    }
+    void finish() {
+        if (!quiet_ && terminal_) std::fprintf(stderr, "\r%-100s\r", "");
+    }
+
+private:
+    bool quiet_, terminal_;
+    std::string lastStep_, lastScene_;
+};
+
+void printSummary(const bench::BenchResults& r, const std::filesystem::path& dir) {
+    std::printf("device: %s (%s)\n", r.device.c_str(), r.driver.c_str());
+    for (const bench::SceneResult& s : r.scenes) {
+        std::printf("%s (%llu triangles, %dx%d):\n", s.file.c_str(), (unsigned long long)s.triangles, s.width,
+                    s.height);
+        for (const bench::AccelResult& a : s.accels)
+            std::printf("  %-14s build %9.1f ms  trace %9.1f ms  %7.2f Mrays/s  %6.1f nodes/ray  RMSE %.4f\n",
+                        a.accel.c_str(), a.build.back().ms.median, a.traceMs.median, a.mraysPerSecond,
+                        a.nodesPerRay, a.error.rmse);
+    }
+    std::printf("wrote %s, %s, %s and %s in %.1f s\n", (dir / "bench.json").c_str(), (dir / "bench.md").c_str(),
+                (dir / "report.html").c_str(), (dir / "images").c_str(), r.elapsedSeconds);
+}
+
+// The output folder must be usable before minutes of measuring.
+void prepareOutputDir(const std::filesystem::path& dir) {
+    std::error_code ec;
+    std::filesystem::create_directories(dir, ec);
+    if (ec || !std::filesystem::is_directory(dir))
+        throw Error("--out " + dir.string() + ": cannot create the folder" + (ec ? ": " + ec.message() : ""));
+    if (access(dir.c_str(), W_OK) != 0) throw Error("--out " + dir.string() + ": the folder is not writable");
+}
+
+}  // namespace
+
+void registerBenchCommand(CLI::App& app, int& exitCode, int argc, const char* const* argv) {
+    auto* cmd = app.add_subcommand("bench", "Compare accelerators: build and trace time, work per ray, error against run time");
+    auto args = std::make_shared<BenchArgs>();
+    cmd->add_option("scenes", args->scenes, "Scene files")->required();
+    cmd->add_option("--accel", args->accels,
+                    "Comma-separated accelerators (default bvh-fast,bvh-hq,kd-stack,kd-restart,kd-backtrack)");
+    cmd->add_option("--device", args->device, "Vulkan device: index or name substring (see `vkray devices`)");
+    cmd->add_option("--size", args->size, "Image size WIDTHxHEIGHT (default: each scene's 'size')");
+    cmd->add_option("--repeat", args->repeat, "Timed runs after one warm-up; medians with min-max")->default_str("3");
+    cmd->add_option("--out", args->out, "Output folder for bench.json, bench.md, report.html, images/")
+        ->default_str(args->out);
+    cmd->add_option("--threads", args->threads, "Build-scaling thread counts, e.g. 1,2 (default 1, 2, 4, ... all cores)");
+    cmd->add_option("--deltas", args->deltas, "AAC delta sweep (seed 001 Table 5.5), e.g. 4,6,8,...,50, or none (default 4,8,12,20,30,50)");
+    cmd->add_option("--maxdepths", args->maxDepths, "maxdepth sweep below the scene's, e.g. 1,2, or none (default: every depth below the scene's)");
+    cmd->add_flag("--quiet", args->quiet, "No progress line");
+    const std::string commandLine = joinCommandLine(argc, argv);
+    cmd->callback([args, commandLine, &exitCode] {
+        const bench::BenchOptions options = resolveOptions(*args);
+        for (const std::string& file : options.scenes)
+            if (!std::filesystem::is_regular_file(file)) throw Error(file + ": no such scene file");
+        const std::filesystem::path dir = args->out;
+        prepareOutputDir(dir);
+        const gpu::VulkanContext ctx(
+            gpu::ContextOptions{.validation = gpu::validationRequestedByEnvironment(), .device = args->device});
+        ProgressLine progress(args->quiet);
+        bench::BenchResults results;
+        try {
+            results = bench::runBench(ctx, options, commandLine,
+                                      [&progress](const bench::BenchProgress& p) { progress(p); });
+        } catch (...) {
+            progress.finish();  // the error message gets a line of its own
+            throw;
+        }
+        progress.finish();
+        bench::writeBenchReport(results, dir);
+        printSummary(results, dir);
+        exitCode = 0;
+    });
+}
+
+}  // namespace vkray::cli

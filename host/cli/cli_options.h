@@ -1,0 +1,19 @@
+// Option values several subcommands parse the same way.
+#pragma once
+
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace vkray::cli {
+
+// "640x480" -> (640, 480), within the image limits of scene.h; `option` names the flag in errors.
+std::pair<int, int> parseSize(const std::string& text, const std::string& option = "--size");
+
+// "1,2,4" -> {1, 2, 4}, each in [lo, hi]; "none" -> {} when allowNone.
+std::vector<int> parseIntList(const std::string& text, const std::string& option, int lo, int hi, bool allowNone);
+
+// "a,b,c" -> {"a", "b", "c"}; empty items are an error.
+std::vector<std::string> parseNameList(const std::string& text, const std::string& option);
+
+}  // namespace vkray::cli

@@ -1,0 +1,24 @@
+# `vkray bench` end to end, as a user runs it. Included from tests/CMakeLists.txt; the report's
+# completeness is checked in depth by bench_smoke_test.cpp, this checks the command itself.
+set(BENCH_OUT ${CMAKE_BINARY_DIR}/test-output/bench-cli)
+set(BENCH_SCENE ${CMAKE_SOURCE_DIR}/scenes/objects.scene)
+
+add_test(NAME bench.cli.writes_report
+         COMMAND ${CMAKE_COMMAND} -DVKRAY=$<TARGET_FILE:vkray> -DSCENE=${BENCH_SCENE} -DOUT=${BENCH_OUT}
+                 -P ${CMAKE_CURRENT_SOURCE_DIR}/bench/run_bench_cli.cmake)
+set_tests_properties(bench.cli.writes_report PROPERTIES TIMEOUT 300 ENVIRONMENT "VKRAY_VALIDATION=1")
+
+# Bad options fail before any measuring, with one error line.
+set(expect_error ${CMAKE_CURRENT_SOURCE_DIR}/cli/expect_error.sh)
+function(vkray_bench_error name pattern)
+  add_test(NAME bench.cli.error.${name} COMMAND ${expect_error} "${pattern}" $<TARGET_FILE:vkray> bench ${ARGN})
+  set_tests_properties(bench.cli.error.${name} PROPERTIES TIMEOUT 120)
+endfunction()
+vkray_bench_error(missing_scene "nope\\.scene: no such scene file" ${BENCH_OUT}/nope.scene --out ${BENCH_OUT}/x)
+vkray_bench_error(unknown_accel "octree" ${BENCH_SCENE} --accel bvh,octree --out ${BENCH_OUT}/x)
+vkray_bench_error(empty_accel_item "--accel bvh,,kd-stack: empty item" ${BENCH_SCENE} --accel bvh,,kd-stack --out ${BENCH_OUT}/x)
+vkray_bench_error(repeat_zero "--repeat 0" ${BENCH_SCENE} --repeat 0 --out ${BENCH_OUT}/x)
+vkray_bench_error(bad_delta "--deltas 4,x" ${BENCH_SCENE} --deltas 4,x --out ${BENCH_OUT}/x)
+vkray_bench_error(bad_threads "--threads 0" ${BENCH_SCENE} --threads 0 --out ${BENCH_OUT}/x)
+vkray_bench_error(bad_size "--size 10x" ${BENCH_SCENE} --size 10x --out ${BENCH_OUT}/x)
+vkray_bench_error(out_not_a_folder "--out .*cannot create" ${BENCH_SCENE} --out ${BENCH_SCENE}/sub)

@@ -1,0 +1,424 @@
+// The report writers on a synthetic BenchResults: one full scene (five accelerators, a delta sweep,
+// a concurrent build, error points with an identical image) and one minimal scene (one
+// accelerator, one thread count, nothing else). Checks what a reader relies on: every image
+// embedded, nothing fetched from the network, every error point plotted, the Pareto front and the
+// best delta marked, one table row per accelerator, the right winner with the right ratio, and the
+// files writeBenchReport leaves behind.
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <regex>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "bench/colormap.h"
+#include "bench/report.h"
+#include "bench/report_images.h"
+#include "bench/report_plots.h"
+#include "bench/report_tables.h"
+#include "core/error.h"
+#include "image/image_io.h"
+
+namespace fs = std::filesystem;
+using namespace vkray;
+using namespace vkray::bench;
+
+namespace {
+
+Image gradient(int w, int h, float shift) {
+    Image im(w, h, 3);
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x)
+            for (int c = 0; c < 3; ++c) im.at(x, y, c) = std::min(1.0f, shift + 0.1f * float(x + y + c));
+    return im;
+}
+
+Spread around(double median) { return {median, 0.9 * median, 1.2 * median}; }
+
+AccelResult accel(const std::string& name, double traceMs, std::vector<ThreadTiming> build, int w, int h,
+                  uint32_t nodeBase) {
+    AccelResult a;
+    a.accel = name;
+    a.kernel = name;
+    a.build = std::move(build);
+    a.structureBytes = 123456;
+    a.traceMs = around(traceMs);
+    a.rayKinds = {{"primary", uint64_t(w * h), 40.0, ""},
+                  {"shadow", uint64_t(2 * w * h), std::nullopt, "within the noise"},
+                  {"secondary", 0, std::nullopt, "no reflective or refractive surfaces"}};
+    a.mraysPerSecond = 12.5;
+    a.nodesPerRay = 31.25;
+    a.leavesPerRay = 3.5;
+    a.trianglesPerRay = 7.25;
+    a.error = {.rmse = 0.01, .psnr = 40.0, .maxError = 0.1, .primaryMismatch = 0.002};
+    a.image = gradient(w, h, 0.1f);
+    a.diff = gradient(w, h, 0.0f);
+    for (int i = 0; i < w * h; ++i) a.nodesPerPixel.push_back(nodeBase + uint32_t(i % 7));
+    return a;
+}
+
+std::vector<ThreadTiming> oneAndTwoThreads(double oneMs, double twoMs) { return {{1, around(oneMs)}, {2, around(twoMs)}}; }
+
+ErrorPoint errorPoint(const std::string& label, const std::string& group, double buildMs, double traceMs, double rmse) {
+    ErrorPoint p;
+    p.label = label;
+    p.group = group;
+    p.accel = "bvh-hq";
+    p.maxDepth = 5;
+    p.precision = group == "cpu-reference" ? "double (CPU)" : "float (GPU)";
+    p.buildMs = buildMs;
+    p.traceMs = traceMs;
+    p.error.rmse = rmse;
+    if (rmse > 0.0) p.error.psnr = 20.0 * std::log10(1.0 / rmse);
+    return p;
+}
+
+SceneResult fullScene() {
+    SceneResult s;
+    s.file = "scenes/alpha.scene";
+    s.name = "alpha";
+    s.triangles = 69668;
+    s.width = 8;
+    s.height = 6;
+    s.maxDepth = 5;
+    s.referenceAccel = "bvh-hq";
+    s.referenceBuildMs = 5.0;
+    s.referenceRenderMs = 400.0;
+    s.reference = gradient(8, 6, 0.1f);
+    s.accels = {accel("bvh-hq", 1.0, oneAndTwoThreads(16.0, 9.0), 8, 6, 10),
+                accel("bvh-fast", 1.5, oneAndTwoThreads(8.0, 5.0), 8, 6, 12),
+                accel("kd-stack", 2.4, oneAndTwoThreads(36.0, 20.0), 8, 6, 30),
+                accel("kd-restart", 3.0, oneAndTwoThreads(36.0, 20.0), 8, 6, 40),
+                accel("kd-backtrack", 2.8, oneAndTwoThreads(36.0, 20.0), 8, 6, 35)};
+    s.deltas = {{4, 0.1, around(10.0), around(3.0), 40.0, 8.0, 70.0},
+                {8, 0.1, around(8.0), around(3.5), 42.0, 9.0, 72.0},
+                {20, 0.1, around(12.0), around(3.2), 38.0, 7.5, 68.0}};
+    s.errorPoints = {errorPoint("bvh-hq", "accelerator", 9.0, 1.0, 0.01),
+                     errorPoint("kd-stack", "accelerator", 20.0, 2.4, 0.01),
+                     errorPoint("aac delta 8", "aac-delta", 8.0, 3.5, 0.008),
+                     errorPoint("bvh maxdepth 1", "maxdepth", 9.0, 0.4, 0.2),
+                     errorPoint("CPU double", "cpu-reference", 5.0, 400.0, 0.0)};
+    markParetoFront(s.errorPoints);
+    s.concurrent = ConcurrentBuild{"bvh-hq", "kd-stack", around(9.0), around(20.0), around(22.0)};
+    return s;
+}
+
+// One accelerator, built at one thread count; no sweep, no concurrent build; a name to escape.
+SceneResult minimalScene() {
+    SceneResult s;
+    s.file = "scenes/beta.scene";
+    s.name = "beta<&>";
+    s.triangles = 12;
+    s.width = 4;
+    s.height = 3;
+    s.maxDepth = 2;
+    s.referenceAccel = "kd-restart";
+    s.reference = gradient(4, 3, 0.2f);
+    s.accels = {accel("kd-restart", 5.0, {{2, around(1.0)}}, 4, 3, 3)};
+    s.errorPoints = {errorPoint("kd-restart", "accelerator", 1.0, 5.0, 0.03)};
+    markParetoFront(s.errorPoints);
+    return s;
+}
+
+BenchResults results() {
+    BenchResults r;
+    r.vkrayVersion = "0.1.0";
+    r.revision = "abc1234";
+    r.commandLine = "vkray bench scenes/alpha.scene scenes/beta.scene --repeat 3";
+    r.startedAt = "2026-11-02T10:00:00Z";
+    r.elapsedSeconds = 42.0;
+    r.device = "llvmpipe (LLVM 15.0.6, 256 bits)";
+    r.driver = "Mesa 22.3.6";
+    r.deviceType = "cpu";
+    r.vulkanApi = "1.3.230";
+    r.hardwareThreads = 2;
+    r.repeat = 3;
+    r.threadCounts = {1, 2};
+    r.scenes = {fullScene(), minimalScene()};
+    return r;
+}
+
+constexpr size_t kExpectedImages = (1 + 5 * 3) + (1 + 1 * 3);  // per scene: reference, then 3 per accelerator
+
+size_t count(const std::string& haystack, const std::string& needle) {
+    size_t n = 0;
+    for (size_t at = haystack.find(needle); at != std::string::npos; at = haystack.find(needle, at + needle.size())) ++n;
+    return n;
+}
+
+// The text from `heading` to the next heading of the same level or above.
+std::string section(const std::string& text, const std::string& heading) {
+    const size_t start = text.find(heading);
+    if (start == std::string::npos) return "";
+    const size_t end = text.find("\n#", start + heading.size());
+    return text.substr(start, end == std::string::npos ? std::string::npos : end - start);
+}
+
+std::vector<std::string> lines(const std::string& text) {
+    std::vector<std::string> out;
+    std::istringstream in(text);
+    for (std::string line; std::getline(in, line);) out.push_back(line);
+    return out;
+}
+
+std::string readText(const fs::path& p) {
+    std::ifstream in(p, std::ios::binary);
+    return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+}  // namespace
+
+// ---- Formatting and helpers ---------------------------------------------------------------------
+
+TEST(BenchReport, NumbersHaveSensiblePrecision) {
+    EXPECT_EQ(formatNumber(0.042), "0.042");
+    EXPECT_EQ(formatNumber(12.345), "12.3");
+    EXPECT_EQ(formatNumber(1234.4), "1234");
+    EXPECT_EQ(formatNumber(std::nan("")), "—");
+    EXPECT_EQ(formatSpread({12.34, 11.9, 13.04}), "12.3 (11.9–13.0)");
+    EXPECT_EQ(formatRatio(2.4), "2.40x");
+    EXPECT_EQ(formatBytes(512), "512 B");
+    EXPECT_EQ(formatBytes(123456), "120.6 KiB");
+    EXPECT_EQ(formatBytes(5u << 20), "5.00 MiB");
+    EXPECT_EQ(formatRmse(0.0), "0");
+    EXPECT_EQ(formatRmse(1.234e-5), "1.23e-05");
+    EXPECT_EQ(formatPsnr(std::nullopt), "identical");
+    EXPECT_EQ(formatPercent(0.0025), "0.25 %");
+}
+
+TEST(BenchReport, Base64MatchesRfc4648) {
+    auto b64 = [](const std::string& s) { return base64(std::vector<unsigned char>(s.begin(), s.end())); };
+    EXPECT_EQ(b64(""), "");
+    EXPECT_EQ(b64("f"), "Zg==");
+    EXPECT_EQ(b64("fo"), "Zm8=");
+    EXPECT_EQ(b64("foo"), "Zm9v");
+    EXPECT_EQ(b64("foobar"), "Zm9vYmFy");
+    EXPECT_EQ(base64({0xff, 0xfe, 0x00}), "//4A");
+}
+
+TEST(BenchReport, HeatmapScaleIgnoresAnOutlierPixel) {
+    std::vector<uint32_t> v(1000, 10);
+    v[500] = 100000;
+    EXPECT_EQ(percentile(v, 99.0), 10u);
+    EXPECT_EQ(percentile({1, 2, 3, 4}, 50.0), 2u);
+    EXPECT_EQ(percentile({}, 99.0), 0u);
+
+    SceneResult s = minimalScene();
+    s.width = 40;  // the render stays 4x3: the counts take the scene's size
+    s.height = 30;
+    s.accels[0].nodesPerPixel.assign(1200, 10);
+    s.accels[0].nodesPerPixel[3] = 5000;
+    const HeatmapScale scale = heatmapScale(s);
+    EXPECT_EQ(scale.max, 10.0);
+    EXPECT_EQ(scale.largest, 5000u);
+}
+
+// ---- Tables and the verdict --------------------------------------------------------------------
+
+TEST(BenchReport, WhoWinsNamesTheFastestWithItsRatio) {
+    const std::string s = whoWins(fullScene());
+    EXPECT_NE(s.find("bvh-hq traces 2.40x faster than kd-stack, the fastest kd traversal (1.0 ms against 2.4 ms)."),
+              std::string::npos)
+        << s;
+    EXPECT_NE(s.find("Among the kd traversals, kd-stack is fastest, 1.25x faster than kd-restart, the slowest"),
+              std::string::npos)
+        << s;
+}
+
+TEST(BenchReport, WhoWinsWhenAKdTraversalBeatsTheBvh) {
+    SceneResult scene = fullScene();
+    scene.accels[2].traceMs = around(0.5);  // kd-stack
+    const std::string s = whoWins(scene);
+    EXPECT_NE(s.find("kd-stack traces 2.00x faster than bvh-hq, the fastest BVH"), std::string::npos) << s;
+}
+
+TEST(BenchReport, WhoWinsSaysWhatIsMissing) {
+    EXPECT_EQ(whoWins(minimalScene()), "No BVH was run. kd-restart traces in 5.0 ms.");
+    SceneResult none = minimalScene();
+    none.accels.clear();
+    EXPECT_EQ(whoWins(none), "No BVH or kd-tree accelerator has a trace time to compare.");
+    SceneResult bvhOnly = fullScene();
+    bvhOnly.accels.resize(2);
+    EXPECT_NE(whoWins(bvhOnly).find("No kd-tree traversal was run. Among the BVHs, bvh-hq is fastest, 1.50x faster"),
+              std::string::npos)
+        << whoWins(bvhOnly);
+}
+
+TEST(BenchReport, TablesMarkTheParetoFrontAndTheBestDelta) {
+    const SceneResult scene = fullScene();
+    const Table errors = errorTable(scene);
+    ASSERT_EQ(errors.rows.size(), scene.errorPoints.size());
+    for (size_t i = 0; i < errors.rows.size(); ++i) {
+        EXPECT_EQ(errors.marked[i], scene.errorPoints[i].pareto) << i;
+        EXPECT_EQ(errors.rows[i].back(), scene.errorPoints[i].pareto ? "★" : "") << i;
+    }
+    EXPECT_FALSE(scene.errorPoints[1].pareto);  // kd-stack: slower than bvh-hq at the same error
+    EXPECT_EQ(errors.rows[4][8], "identical");  // the CPU reference's PSNR
+
+    const Table deltas = deltaSweepTable(scene);
+    ASSERT_EQ(deltas.rows.size(), 3u);
+    EXPECT_EQ(deltas.marked, (std::vector<bool>{false, true, false}));  // 8: 11.5 ms, the lowest total
+    EXPECT_EQ(deltas.rows[1][0], "8 ★");
+    EXPECT_EQ(deltas.rows[1][4], "11.5");
+    EXPECT_EQ(deltas.rows[1][7], "51.0");  // tests per ray = nodes + triangles
+}
+
+TEST(BenchReport, AcceleratorTableExplainsEmptyRates) {
+    const Table t = acceleratorTable(fullScene());
+    ASSERT_EQ(t.rows.size(), 5u);
+    EXPECT_EQ(t.rows[0][1], "9.0 (8.1–10.8)");  // the build with the most threads
+    EXPECT_EQ(t.rows[0][5], "40.0");
+    EXPECT_EQ(t.rows[0][6], "—¹");
+    EXPECT_EQ(t.rows[0][7], "—²");
+    EXPECT_NE(std::find(t.notes.begin(), t.notes.end(), "¹ within the noise"), t.notes.end());
+    EXPECT_NE(std::find(t.notes.begin(), t.notes.end(), "² no reflective or refractive surfaces"), t.notes.end());
+}
+
+TEST(BenchReport, ConcurrentBuildShowsTheSaving) {
+    const Table t = concurrentBuildTable(fullScene());
+    ASSERT_EQ(t.rows.size(), 5u);
+    EXPECT_EQ(t.rows[2][1], "29.0 (26.1–34.8)");  // 9 + 20, one after the other
+    EXPECT_EQ(t.rows[4][0], "saving");
+    EXPECT_EQ(t.rows[4][1], "7.0 (24.14 % of the sum)");
+    EXPECT_TRUE(concurrentBuildTable(minimalScene()).rows.empty());
+}
+
+TEST(BenchReport, BuildScalingHasSpeedups) {
+    const Table t = buildScalingTable(fullScene());
+    EXPECT_EQ(t.columns, (std::vector<std::string>{"accel", "ms, 1 thread", "ms, 2 threads", "speed-up, 2 threads"}));
+    ASSERT_EQ(t.rows.size(), 5u);
+    EXPECT_EQ(t.rows[0], (std::vector<std::string>{"bvh-hq", "16.0", "9.0", "1.78x"}));
+}
+
+// ---- Markdown --------------------------------------------------------------------------------
+
+TEST(BenchReport, MarkdownHasTheHeaderAndOneRowPerAccelerator) {
+    const BenchResults r = results();
+    const std::string md = benchMarkdown(r);
+    for (const std::string& s : {r.device, r.driver, r.commandLine, r.startedAt, std::string("abc1234")})
+        EXPECT_NE(md.find(s), std::string::npos) << s;
+    for (const SceneResult& scene : r.scenes) {
+        const std::string table = section(md.substr(md.find("## " + scene.name)), "### Accelerators");
+        size_t rows = 0;
+        for (const std::string& line : lines(table)) rows += line.rfind("| ", 0) == 0;
+        EXPECT_EQ(rows, 2 + scene.accels.size()) << table;  // header, alignment, one per accelerator
+        for (const AccelResult& a : scene.accels) EXPECT_EQ(count(table, "\n| " + a.accel + " |"), 1u) << a.accel;
+        EXPECT_NE(md.find("**Who wins:** " + whoWins(scene)), std::string::npos);
+    }
+    const std::string errors = section(md, "### Error against run time");
+    EXPECT_EQ(count(errors, "| ★ |"), 4u);
+    EXPECT_NE(md.find("No AAC delta sweep was run for this scene."), std::string::npos);
+    EXPECT_NE(md.find("¹ within the noise"), std::string::npos);
+}
+
+// ---- HTML ------------------------------------------------------------------------------------
+
+TEST(BenchReport, HtmlEmbedsEveryImageAndFetchesNothing) {
+    const std::string html = benchHtml(results());
+    EXPECT_EQ(html.rfind("<!DOCTYPE html>", 0), 0u);
+    EXPECT_EQ(count(html, "src=\"data:image/png;base64,"), kExpectedImages);
+    EXPECT_EQ(count(html, "src=\""), kExpectedImages);  // no other source of any kind
+    EXPECT_EQ(html.find("<script"), std::string::npos);
+    EXPECT_EQ(html.find("<link"), std::string::npos);
+    EXPECT_EQ(html.find("url("), std::string::npos);
+    // Base64 could spell "http" by chance: look at everything but the image data.
+    const std::string text = std::regex_replace(html, std::regex("base64,[A-Za-z0-9+/=]*"), "base64,");
+    std::string lower = text;
+    std::transform(lower.begin(), lower.end(), lower.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+    EXPECT_EQ(lower.find("http"), std::string::npos);
+    EXPECT_EQ(lower.find("//"), std::string::npos);  // no protocol-relative URL either
+}
+
+TEST(BenchReport, HtmlHasTheTablesPlotsAndVerdicts) {
+    const BenchResults r = results();
+    const std::string html = benchHtml(r);
+    EXPECT_NE(html.find("<h2>beta&lt;&amp;&gt;</h2>"), std::string::npos);  // escaped, never raw
+    EXPECT_EQ(html.find("beta<&>"), std::string::npos);
+    EXPECT_NE(html.find(whoWins(r.scenes[0])), std::string::npos);
+    EXPECT_EQ(count(html, "<svg class=\"plot error-plot\""), 2u);
+    EXPECT_EQ(count(html, "<svg class=\"plot scaling-plot\""), 1u);  // the minimal scene has one thread count
+    EXPECT_NE(html.find("one thread count only (2 threads)"), std::string::npos);
+    EXPECT_EQ(count(html, "<svg class=\"plot delta-plot\""), 1u);
+    EXPECT_EQ(count(html, "<svg class=\"colour-bar\""), 2u);
+    EXPECT_EQ(count(html, "<tr class=\"marked\">"), 4u + 1u + 1u + 1u);  // fronts (4 and 1), best delta, saving
+    EXPECT_NE(html.find("image-rendering: pixelated"), std::string::npos);
+    EXPECT_NE(html.find("width=\"256\""), std::string::npos);  // 8 px wide, shown 32 times larger
+}
+
+TEST(BenchReport, ErrorPlotHasAMarkerPerPointAndEmphasisesTheFront) {
+    const SceneResult scene = fullScene();
+    const std::string svg = errorPlotSvg(scene);
+    EXPECT_EQ(count(svg, "<g class=\"point"), scene.errorPoints.size());
+    EXPECT_EQ(count(svg, "<g class=\"point emphasised\">"), 4u);
+    EXPECT_NE(svg.find(">identical (0)</text>"), std::string::npos);  // the CPU reference's row
+    for (const ErrorPoint& p : scene.errorPoints)
+        EXPECT_NE(svg.find("<title>" + p.label + " (" + p.group + ")"), std::string::npos) << p.label;
+    for (const std::string group : {"accelerator", "aac-delta", "maxdepth", "cpu-reference", "Pareto front"})
+        EXPECT_NE(svg.find(">" + group + "</text>"), std::string::npos) << group;  // legend
+}
+
+TEST(BenchReport, PlotsAreLeftOutWhenThereIsNothingToPlot) {
+    const SceneResult scene = minimalScene();
+    EXPECT_EQ(scalingPlotSvg(scene), "");
+    EXPECT_EQ(deltaPlotSvg(scene), "");
+    EXPECT_EQ(count(scalingPlotSvg(fullScene()), "<g class=\"point\">"), 5u * 2u);
+    EXPECT_EQ(count(deltaPlotSvg(fullScene()), "<g class=\"point\">"), 3u * 2u);
+}
+
+// ---- Files -----------------------------------------------------------------------------------
+
+TEST(BenchReport, WriteBenchReportWritesEveryFile) {
+    const fs::path dir = fs::path(VKRAY_TEST_OUTPUT_DIR) / "bench_report" / "out";
+    fs::remove_all(dir.parent_path());
+    const BenchResults r = results();
+    writeBenchReport(r, dir);  // creates both levels
+
+    EXPECT_EQ(readText(dir / "bench.md"), benchMarkdown(r));
+    EXPECT_EQ(readText(dir / "report.html"), benchHtml(r));
+    const nlohmann::json json = nlohmann::json::parse(readText(dir / "bench.json"));
+    EXPECT_FALSE(json.empty());
+
+    size_t pngs = 0;
+    for (const auto& entry : fs::directory_iterator(dir / "images")) {
+        ASSERT_EQ(entry.path().extension(), ".png");
+        const Image im = readImage(entry.path());
+        EXPECT_TRUE((im.width == 8 && im.height == 6) || (im.width == 4 && im.height == 3)) << entry.path();
+        ++pngs;
+    }
+    EXPECT_EQ(pngs, kExpectedImages);
+    EXPECT_TRUE(fs::exists(dir / "images" / "alpha_reference.png"));
+    EXPECT_TRUE(fs::exists(dir / "images" / "alpha_kd-restart_nodes.png"));
+    EXPECT_TRUE(fs::exists(dir / "images" / "beta____kd-restart_diff.png"));
+
+    // The heatmaps share the scene's scale, 0 to the 99th percentile of all accelerators (46 nodes,
+    // kd-restart's most): 10 nodes of bvh-hq are viridis(10/46), 46 of kd-restart its top colour.
+    auto levels = [](DisplayColor c) {  // as the PNG stores them: round(255 c)
+        std::vector<float> out;
+        for (float v : {c.r, c.g, c.b}) out.push_back(float(std::lround(255.0 * double(v))) / 255.0f);
+        return out;
+    };
+    const Image heat = readImage(dir / "images" / "alpha_bvh-hq_nodes.png");
+    EXPECT_EQ((std::vector<float>{heat.at(0, 0, 0), heat.at(0, 0, 1), heat.at(0, 0, 2)}), levels(viridis(10.0 / 46.0)));
+    const Image kdHeat = readImage(dir / "images" / "alpha_kd-restart_nodes.png");
+    EXPECT_EQ((std::vector<float>{kdHeat.at(6, 0, 0), kdHeat.at(6, 0, 1), kdHeat.at(6, 0, 2)}), levels(viridis(1.0)));
+}
+
+TEST(BenchReport, WriteBenchReportNamesAPathItCannotWrite) {
+    const fs::path blocker = fs::path(VKRAY_TEST_OUTPUT_DIR) / "bench_report_blocker";
+    fs::remove_all(blocker);
+    std::ofstream(blocker) << "a file, not a directory";
+    for (const fs::path& dir : {blocker, blocker / "sub"}) {
+        try {
+            writeBenchReport(results(), dir);
+            ADD_FAILURE() << "no vkray::Error for " << dir;
+        } catch (const Error& e) {
+            EXPECT_NE(std::string(e.what()).find(dir.string()), std::string::npos) << e.what();
+        }
+    }
+}
