@@ -42,6 +42,9 @@ KindLook lookOf(GeneratorKind kind) {
         case GeneratorKind::Terrain:
             return {"A fractal terrain (diamond-square midpoint displacement)",
                     "ambient 0.04 0.05 0.03\ndiffuse 0.45 0.55 0.3\nspecular 0 0 0\n"};
+        case GeneratorKind::Burst:
+            return {"Random triangles that all share one centroid (every Morton code equal): a stress case",
+                    "ambient 0.05 0.05 0.05\ndiffuse 0.6 0.6 0.65\nspecular 0.2 0.2 0.2\nshininess 30\n"};
     }
     return {"", ""};
 }

@@ -1,5 +1,6 @@
 #include "cpu/ray_triangle.h"
 
+#include <algorithm>
 #include <cmath>
 #include <utility>
 
@@ -8,6 +9,11 @@
 // -ffp-contract=fast, which it does not use in ISO mode (-std=c++20, CMAKE_CXX_EXTENSIONS OFF).
 
 namespace vkray::cpu {
+
+namespace {
+// 16 u, u = 2^-53 the unit roundoff of double: see intersect().
+constexpr double kTNoise = 0x1p-49;
+}  // namespace
 
 double differenceOfProducts(double a, double b, double c, double d) {
     const double cd = c * d;
@@ -67,6 +73,12 @@ std::optional<TriangleHit> WatertightRay::intersect(const TriangleVertices& tri,
     const double az = sz_ * A[kz_], bz = sz_ * B[kz_], cz = sz_ * C[kz_];
     const double t = (U * az + V * bz + W * cz) / det;
     if (!(t > tmin && t < tmax)) return std::nullopt;  // NaN fails too
+    // t must stand above its own rounding, a few ulps of the vertices' distances along the ray (the
+    // deltaZ term of Pharr, Jakob and Humphreys, PBR 3rd ed., 3.9.6): a ray starting on (or a
+    // rounding away from) the plane of a triangle would otherwise "hit" it at a t of pure rounding,
+    // as shadow rays from a concave edge do with the face they were not pushed off. The GPU's float
+    // test has the same rule (shaders/include/triangle.glsl).
+    if (t <= kTNoise * std::max({std::abs(az), std::abs(bz), std::abs(cz)})) return std::nullopt;
     // Collinear vertices can still give a rounded det != 0; zero-area triangles never hit. Tested
     // last: only candidate hits pay for it.
     if (isDegenerate(tri)) return std::nullopt;

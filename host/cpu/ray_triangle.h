@@ -3,7 +3,8 @@
 // by two triangles of a closed mesh hits at least one of them, never neither.
 //
 // Edge cases, by definition:
-// - a hit needs t strictly inside (tmin, tmax);
+// - a hit needs t strictly inside (tmin, tmax), and above its own rounding error (16 ulps of the
+//   vertices' distances along the ray): a ray starting on a triangle's plane never hits it;
 // - a point on an edge or a vertex counts as inside (both triangles of a shared edge report it);
 // - a ray parallel to the triangle's plane misses (its projected triangle has zero area, det = 0,
 //   or the origin lies outside it), and so does a ray lying in the plane whenever that projected

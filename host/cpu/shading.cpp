@@ -21,6 +21,7 @@ SurfacePoint surfaceAt(const Scene& scene, const Hit& hit, const glm::dvec3& dir
     // From the vertices rather than o + t d: its error is relative to the triangle, which is what
     // the origin offset is sized for (Waechter and Binder, Ray Tracing Gems, chapter 6).
     s.position = hit.b0 * p0 + hit.b1 * p1 + hit.b2 * p2;
+    s.offsetScale = offsetScale(s.position, p1 - p0, p2 - p0);
     s.geometricNormal = glm::normalize(glm::cross(p1 - p0, p2 - p0));  // a hit is never degenerate
     s.front = glm::dot(dir, s.geometricNormal) < 0.0;
     s.facingNormal = s.front ? s.geometricNormal : -s.geometricNormal;
@@ -36,10 +37,18 @@ SurfacePoint surfaceAt(const Scene& scene, const Hit& hit, const glm::dvec3& dir
     return s;
 }
 
+glm::dvec3 offsetRayOrigin(const glm::dvec3& p, const glm::dvec3& n, double scale) {
+    return p + n * (1e-9 * scale);
+}
+
 glm::dvec3 offsetRayOrigin(const glm::dvec3& p, const glm::dvec3& n) {
     const glm::dvec3 a = glm::abs(p);
-    const double scale = std::max({1.0, a.x, a.y, a.z});
-    return p + n * (1e-9 * scale);
+    return offsetRayOrigin(p, n, std::max({1.0, a.x, a.y, a.z}));
+}
+
+double offsetScale(const glm::dvec3& p, const glm::dvec3& e1, const glm::dvec3& e2) {
+    const glm::dvec3 a = glm::abs(p), e = glm::max(glm::abs(e1), glm::abs(e2));
+    return std::max({a.x, a.y, a.z}) + std::max({e.x, e.y, e.z});
 }
 
 Interface dielectricInterface(double cosi, double eta) {
@@ -83,11 +92,11 @@ SecondaryRays secondaryRays(const SurfacePoint& s, const Material& m, const glm:
         out.reflected.factor += T * at.reflectance;  // Wr = R + T F
         if (!at.totalInternalReflection) {
             out.refracted.factor = T * (1.0 - at.reflectance);  // Wt = T (1 - F)
-            out.refracted.ray = Ray{offsetRayOrigin(s.position, -s.facingNormal),
+            out.refracted.ray = Ray{offsetRayOrigin(s.position, -s.facingNormal, s.offsetScale),
                                     refractedDirection(d, s.normal, at)};
         }
     }
-    out.reflected.ray = Ray{offsetRayOrigin(s.position, s.facingNormal), reflectedDirection(d, s.normal)};
+    out.reflected.ray = Ray{offsetRayOrigin(s.position, s.facingNormal, s.offsetScale), reflectedDirection(d, s.normal)};
     return out;
 }
 
@@ -110,7 +119,7 @@ glm::dvec3 localShading(const Scene& scene, const Tracer& tracer, const SurfaceP
     const Material& m = scene.materials[s.material];
     glm::dvec3 color = d3(m.emission) + (1.0 - d3(m.transmit)) * d3(m.ambient);
     // Shadow rays leave from the side the ray came from; every triangle blocks (no caustics).
-    const glm::dvec3 shadowOrigin = offsetRayOrigin(s.position, s.facingNormal);
+    const glm::dvec3 shadowOrigin = offsetRayOrigin(s.position, s.facingNormal, s.offsetScale);
     for (const Light& light : scene.lights) {
         const glm::dvec3 C = d3(light.color);
         if (light.type == Light::Type::Point) {

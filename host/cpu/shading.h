@@ -23,15 +23,24 @@ struct SurfacePoint {
     glm::dvec3 normal;           // N: shading normal, dot(N, Nf) >= 0
     bool front = false;          // dot(d, Ng) < 0
     uint32_t material = 0;
+    // What the rounding of `position` scales with (offsetScale() below); 1 for points made by hand.
+    double offsetScale = 1.0;
 };
 
 // The surface at a hit of a ray with direction `dir`. Smooth triangles interpolate their vertex
 // normals; an interpolation of zero length (opposed vertex normals) falls back to Ng.
 SurfacePoint surfaceAt(const Scene& scene, const Hit& hit, const glm::dvec3& dir);
 
-// "Ray origins", CPU rule: P + n * 1e-9 * max(1, max|P_i|). Pass n = Nf for reflection and shadow
-// rays, n = -Nf for refraction.
+// "Ray origins", CPU rule: P + n * 1e-9 * scale. Pass n = Nf for reflection and shadow rays, n = -Nf
+// for refraction. scale = offsetScale(): the magnitudes the rounding of P and of the triangle test
+// scale with (Pharr, Jakob and Humphreys, PBR 3rd ed., 3.9); 1e-9 of it is far above double rounding
+// and far below any feature a float scene can hold, at any scale (the GPU's float rule, with its
+// reasons: shaders/include/ray_offset.glsl).
+glm::dvec3 offsetRayOrigin(const glm::dvec3& p, const glm::dvec3& n, double scale);
+// The same with scale = max(1, max|P_i|), for a point whose triangle is not known.
 glm::dvec3 offsetRayOrigin(const glm::dvec3& p, const glm::dvec3& n);
+// max|P_i| + max|e_i| over the coordinates of P and of the edge vectors e1 = p1 - p0, e2 = p2 - p0.
+double offsetScale(const glm::dvec3& p, const glm::dvec3& e1, const glm::dvec3& e2);
 
 // "Secondary rays": what light does at the interface between air and a dielectric.
 struct Interface {

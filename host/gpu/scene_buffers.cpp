@@ -1,6 +1,7 @@
 #include "gpu/scene_buffers.h"
 
 #include "core/error.h"
+#include "cpu/ray_triangle.h"
 
 namespace vkray::gpu {
 namespace {
@@ -38,8 +39,13 @@ PackedScene packScene(const Scene& scene, const std::vector<uint32_t>& triangleO
     for (size_t slot = 0; slot < count; ++slot) {
         const size_t i = sceneIndex(slot);
         const Triangle& t = scene.triangles[i];
-        p.triangles.push_back({.p0 = t.p0, .material = t.material, .p1 = t.p1,
-                               .original = uint32_t(i), .p2 = t.p2, .pad0 = 0});
+        // A zero-area triangle is never hit (docs/shading.md), but collinear float vertices can
+        // still give the kernels' float edge functions a non-zero det. Decided once here, exactly,
+        // by the CPU's test (the kd builder leaves the same triangles out): such a triangle becomes
+        // the point p0, whose edge functions are exactly 0 in any arithmetic.
+        const bool degenerate = cpu::isDegenerate({glm::dvec3(t.p0), glm::dvec3(t.p1), glm::dvec3(t.p2)});
+        p.triangles.push_back({.p0 = t.p0, .material = t.material, .p1 = degenerate ? t.p0 : t.p1,
+                               .original = uint32_t(i), .p2 = degenerate ? t.p0 : t.p2, .pad0 = 0});
     }
     if (!scene.normals.empty()) {
         p.normals.reserve(count);

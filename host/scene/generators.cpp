@@ -9,7 +9,7 @@
 namespace vkray {
 namespace {
 
-constexpr std::string_view kNames[] = {"spheres", "soup", "terrain"};
+constexpr std::string_view kNames[] = {"spheres", "soup", "terrain", "burst"};
 
 // SplitMix64 (Steele, Lea, Flood 2014): tiny, fast, and the same sequence everywhere.
 class Random {
@@ -132,15 +132,18 @@ std::vector<double> diamondSquare(int64_t size, Random& rng, double roughness) {
 // The terrain: the top-left (g + 1) x (h + 1) corner of a diamond-square field, heights scaled to
 // [0, 0.5], centred over x, z in [-1, 1]; two triangles a cell facing +y, cells row by row.
 bool generateTerrain(int64_t n, Random& rng, const Emitter& emit) {
-    const auto [gx, gz] = terrainGrid(n);
+    // Plain variables, not structured bindings: the lambda below captures them, which clang before
+    // 16 (the fuzz build's clang 14) refuses.
+    const TerrainGrid grid = terrainGrid(n);
+    const int64_t gx = grid.cellsX, gz = grid.cellsZ;
     int64_t size = 3;
     while (size - 1 < std::max(gx, gz)) size = 2 * (size - 1) + 1;
     const std::vector<double> field = diamondSquare(size, rng, 0.55);
-    const auto [minIt, maxIt] = std::minmax_element(field.begin(), field.end());
-    const double span = *maxIt > *minIt ? *maxIt - *minIt : 1.0;
+    const auto range = std::minmax_element(field.begin(), field.end());
+    const double lowest = *range.first, span = *range.second > lowest ? *range.second - lowest : 1.0;
     const double cell = 2.0 * kGeneratedHalfWidth / double(std::max(gx, gz));
     const auto vertex = [&](int64_t x, int64_t z) {
-        const double y = 0.5 * kGeneratedHeight * (field[size_t(z * size + x)] - *minIt) / span;
+        const double y = 0.5 * kGeneratedHeight * (field[size_t(z * size + x)] - lowest) / span;
         return glm::dvec3(cell * (double(x) - 0.5 * double(gx)), y, cell * (double(z) - 0.5 * double(gz)));
     };
     for (int64_t z = 0; z < gz; ++z)
@@ -148,6 +151,30 @@ bool generateTerrain(int64_t n, Random& rng, const Emitter& emit) {
             const glm::dvec3 a = vertex(x, z), b = vertex(x + 1, z), c = vertex(x + 1, z + 1), d = vertex(x, z + 1);
             if (!emit(a, d, c) || !emit(a, c, b)) return false;
         }
+    return true;
+}
+
+// N triangles around one centre, all with exactly that centroid (a stress case for builders: every
+// Morton code of an AAC build is equal, Gu et al. 2013 section 4.1 then splits in the middle, and
+// every triangle overlaps every other, the worst case for a kd-tree's clipping). Vertex offsets
+// v0, v1 are multiples of 2^-(12 + k) with at most 11 significant bits and v2 = -(v0 + v1), so
+// p0 + p1 + p2 and its division by 3 are exact in float: the builders' centroid (p0 + p1 + p2) / 3
+// is the centre for every triangle, not just within rounding. Sizes vary over 2^-k, k in 0..7.
+bool generateBurst(int64_t n, Random& rng, const Emitter& emit) {
+    const glm::dvec3 centre(0.0, 0.5 * kGeneratedHeight, 0.0);
+    const auto offset = [&](double unit) {
+        const auto coordinate = [&] { return unit * double(int64_t(rng.next() % 2049) - 1024); };
+        return glm::dvec3(coordinate(), coordinate(), coordinate());
+    };
+    for (int64_t i = 0; i < n; ++i) {
+        const double unit = std::ldexp(0.25 * kGeneratedHalfWidth / 1024.0, -int(rng.next() % 8));
+        glm::dvec3 v0, v1;
+        do {  // no zero-area triangle (exact: the cross product of small integers times unit^2)
+            v0 = offset(unit);
+            v1 = offset(unit);
+        } while (glm::cross(v0, v1) == glm::dvec3(0.0));
+        if (!emit(centre + v0, centre + v1, centre - (v0 + v1))) return false;
+    }
     return true;
 }
 
@@ -174,6 +201,7 @@ int64_t generatedTriangleCount(const GeneratorSpec& spec) {
             return ceilDiv(spec.triangles, perSphere) * perSphere;
         }
         case GeneratorKind::Soup:
+        case GeneratorKind::Burst:
             return spec.triangles;
         case GeneratorKind::Terrain: {
             const TerrainGrid g = terrainGrid(spec.triangles);
@@ -194,6 +222,8 @@ bool generateMesh(const GeneratorSpec& spec, const Transform& toWorld, uint32_t 
             return generateSoup(spec.triangles, rng, emit);
         case GeneratorKind::Terrain:
             return generateTerrain(spec.triangles, rng, emit);
+        case GeneratorKind::Burst:
+            return generateBurst(spec.triangles, rng, emit);
     }
     return true;
 }

@@ -18,12 +18,15 @@ enum class GeneratorKind {
     Spheres,  // a grid of tessellated spheres of random radius and height (flat-shaded)
     Soup,     // random triangles scattered through the volume (many overlaps: worst case for a BVH)
     Terrain,  // a heightfield by diamond-square (midpoint displacement), two triangles per cell
+    // N random triangles that all share one centroid, exactly (in float), so every Morton code of
+    // an AAC build is equal and every triangle overlaps every other: a stress case (issue 7).
+    Burst,
 };
 
-// "spheres", "soup", "terrain" and back.
+// "spheres", "soup", "terrain", "burst" and back.
 std::optional<GeneratorKind> generatorKindFromName(std::string_view name);
 std::string_view generatorName(GeneratorKind kind);
-// "spheres, soup, terrain": for messages.
+// "spheres, soup, terrain, burst": for messages.
 std::string generatorNames();
 
 // Past this a request is an input error, not an allocation failure (40 bytes a triangle: 1.3 GB).
@@ -36,7 +39,7 @@ struct GeneratorSpec {
 };
 
 // What `spec` really makes: the smallest count of the kind's structure that reaches the request.
-// Soup: exactly N. Terrain: g x h cells, g = ceil(sqrt(N/2)), h = ceil(N/2g), 2gh triangles (less
+// Soup and burst: exactly N. Terrain: g x h cells, g = ceil(sqrt(N/2)), h = ceil(N/2g), 2gh triangles (less
 // than N + 2 sqrt(N/2) + 2). Spheres: tessellation steps s = clamp(round(N^(1/4)/2), 3, 64), each
 // sphere 4s(s-1) triangles, ceil(N / 4s(s-1)) spheres (less than one sphere over N).
 int64_t generatedTriangleCount(const GeneratorSpec& spec);

@@ -11,12 +11,10 @@
 
 const uint kBruteBatch = 4;
 
-// Closest hit in (0, tmax). Ties in t go to the lowest triangle index (strict <, in index order),
-// as on the CPU.
+// Closest hit in (0, tmax). Ties in t go to the lowest triangle index (beats(), triangle.glsl), as
+// on the CPU and in every other kernel.
 Hit traceClosest(vec3 origin, vec3 dir, float tmax) {
-    Hit best;
-    best.t = tmax;
-    best.triangle = -1;
+    Hit best = noHit(tmax);
     const uint count = params.counts.x;
     const WatertightRay ray = makeWatertightRay(origin, dir);
     uint i = 0;

@@ -14,7 +14,7 @@ layout(std430, set = 0, binding = VKRAY_BINDING_ACCEL_EXTRA) readonly buffer KdE
 
 // Passes (KdPass) are an outer loop, as in kd_restart.glsl.
 Hit kdBacktrackTrace(vec3 origin, vec3 dir, float tmax, const bool anyHit) {
-    Hit best = kdNoHit(tmax);
+    Hit best = noHit(tmax);
     const KdRay r = makeKdRay(origin, dir);
     const WatertightRay w = makeWatertightRay(origin, dir);
     KdPass pass = kdFirstPass();

@@ -11,8 +11,9 @@
 //    8 passes; one for almost every ray);
 //  - planes are always hit at (plane - origin) * invDir, `precise`, so a leaf's exit and the split
 //    that made it compare equal exactly;
-//  - a leaf's triangles are tested on the whole ray (0, best.t); the search ends once the best hit
-//    lies at or before the current leaf's exit (a hit beyond the leaf does not end it).
+//  - a leaf's triangles are tested on the whole ray (0, best.t]; the search ends once the best hit
+//    lies strictly before the current leaf's exit (a hit beyond the leaf does not end it; one at
+//    the exit may still lose a tie to the next leaf); exact ties in t go to the lowest index.
 // Loops: one iteration per node step, leaf triangles 4 per iteration, because llvmpipe ends all
 // loops of an invocation after 65535 iterations in total (trace_status.glsl).
 #ifndef VKRAY_KD_COMMON_GLSL
@@ -197,15 +198,7 @@ uint kdDescend(int visit, uvec2 n, uint first, uint second, float thit, inout fl
 }
 
 void kdTestSlot(uint slot, uint end, WatertightRay w, inout Hit best) {
-    if (slot >= end) return;
-    const uint tri = kdIndices[slot];
-    float t;
-    vec2 uv;
-    if (intersectTriangle(w, triangles[tri], best.t, t, uv)) {
-        best.t = t;
-        best.uv = uv;
-        best.triangle = int(tri);
-    }
+    if (slot < end) closestTriangle(kdIndices[slot], w, best);
 }
 
 // The leaf's triangles against (0, best.t), 4 per iteration; with anyHit, stops at the first hit.
@@ -225,9 +218,17 @@ void kdVisitLeaf(uvec2 n, WatertightRay w, bool anyHit, inout Hit best) {
     countTriangles(tested);
 }
 
-// Whether the search may stop after a leaf whose segment ends at `exit`.
+// Slack of the stop rule below: about 3 ulps, as the BVH's kSlabWiden.
+const float kKdStopSlack = 1.0 + 4.0e-7;
+
+// Whether the search may stop after a leaf whose segment ends at `exit`: a hit before it, with a
+// few ulps to spare. A hit at the exit may tie with a triangle of the next leaf (a face lying in
+// the split plane, an edge on it) whose index is lower and wins (beats()); and the triangle test
+// and the plane hit round differently: a triangle of the next leaf can be hit an ulp before the
+// plane's computed t (measured on scenes/stress/split-planes.scene: a ray through the edge where
+// two faces lying in split planes x = 0 and y = 2 meet). That leaf is visited too.
 bool kdFinished(Hit best, bool anyHit, float exit) {
-    return best.triangle >= 0 && (anyHit || best.t <= exit);
+    return best.triangle >= 0 && (anyHit || best.t * kKdStopSlack < exit);
 }
 
 // After a pass: whether another follows. Not when the pass was cut short (its node loop ran out:
@@ -242,14 +243,6 @@ void kdEndLoop(bool done, int steps) {
     if (done) return;
     if (steps >= VKRAY_KD_MAX_STEPS) ++gCappedRays;
     else gLoopCutShort = true;
-}
-
-Hit kdNoHit(float tmax) {
-    Hit h;
-    h.t = tmax;
-    h.uv = vec2(0.0);
-    h.triangle = -1;
-    return h;
 }
 
 #endif

@@ -11,7 +11,7 @@
 // Passes (KdPass) are an outer loop: llvmpipe runs every statement of a loop body for all lanes,
 // masked, so pass switching inside the node loop slowed every step (measured 1.5x).
 Hit kdRestartTrace(vec3 origin, vec3 dir, float tmax, const bool anyHit) {
-    Hit best = kdNoHit(tmax);
+    Hit best = noHit(tmax);
     const KdRay r = makeKdRay(origin, dir);
     const WatertightRay w = makeWatertightRay(origin, dir);
     KdPass pass = kdFirstPass();

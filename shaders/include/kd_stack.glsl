@@ -8,7 +8,7 @@
 
 // Passes (KdPass) are an outer loop, as in kd_restart.glsl.
 Hit kdStackTrace(vec3 origin, vec3 dir, float tmax, const bool anyHit) {
-    Hit best = kdNoHit(tmax);
+    Hit best = noHit(tmax);
     const KdRay r = makeKdRay(origin, dir);
     const WatertightRay w = makeWatertightRay(origin, dir);
     KdPass pass = kdFirstPass();

@@ -41,11 +41,11 @@ void secondaryRays(PendingRay ray, SurfacePoint s, GpuMaterial m, out PendingRay
         const float F = fresnelDielectric(cosi, eta, cost);
         reflectWeight += m.transmit.rgb * F;
         if (F < 1.0)
-            refracted = PendingRay(offsetRayOrigin(s.position, -s.facing),
+            refracted = PendingRay(offsetRayOrigin(s.position, -s.facing, s.offset),
                                    normalize(eta * ray.dir + (eta * cosi - cost) * s.normal),
                                    ray.weight * m.transmit.rgb * (1.0 - F), ray.depth + 1);
     }
-    reflected = PendingRay(offsetRayOrigin(s.position, s.facing), reflect(ray.dir, s.normal),
+    reflected = PendingRay(offsetRayOrigin(s.position, s.facing, s.offset), reflect(ray.dir, s.normal),
                            ray.weight * reflectWeight, ray.depth + 1);
 }
 

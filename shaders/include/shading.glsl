@@ -15,6 +15,7 @@ struct SurfacePoint {
     bool front;     // the ray hit the side the geometric normal points to
     uint material;
     int original;   // triangle identity (DESIGN.md) for the primid AOV
+    float offset;   // how far secondary rays start off the surface (ray_offset.glsl)
 };
 
 SurfacePoint surfaceAt(Hit hit, vec3 dir) {
@@ -22,8 +23,12 @@ SurfacePoint surfaceAt(Hit hit, vec3 dir) {
     const vec3 p0 = tri.p0, p1 = tri.p1, p2 = tri.p2;
     const float b0 = 1.0 - hit.uv.x - hit.uv.y;
     SurfacePoint s;
-    s.position = b0 * p0 + hit.uv.x * p1 + hit.uv.y * p2;
-    const vec3 ng = normalize(cross(p1 - p0, p2 - p0));
+    // P = b0 p0 + b1 p1 + b2 p2 written from p0 along the edges: rounding b1 and b2 then moves P
+    // within the plane only, which keeps the origin offset small (ray_offset.glsl).
+    const vec3 e1 = p1 - p0, e2 = p2 - p0;
+    s.position = p0 + hit.uv.x * e1 + hit.uv.y * e2;
+    s.offset = offsetDistance(s.position, e1, e2);
+    const vec3 ng = normalize(cross(e1, e2));
     s.front = dot(dir, ng) < 0.0;
     s.facing = s.front ? ng : -ng;
     s.normal = ng;
@@ -88,7 +93,7 @@ vec3 localShading(SurfacePoint s, GpuMaterial m, vec3 V) {
     const vec3 transmit = m.transmit.rgb;
     vec3 color = m.emission.rgb + (1.0 - transmit) * m.ambient;
     if (!HAS_POINT_LIGHTS && !HAS_DIRECTIONAL_LIGHTS) return color;
-    const vec3 shadowOrigin = offsetRayOrigin(s.position, s.facing);
+    const vec3 shadowOrigin = offsetRayOrigin(s.position, s.facing, s.offset);
     const uint lightCount = params.counts.y;
     for (uint i = 0; i < lightCount; ++i) {
         const LightSample ls = sampleLight(lights[i], s.position, shadowOrigin);

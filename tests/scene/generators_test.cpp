@@ -37,7 +37,7 @@ TEST(Generators, NamesRoundTrip) {
     for (GeneratorKind kind : kKinds) EXPECT_EQ(generatorKindFromName(generatorName(kind)), kind);
     EXPECT_FALSE(generatorKindFromName("teapot"));
     EXPECT_FALSE(generatorKindFromName("Spheres"));
-    EXPECT_EQ(generatorNames(), "spheres, soup, terrain");
+    EXPECT_EQ(generatorNames(), "spheres, soup, terrain, burst");
 }
 
 TEST(Generators, MakeTheCountTheyPromiseAndNoFewerThanAsked) {
@@ -51,6 +51,7 @@ TEST(Generators, MakeTheCountTheyPromiseAndNoFewerThanAsked) {
             // more; spheres less than one sphere (at most 4 * 64 * 63 triangles) more.
             switch (kind) {
                 case GeneratorKind::Soup:
+                case GeneratorKind::Burst:  // exact too (tests/stress/burst_generator_test.cpp)
                     EXPECT_EQ(promised, n);
                     break;
                 case GeneratorKind::Terrain:
@@ -161,7 +162,7 @@ TEST(GenerateCommand, SeedDefaultsToOne) {
 
 TEST(GenerateCommand, BadLinesNameFileLineAndCause) {
     EXPECT_EQ(parseError("\ngenerate teapot 100\n"),
-              "test.scene:2:10: unknown generator 'teapot' (expected one of: spheres, soup, terrain)");
+              "test.scene:2:10: unknown generator 'teapot' (expected one of: spheres, soup, terrain, burst)");
     EXPECT_EQ(parseError("generate soup 0\n"), "test.scene:1:15: triangle count 0 is outside 1..33554432");
     EXPECT_EQ(parseError("generate soup 99999999999\n"),
               "test.scene:1:15: triangle count 99999999999 is outside 1..33554432");

@@ -29,8 +29,10 @@
 //    plane; kd-restart and kd-backtrack rely on it to step past a leaf exactly once.
 //  - A leaf's triangles are tested on the whole ray (0, best), not only inside the leaf: a hit found
 //    beyond the leaf is kept as the candidate but does not end the search; the search ends when the
-//    candidate lies at or before the current leaf's exit (pbrt's rule, robust to rounding at the
-//    leaf's faces). Ties in t go to the lowest triangle index, as in brute force.
+//    candidate lies before the current leaf's exit with a relative 1e-9 to spare (pbrt's rule,
+//    robust to rounding at the leaf's faces; made strict so that a triangle of the next leaf hit at
+//    the same t, up to rounding, can still win the tie). Ties in t go to the lowest triangle index,
+//    as in brute force.
 //  - A hard cap on loop iterations ends a runaway ray, counted in TraversalCounters::capped.
 #pragma once
 
