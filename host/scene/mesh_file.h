@@ -8,6 +8,7 @@
 #include "core/error.h"
 #include "scene/scene.h"
 #include "scene/scene_builder.h"
+#include "scene/text_input.h"
 #include "scene/transform.h"
 
 namespace vkray {
@@ -19,6 +20,7 @@ struct MeshRequest {
     FileLoc requestedAt;         // the scene line, for errors that concern the file as a whole
     Transform toWorld;           // the current transform at that line
     Material defaultMaterial;    // the scene's material state, for faces the file gives none
+    FileReader readFile;         // reads the mesh and the files it names (never empty)
 };
 
 // Appends the file's triangles in file order. Throws vkray::Error for an unsupported extension,

@@ -24,10 +24,11 @@ public:
     bool operator()(const std::string& name, std::vector<tinyobj::material_t>* materials,
                     std::map<std::string, int>* byName, std::string* warn, std::string* err) override {
         const std::filesystem::path file = (request_.file.parent_path() / name).lexically_normal();
-        const std::optional<std::string> bytes = readFileBytes(file);
+        std::string whyNot;
+        const std::optional<std::string> bytes = request_.readFile(file, whyNot);
         if (!bytes)
-            throw Error(request_.requestedAt, "cannot open material library '" + file.string() +
-                                                  "' named by 'mtllib' in '" + request_.displayName + "'");
+            throw Error(request_.requestedAt, "cannot open material library " + quoted(file.string(), 256) +
+                                                  " named by 'mtllib' in '" + request_.displayName + "': " + whyNot);
         checkMtlText(*bytes, file.string(), context_);
         std::istringstream in{std::string(withoutUtf8Bom(*bytes))};
         tinyobj::LoadMtl(byName, materials, &in, warn, err);
@@ -126,10 +127,14 @@ void appendMesh(const MeshRequest& request, const tinyobj::attrib_t& attrib, con
 }  // namespace
 
 void loadObj(const MeshRequest& request, SceneBuilder& out) {
-    std::optional<std::string> bytes = readFileBytes(request.file);
-    if (!bytes) throw Error(request.requestedAt, "cannot open OBJ file '" + request.displayName + "'");
+    std::string whyNot;
+    std::optional<std::string> bytes = request.readFile(request.file, whyNot);
+    if (!bytes) throw Error(request.requestedAt, "cannot open OBJ file '" + request.displayName + "': " + whyNot);
     const std::string context = " (OBJ loaded at " + request.requestedAt.str() + ")";
-    checkObjText(*bytes, request.displayName, context);
+    const ObjSummary summary = checkObjText(*bytes, request.displayName, context);
+    // Before tinyobjloader spends time and memory on a mesh that cannot be kept.
+    if (const auto problem = out.roomProblem(summary.triangles))
+        throw Error(request.requestedAt, "in '" + request.displayName + "': " + *problem);
 
     tinyobj::attrib_t attrib;
     std::vector<tinyobj::shape_t> shapes;
@@ -143,6 +148,16 @@ void loadObj(const MeshRequest& request, SceneBuilder& out) {
     const bool ok = tinyobj::LoadObj(&attrib, &shapes, &materials, &warn, &err, &in, &mtlReader,
                                      /*triangulate=*/true, /*default_vcols_fallback=*/false);
     throwOnDiagnostics(request, ok, warn, err);
+
+    // tinyobjloader's ear clipping gives up on some polygons (degenerate, self-overlapping) and
+    // drops what it has not cut yet without a warning: a face of n corners must make n - 2 triangles.
+    uint64_t made = 0;
+    for (const tinyobj::shape_t& shape : shapes) made += shape.mesh.num_face_vertices.size();
+    if (made != summary.triangles)
+        throw Error(request.requestedAt,
+                    "in '" + request.displayName + "': tinyobjloader triangulated the faces into " + std::to_string(made) +
+                        " triangles instead of " + std::to_string(summary.triangles) +
+                        " (a degenerate or self-overlapping polygon); split such polygons into triangles");
 
     MaterialTable table(request, materials, out);
     for (const tinyobj::shape_t& shape : shapes) appendMesh(request, attrib, shape.mesh, table, out);

@@ -73,7 +73,7 @@ void OffReader::line(std::string_view text, int number) {
         case Stage::Faces:
             return face();
         case Stage::Done:
-            fail(t_[0].col, "unexpected '" + std::string(t_[0].text) + "' after the last of the " +
+            fail(t_[0].col, "unexpected " + quoted(t_[0].text) + " after the last of the " +
                                 std::to_string(faceCount_) + " faces the counts at line " +
                                 std::to_string(countsLine_) + " announce");
     }
@@ -90,8 +90,8 @@ void OffReader::header() {
         return;
     }
     if (key.ends_with("OFF"))
-        fail(t_[0].col, "unsupported OFF variant '" + std::string(key) + "' (vkray reads OFF and COFF)");
-    fail(t_[0].col, "expected the header 'OFF' on the first line, got '" + std::string(key) + "'");
+        fail(t_[0].col, "unsupported OFF variant " + quoted(key) + " (vkray reads OFF and COFF)");
+    fail(t_[0].col, "expected the header 'OFF' on the first line, got " + quoted(key));
 }
 
 int64_t OffReader::integer(size_t i, const char* what) const {
@@ -123,6 +123,8 @@ void OffReader::counts(size_t first) {
     if (nv > fileBytes_ || nf > fileBytes_ || nv * kMinVertexBytes + nf * kMinFaceBytes > fileBytes_)
         fail(t_[first].col, "counts of " + std::to_string(nv) + " vertices and " + std::to_string(nf) +
                                 " faces cannot fit in a file of " + std::to_string(fileBytes_) + " bytes");
+    // Each face makes at least one triangle: refuse a mesh past the scene's limit before reading it.
+    if (const auto problem = out_.roomProblem(nf)) fail(t_[first + 1].col, *problem);
     countsLine_ = line_;
     vertices_.reserve(size_t(nv));
     out_.reserve(size_t(nf));  // exact for triangle meshes
@@ -159,6 +161,7 @@ void OffReader::face() {
                                         " values after its indices (at most a colour r g b a)");
     for (size_t k = size_t(n) + 1; k < t_.size(); ++k)
         number(k, [&] { return "face colour value " + std::to_string(k - size_t(n)); });
+    if (const auto problem = out_.roomProblem(uint64_t(n) - 2)) fail(t_[0].col, *problem);
 
     const auto corner = [&](size_t k) -> const glm::dvec3& {
         const int64_t i = integer(k, "vertex index");
@@ -202,14 +205,18 @@ void OffReader::finish(int lastLine) const {
 }  // namespace
 
 void loadOff(const MeshRequest& request, SceneBuilder& out) {
-    const std::optional<std::string> bytes = readFileBytes(request.file);
-    if (!bytes) throw Error(request.requestedAt, "cannot open OFF file '" + request.displayName + "'");
+    std::string whyNot;
+    const std::optional<std::string> bytes = request.readFile(request.file, whyNot);
+    if (!bytes) throw Error(request.requestedAt, "cannot open OFF file '" + request.displayName + "': " + whyNot);
     OffReader reader(request, out, bytes->size());
     int lastLine = 0;
-    forEachLine(*bytes, request.displayName, TextCheck::NoNul, [&](std::string_view line, int number) {
-        reader.line(line, number);
-        lastLine = number;
-    });
+    forEachLine(
+        *bytes, request.displayName, TextCheck::NoNul,
+        [&](std::string_view line, int number) {
+            reader.line(line, number);
+            lastLine = number;
+        },
+        " (OFF loaded at " + request.requestedAt.str() + ")");
     reader.finish(lastLine);
 }
 

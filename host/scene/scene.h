@@ -18,6 +18,11 @@ namespace vkray {
 inline constexpr int kMaxImageSide = 16384;
 inline constexpr long long kMaxImagePixels = 1LL << 26;  // 8192 x 8192
 inline constexpr int kMaxDepthLimit = 64;
+// Triangles a scene may hold: 2^26 is 2.5 GiB of Scene::triangles on the host, and at the GPU's 48
+// bytes a triangle 3 GiB, about what the largest storage buffers of real GPUs hold (4 GiB). Loaders
+// check it before they tessellate, generate or read, so `generate` and `sphere` lines cannot run
+// a machine out of memory or time.
+inline constexpr int64_t kMaxSceneTriangles = int64_t(1) << 26;
 
 // Why w x h is not an image vkray renders, or nothing when it is (the `size` command and --size).
 inline std::optional<std::string> imageSizeProblem(long long w, long long h) {

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <limits>
 
+#include "core/error.h"
+
 namespace vkray {
 namespace {
 
@@ -25,7 +27,7 @@ bool SceneBuilder::MaterialLess::operator()(const Material& a, const Material& b
     return std::lexicographical_compare(ka.begin(), ka.end(), kb.begin(), kb.end());
 }
 
-SceneBuilder::SceneBuilder(Scene& scene) : scene_(scene) {
+SceneBuilder::SceneBuilder(Scene& scene, int64_t maxTriangles) : scene_(scene), maxTriangles_(maxTriangles) {
     for (size_t i = 0; i < scene_.materials.size(); ++i) index_.emplace(scene_.materials[i], uint32_t(i));
 }
 
@@ -46,7 +48,22 @@ void SceneBuilder::reserve(size_t triangles) {
     if (scene_.hasSmoothNormals()) scene_.normals.reserve(scene_.normals.size() + triangles);
 }
 
+std::optional<std::string> SceneBuilder::roomProblem(uint64_t more) const {
+    const uint64_t have = scene_.triangles.size();
+    if (more <= uint64_t(maxTriangles_) && have <= uint64_t(maxTriangles_) - more) return std::nullopt;
+    const uint64_t total = have + more >= have ? have + more : UINT64_MAX;  // saturating
+    std::string msg = "the scene would have ";
+    msg.append(std::to_string(total))
+        .append(" triangles (")
+        .append(std::to_string(have))
+        .append(" so far), past the limit of ")
+        .append(std::to_string(maxTriangles_));
+    if (maxTriangles_ == kMaxSceneTriangles) msg.append(" (2^26) a scene may have");
+    return msg;
+}
+
 bool SceneBuilder::append(const TriPoints& p, uint32_t material) {
+    if (scene_.triangles.size() >= uint64_t(maxTriangles_)) throw Error(*roomProblem(1));
     if (!fitsFloat(p[0]) || !fitsFloat(p[1]) || !fitsFloat(p[2])) return false;
     scene_.triangles.push_back({glm::vec3(p[0]), glm::vec3(p[1]), glm::vec3(p[2]), material});
     return true;

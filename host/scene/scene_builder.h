@@ -7,6 +7,8 @@
 #include <array>
 #include <cstdint>
 #include <map>
+#include <optional>
+#include <string>
 
 #include <glm/glm.hpp>
 
@@ -18,7 +20,8 @@ using TriPoints = std::array<glm::dvec3, 3>;
 
 class SceneBuilder {
 public:
-    explicit SceneBuilder(Scene& scene);
+    // At most `maxTriangles` triangles in the scene (kMaxSceneTriangles; tests and the fuzzer set less).
+    explicit SceneBuilder(Scene& scene, int64_t maxTriangles = kMaxSceneTriangles);
 
     Scene& scene() { return scene_; }
 
@@ -28,6 +31,12 @@ public:
     // Room for `triangles` more (and their normals when the scene has smooth ones): for callers
     // that know their count up front.
     void reserve(size_t triangles);
+
+    // Why `more` triangles do not fit under the scene's triangle limit, or nothing when they do.
+    // Callers ask before they make the triangles and report the answer with their file:line; an
+    // append past the limit throws a vkray::Error without a location (a caller that did not ask).
+    std::optional<std::string> roomProblem(uint64_t more) const;
+    int64_t maxTriangles() const { return maxTriangles_; }
 
     // Append one triangle; `p` and `n` are world space, `n` unit length. Returns false (and
     // appends nothing) when a coordinate does not fit a 32-bit float, so the caller can report
@@ -45,6 +54,7 @@ private:
     };
 
     Scene& scene_;
+    int64_t maxTriangles_;
     std::map<Material, uint32_t, MaterialLess> index_;
 };
 

@@ -35,8 +35,9 @@ struct MaterialState {
 
 class Parser {
 public:
-    Parser(Scene& scene, std::string file, std::filesystem::path baseDir)
-        : file_(std::move(file)), baseDir_(std::move(baseDir)), out_(scene), transforms_(1) {}
+    Parser(Scene& scene, std::string file, std::filesystem::path baseDir, const ParseOptions& options)
+        : file_(std::move(file)), baseDir_(std::move(baseDir)), out_(scene, options.maxTriangles),
+          readFile_(options.readFile ? options.readFile : fileSystemReader()), transforms_(1) {}
 
     void parseLine(std::string_view text, int number);
 
@@ -54,13 +55,14 @@ private:
 
     Scene& scene() { return out_.scene(); }
     const Transform& transform() const { return transforms_.back(); }
-    void then(const glm::dmat4& m) { transforms_.back() = transforms_.back().then(m); }
+    void then(const SceneLine& line, const glm::dmat4& m);
     uint32_t currentMaterial();
     void materialChanged() { materialIndex_.reset(); }
     void checkArgCount(const Command& c, const SceneLine& line) const;
     [[noreturn]] void unknownCommand(const SceneLine& line) const;
     uint32_t vertexIndex(const SceneLine& line, size_t arg, size_t count, const char* noun) const;
     void added(bool ok, const SceneLine& line) const;
+    void checkRoom(uint64_t triangles, const SceneLine& line) const;
 
     void size(const SceneLine&);
     void output(const SceneLine& l) { scene().output = std::string(l.text(1)); }
@@ -78,10 +80,10 @@ private:
     void triNormal(const SceneLine&);
     void sphere(const SceneLine&);
     void sphereSteps(const SceneLine&);
-    void translate(const SceneLine& l) { then(glm::translate(glm::dmat4(1.0), glm::dvec3(l.vec3(1)))); }
+    void translate(const SceneLine& l) { then(l, glm::translate(glm::dmat4(1.0), glm::dvec3(l.vec3(1)))); }
     void rotate(const SceneLine&);
     void scale(const SceneLine&);
-    void pushTransform(const SceneLine&) { transforms_.push_back(transform()); }
+    void pushTransform(const SceneLine&);
     void popTransform(const SceneLine&);
     void geo(const SceneLine&);
     void generate(const SceneLine&);
@@ -89,6 +91,7 @@ private:
     std::string file_;
     std::filesystem::path baseDir_;
     SceneBuilder out_;
+    FileReader readFile_;
     MaterialState material_;
     std::optional<uint32_t> materialIndex_;
     std::vector<Transform> transforms_;  // back() is current; the first entry is never popped
@@ -180,9 +183,9 @@ void Parser::unknownCommand(const SceneLine& line) const {
     };
     for (const Command& c : kCommands)
         if (lower(c.name) == lower(line.command()))
-            line.fail("unknown command '" + std::string(line.command()) + "' (did you mean '" +
-                      std::string(c.name) + "'? commands are case-sensitive)");
-    line.fail("unknown command '" + std::string(line.command()) + "'");
+            line.fail("unknown command " + quoted(line.command()) + " (did you mean '" + std::string(c.name) +
+                      "'? commands are case-sensitive)");
+    line.fail("unknown command " + quoted(line.command()));
 }
 
 uint32_t Parser::currentMaterial() {
@@ -205,6 +208,29 @@ void Parser::added(bool ok, const SceneLine& line) const {
     if (!ok) line.fail("the transformed geometry does not fit a 32-bit float (coordinates overflow)");
 }
 
+// Asked before a line makes its triangles: a sphere or a generated mesh past the limit is refused
+// before any time or memory goes into it.
+void Parser::checkRoom(uint64_t triangles, const SceneLine& line) const {
+    if (const auto problem = out_.roomProblem(triangles)) line.fail(*problem);
+}
+
+void Parser::then(const SceneLine& line, const glm::dmat4& m) {
+    const Transform next = transform().then(m);
+    // Scale factors are each finite and non-zero, but a chain of them can still multiply past what
+    // a double holds; the normals would then be NaN (or the points infinite) without a word.
+    if (!next.isFinite())
+        line.fail("the transform overflows or becomes singular in double precision (scale factors that "
+                  "multiply past 1e308 or below 1e-308, or axes scaled too unevenly)");
+    transforms_.back() = next;
+}
+
+void Parser::pushTransform(const SceneLine& line) {
+    if (transforms_.size() > kMaxTransformDepth)
+        line.fail("pushTransform nested more than " + std::to_string(kMaxTransformDepth) +
+                  " deep (is a popTransform missing?)");
+    transforms_.push_back(transform());
+}
+
 void Parser::size(const SceneLine& line) {
     const int64_t w = line.integer(1), h = line.integer(2);
     if (const auto problem = imageSizeProblem(w, h))
@@ -223,7 +249,7 @@ void Parser::maxdepth(const SceneLine& line) {
 void Parser::camera(const SceneLine& line) {
     Camera c{line.vec3(1), line.vec3(4), line.vec3(7), line.number(10)};
     if (!(c.fovyDegrees > 0.0f && c.fovyDegrees < 180.0f))
-        line.fail("camera fovy " + std::string(line.text(10)) + " is outside (0, 180) degrees", 10);
+        line.fail("camera fovy " + excerpt(line.text(10)) + " is outside (0, 180) degrees", 10);
     const glm::dvec3 back = glm::dvec3(c.eye) - glm::dvec3(c.center);
     if (glm::length(back) == 0.0) line.fail("camera eye and look-at centre coincide", 1);
     const glm::dvec3 up(c.up);
@@ -269,14 +295,14 @@ void Parser::colour(const SceneLine& line) {
 
 void Parser::shininess(const SceneLine& line) {
     const float s = line.number(1);
-    if (s < 0.0f) line.fail("shininess " + std::string(line.text(1)) + " is negative", 1);
+    if (s < 0.0f) line.fail("shininess " + excerpt(line.text(1)) + " is negative", 1);
     material_.base.shininess = s;
     materialChanged();
 }
 
 void Parser::refract(const SceneLine& line) {
     const float ior = line.number(1);
-    if (!(ior > 0.0f)) line.fail("index of refraction " + std::string(line.text(1)) + " must be positive", 1);
+    if (!(ior > 0.0f)) line.fail("index of refraction " + excerpt(line.text(1)) + " must be positive", 1);
     material_.base.ior = ior;
     material_.base.transmit = line.vec3(2);
     materialChanged();
@@ -293,6 +319,7 @@ void Parser::maxCount(const SceneLine& line) {
 }
 
 void Parser::tri(const SceneLine& line) {
+    checkRoom(1, line);
     TriPoints p;
     for (size_t k = 0; k < 3; ++k)
         p[k] = transform().point(vertices_[vertexIndex(line, k + 1, vertices_.size(), "vertex")]);
@@ -306,6 +333,7 @@ void Parser::vertexNormal(const SceneLine& line) {
 }
 
 void Parser::triNormal(const SceneLine& line) {
+    checkRoom(1, line);
     TriPoints p, n;
     for (size_t k = 0; k < 3; ++k) {
         const auto& [position, normal] =
@@ -319,7 +347,8 @@ void Parser::triNormal(const SceneLine& line) {
 void Parser::sphere(const SceneLine& line) {
     const glm::dvec3 centre(line.vec3(1));
     const float r = line.number(4);
-    if (!(r > 0.0f)) line.fail("sphere radius " + std::string(line.text(4)) + " must be positive", 4);
+    if (!(r > 0.0f)) line.fail("sphere radius " + excerpt(line.text(4)) + " must be positive", 4);
+    checkRoom(uint64_t(sphereTriangleCount(sphereSteps_)), line);
     added(appendSphere(out_, transform(), centre, r, sphereSteps_, currentMaterial()), line);
 }
 
@@ -336,14 +365,14 @@ void Parser::rotate(const SceneLine& line) {
     const glm::dvec3 axis(line.vec3(1));
     const double degrees = line.number(4);
     if (axis == glm::dvec3(0.0)) line.fail("rotate axis is the zero vector", 1);
-    then(glm::rotate(glm::dmat4(1.0), glm::radians(degrees), glm::normalize(axis)));
+    then(line, glm::rotate(glm::dmat4(1.0), glm::radians(degrees), glm::normalize(axis)));
 }
 
 void Parser::scale(const SceneLine& line) {
     const glm::dvec3 s(line.vec3(1));
     for (int k = 0; k < 3; ++k)
         if (s[k] == 0.0) line.fail("scale factor 0 would flatten the geometry (no normals)", size_t(k) + 1);
-    then(glm::scale(glm::dmat4(1.0), s));
+    then(line, glm::scale(glm::dmat4(1.0), s));
 }
 
 void Parser::popTransform(const SceneLine& line) {
@@ -354,7 +383,7 @@ void Parser::popTransform(const SceneLine& line) {
 void Parser::geo(const SceneLine& line) {
     const std::filesystem::path file = baseDir_ / std::filesystem::path(std::string(line.text(1)));
     MeshRequest request{file, file.lexically_normal().string(), FileLoc{file_, line.number(), 0}, transform(),
-                        material_.resolve()};
+                        material_.resolve(), readFile_};
     loadMeshFile(request, out_);
 }
 
@@ -362,8 +391,7 @@ void Parser::geo(const SceneLine& line) {
 void Parser::generate(const SceneLine& line) {
     const std::optional<GeneratorKind> kind = generatorKindFromName(line.text(1));
     if (!kind)
-        line.fail("unknown generator '" + std::string(line.text(1)) + "' (expected one of: " + generatorNames() + ")",
-                  1);
+        line.fail("unknown generator " + quoted(line.text(1)) + " (expected one of: " + generatorNames() + ")", 1);
     const int64_t n = line.integer(2);
     if (n < 1 || n > kMaxGeneratedTriangles)
         line.fail("triangle count " + std::to_string(n) + " is outside 1.." + std::to_string(kMaxGeneratedTriangles),
@@ -373,29 +401,35 @@ void Parser::generate(const SceneLine& line) {
         seed = line.integer(3);
         if (seed < 0) line.fail("seed " + std::to_string(seed) + " is negative", 3);
     }
-    added(generateMesh({*kind, n, uint64_t(seed)}, transform(), currentMaterial(), out_), line);
-}
-
-Scene parseText(std::string_view text, const std::string& displayName, const std::filesystem::path& baseDir) {
-    Scene scene;
-    Parser parser(scene, displayName, baseDir);
-    forEachLine(text, displayName, TextCheck::Utf8,
-                [&](std::string_view line, int number) { parser.parseLine(line, number); });
-    return scene;
+    const GeneratorSpec spec{*kind, n, uint64_t(seed)};
+    checkRoom(uint64_t(generatedTriangleCount(spec)), line);
+    added(generateMesh(spec, transform(), currentMaterial(), out_), line);
 }
 
 }  // namespace
 
-Scene parseScene(std::istream& in, const std::string& displayName, const std::filesystem::path& baseDir) {
-    const std::string text{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-    if (in.bad()) throw Error(FileLoc{displayName}, "cannot read scene file");
-    return parseText(text, displayName, baseDir);
+Scene parseSceneText(std::string_view text, const std::string& displayName, const std::filesystem::path& baseDir,
+                     const ParseOptions& options) {
+    Scene scene;
+    Parser parser(scene, displayName, baseDir, options);
+    forEachLine(
+        text, displayName, TextCheck::Utf8, [&](std::string_view line, int number) { parser.parseLine(line, number); },
+        {}, kMaxSceneLineBytes);
+    return scene;
 }
 
-Scene loadScene(const std::filesystem::path& file) {
-    const std::optional<std::string> text = readFileBytes(file);
-    if (!text) throw Error(FileLoc{file.string()}, "cannot open scene file");
-    Scene scene = parseText(*text, file.string(), file.parent_path());
+Scene parseScene(std::istream& in, const std::string& displayName, const std::filesystem::path& baseDir,
+                 const ParseOptions& options) {
+    const std::string text{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+    if (in.bad()) throw Error(FileLoc{displayName}, "cannot read scene file");
+    return parseSceneText(text, displayName, baseDir, options);
+}
+
+Scene loadScene(const std::filesystem::path& file, const ParseOptions& options) {
+    std::string whyNot;
+    const std::optional<std::string> text = readFileBytes(file, whyNot);
+    if (!text) throw Error(FileLoc{file.string()}, "cannot open scene file: " + whyNot);
+    Scene scene = parseSceneText(*text, file.string(), file.parent_path(), options);
     scene.sourceFile = file;
     return scene;
 }

@@ -18,21 +18,42 @@
 // without triangles is not an error here (the render command decides): see Scene::hasCamera.
 #pragma once
 
+#include <cstdint>
 #include <filesystem>
 #include <istream>
 #include <string>
+#include <string_view>
 
 #include "scene/scene.h"
+#include "scene/text_input.h"
 
 namespace vkray {
 
-// Limits of `size` and `maxdepth` (kMaxImageSide, kMaxImagePixels, kMaxDepthLimit) live in
-// scene/scene.h, shared with the command line.
+// Limits of `size` and `maxdepth` (kMaxImageSide, kMaxImagePixels, kMaxDepthLimit) and of the
+// triangle count (kMaxSceneTriangles) live in scene/scene.h, shared with the command line.
+
+// No command needs a long line (camera, the longest, has 10 numbers); a longer one is refused
+// before it is tokenized, so a 10 MB line costs neither time nor memory nor a 10 MB message.
+inline constexpr size_t kMaxSceneLineBytes = 64 * 1024;
+// pushTransform nesting: each level keeps a matrix, and a hand-written or generated scene needs a
+// few dozen; past this a push without its pop is a bug in the file (or a file of pushes).
+inline constexpr size_t kMaxTransformDepth = 1024;
+
+struct ParseOptions {
+    int64_t maxTriangles = kMaxSceneTriangles;
+    // Where geo/obj meshes and their MTL files are read from; empty: the file system.
+    FileReader readFile;
+};
 
 // Reads `file`; relative paths in it (geo/obj) are resolved against its directory.
-Scene loadScene(const std::filesystem::path& file);
+Scene loadScene(const std::filesystem::path& file, const ParseOptions& options = {});
 
 // Parses a scene from a stream; errors name `displayName`, `geo` paths are relative to `baseDir`.
-Scene parseScene(std::istream& in, const std::string& displayName, const std::filesystem::path& baseDir);
+Scene parseScene(std::istream& in, const std::string& displayName, const std::filesystem::path& baseDir,
+                 const ParseOptions& options = {});
+
+// Parses scene text held in memory (what the other two call; the fuzzer's entry point).
+Scene parseSceneText(std::string_view text, const std::string& displayName, const std::filesystem::path& baseDir,
+                     const ParseOptions& options = {});
 
 }  // namespace vkray

@@ -1,5 +1,7 @@
 #include "scene/text_input.h"
 
+#include <cctype>
+#include <cerrno>
 #include <charconv>
 #include <cmath>
 #include <fstream>
@@ -50,65 +52,178 @@ size_t utf8SequenceLength(std::string_view s, size_t i) {
 }
 
 // Throws on the first byte of `line` that `check` does not allow.
-void checkLine(std::string_view line, const std::string& displayName, int number, TextCheck check) {
+void checkLine(std::string_view line, const std::string& displayName, int number, TextCheck check,
+               const std::string& context) {
     if (check == TextCheck::NoNul) {  // memchr speed: OBJ files run to millions of lines
         const size_t nul = line.find('\0');
         if (nul != std::string_view::npos)
-            throw Error(FileLoc{displayName, number, int(nul) + 1}, "binary data (NUL byte); expected a text file");
+            throw Error(FileLoc{displayName, number, int(nul) + 1}, "binary data (NUL byte); expected a text file" + context);
         return;
     }
     for (size_t i = 0; i < line.size();) {
         const auto c = static_cast<unsigned char>(line[i]);
         const FileLoc loc{displayName, number, int(i) + 1};
-        if (c == 0) throw Error(loc, "binary data (NUL byte); expected a text file");
+        if (c == 0) throw Error(loc, "binary data (NUL byte); expected a text file" + context);
         if (c >= 0x20 && c < 0x7F) {
             ++i;
             continue;
         }
         if (c < 0x80) {
             if (!isAllowedControl(c))
-                throw Error(loc, "binary data (control byte " + hexByte(c) + "); expected a text file");
+                throw Error(loc, "binary data (control byte " + hexByte(c) + "); expected a text file" + context);
             ++i;
             continue;
         }
         const size_t len = utf8SequenceLength(line, i);
         if (len == 0)
             throw Error(
-                loc, "binary data or invalid UTF-8 (byte " + hexByte(c) + "); save the file as UTF-8 text");
+                loc, "binary data or invalid UTF-8 (byte " + hexByte(c) + "); save the file as UTF-8 text" + context);
         i += len;
     }
 }
 
-}  // namespace
+// UTF-16 without a byte-order mark: ASCII text with a NUL after (little-endian) or before
+// (big-endian) each character. Two characters tell it from a binary file; otherwise the first NUL
+// would be reported as binary data, which is true but not the useful answer.
+bool looksLikeUtf16WithoutBom(std::string_view d) {
+    if (d.size() < 4) return false;
+    const auto nul = [&](size_t i) { return d[i] == '\0'; };
+    const auto text = [&](size_t i) {
+        const auto c = static_cast<unsigned char>(d[i]);
+        return (c >= 0x20 && c < 0x7F) || c == '\t' || c == '\n' || c == '\r';
+    };
+    return (text(0) && nul(1) && text(2) && nul(3)) || (nul(0) && text(1) && nul(2) && text(3));
+}
 
-std::optional<std::string> readFileBytes(const std::filesystem::path& file) {
-    std::error_code ec;
-    if (std::filesystem::is_directory(file, ec)) return std::nullopt;
-    std::ifstream in(file, std::ios::binary | std::ios::ate);
-    if (!in) return std::nullopt;
-    const std::streamoff size = in.tellg();
-    if (size <= 0) {  // empty, or not seekable (a pipe): read it as a stream
-        in.clear();
-        in.seekg(0);
-        std::ostringstream bytes;
-        bytes << in.rdbuf();
-        return in.bad() ? std::nullopt : std::optional<std::string>(std::move(bytes).str());
+std::string lowerFirst(std::string s) {
+    if (!s.empty()) s[0] = char(std::tolower(static_cast<unsigned char>(s[0])));
+    return s;
+}
+
+std::string tooLarge(uint64_t bytes) {
+    return "is " + std::to_string(bytes) + " bytes, more than the " + std::to_string(kMaxInputFileBytes) +
+           " (2 GiB) vkray reads";
+}
+
+// `s`, or its first bytes and its length, between `quote`s.
+std::string shortened(std::string_view s, size_t maxBytes, std::string_view quote) {
+    // Built with append: GCC 12 warns falsely (-Wrestrict) on chains of std::string operator+.
+    std::string q(quote);
+    if (s.size() <= maxBytes) return q.append(s).append(quote);
+    size_t cut = maxBytes;
+    while (cut > 0 && (static_cast<unsigned char>(s[cut]) & 0xC0) == 0x80) --cut;  // not inside a UTF-8 character
+    q.append(s.substr(0, cut)).append("...").append(quote);
+    return q.append(" (").append(std::to_string(s.size())).append(" bytes)");
+}
+
+// A pipe (or anything without a size): read in chunks up to the limit.
+std::optional<std::string> readStream(std::istream& in, std::string& whyNot) {
+    std::string bytes;
+    char chunk[1 << 16];
+    while (in) {
+        in.read(chunk, sizeof chunk);
+        bytes.append(chunk, size_t(in.gcount()));
+        if (bytes.size() > kMaxInputFileBytes) {
+            whyNot = "is larger than the " + std::to_string(kMaxInputFileBytes) + " bytes (2 GiB) vkray reads";
+            return std::nullopt;
+        }
     }
-    std::string bytes(size_t(size), '\0');
-    in.seekg(0);
-    if (!in.read(bytes.data(), size)) return std::nullopt;
+    if (in.bad()) {
+        whyNot = "read error";
+        return std::nullopt;
+    }
     return bytes;
 }
+
+}  // namespace
+
+std::optional<std::string> readFileBytes(const std::filesystem::path& file, std::string& whyNot) {
+    namespace fs = std::filesystem;
+    std::error_code ec;
+    const fs::file_status status = fs::status(file, ec);  // follows symbolic links
+    switch (status.type()) {
+        case fs::file_type::not_found:
+            whyNot = "no such file or directory";
+            return std::nullopt;
+        case fs::file_type::none:
+            whyNot = lowerFirst(ec.message());  // a symbolic link loop, a path through a non-directory
+            return std::nullopt;
+        case fs::file_type::directory:
+            whyNot = "is a directory";
+            return std::nullopt;
+        case fs::file_type::regular:
+        case fs::file_type::fifo:
+            break;
+        case fs::file_type::character:
+            whyNot = "is a character device, not a regular file";
+            return std::nullopt;
+        case fs::file_type::block:
+            whyNot = "is a block device, not a regular file";
+            return std::nullopt;
+        default:
+            whyNot = "is not a regular file";
+            return std::nullopt;
+    }
+    errno = 0;
+    std::ifstream in(file, std::ios::binary);
+    if (!in) {
+        whyNot = errno != 0 ? lowerFirst(std::generic_category().message(errno)) : "cannot be opened";
+        return std::nullopt;
+    }
+    if (status.type() == fs::file_type::fifo) return readStream(in, whyNot);
+    const uintmax_t size = fs::file_size(file, ec);
+    if (ec) {
+        whyNot = lowerFirst(ec.message());
+        return std::nullopt;
+    }
+    if (size > kMaxInputFileBytes) {
+        whyNot = tooLarge(size);
+        return std::nullopt;
+    }
+    std::string bytes(size_t(size), '\0');
+    if (!in.read(bytes.data(), std::streamsize(size))) {
+        whyNot = "read error (the file shrank while it was read?)";
+        return std::nullopt;
+    }
+    // A file that grew meanwhile (or a /proc file that reports size 0): read the rest as a stream.
+    if (in.peek() != std::char_traits<char>::eof()) {
+        const std::optional<std::string> rest = readStream(in, whyNot);
+        if (!rest) return std::nullopt;
+        bytes += *rest;
+        if (bytes.size() > kMaxInputFileBytes) {
+            whyNot = tooLarge(bytes.size());
+            return std::nullopt;
+        }
+    }
+    return bytes;
+}
+
+std::optional<std::string> readFileBytes(const std::filesystem::path& file) {
+    std::string whyNot;
+    return readFileBytes(file, whyNot);
+}
+
+FileReader fileSystemReader() {
+    return [](const std::filesystem::path& file, std::string& whyNot) { return readFileBytes(file, whyNot); };
+}
+
+std::string quoted(std::string_view s, size_t maxBytes) { return shortened(s, maxBytes, "'"); }
+std::string excerpt(std::string_view s, size_t maxBytes) { return shortened(s, maxBytes, ""); }
 
 std::string_view withoutUtf8Bom(std::string_view s) {
     return s.substr(0, 3) == "\xEF\xBB\xBF" ? s.substr(3) : s;
 }
 
 void forEachLine(std::string_view data, const std::string& displayName, TextCheck check,
-                 const std::function<void(std::string_view line, int number)>& fn) {
+                 const std::function<void(std::string_view line, int number)>& fn, const std::string& context,
+                 size_t maxLineBytes) {
     if (data.size() >= 2 &&
         ((data[0] == '\xFF' && data[1] == '\xFE') || (data[0] == '\xFE' && data[1] == '\xFF')))
-        throw Error(FileLoc{displayName, 1}, "UTF-16 is not supported; save as UTF-8");
+        throw Error(FileLoc{displayName, 1}, "UTF-16 is not supported; save as UTF-8" + context);
+    if (looksLikeUtf16WithoutBom(data))
+        throw Error(FileLoc{displayName, 1},
+                    "UTF-16 is not supported (no byte-order mark, but every other byte is NUL); save as UTF-8" +
+                        context);
     data = withoutUtf8Bom(data);
     int number = 0;
     while (!data.empty()) {
@@ -117,7 +232,12 @@ void forEachLine(std::string_view data, const std::string& displayName, TextChec
         data.remove_prefix(end == std::string_view::npos ? data.size() : end + 1);
         if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
         ++number;
-        checkLine(line, displayName, number, check);
+        if (line.size() > maxLineBytes)
+            throw Error(FileLoc{displayName, number}, "line is " + std::to_string(line.size()) +
+                                                          " bytes long, more than the " +
+                                                          std::to_string(maxLineBytes) + " a line may have" +
+                                                          context);
+        checkLine(line, displayName, number, check, context);
         fn(line, number);
     }
 }
@@ -182,25 +302,24 @@ NumberStatus parseInt(std::string_view s, int64_t& out) {
     return NumberStatus::Ok;
 }
 
-std::string describeNumberError(NumberStatus status, std::string_view token, const std::string& what,
+std::string describeNumberError(NumberStatus status, std::string_view tokenText, const std::string& what,
                                 std::string_view kind) {
     // Built with append: GCC 12 warns falsely (-Wrestrict) on chains of std::string operator+.
-    std::string quoted = "'";
-    quoted.append(token).append("'");
+    const std::string token = quoted(tokenText);
     std::string msg;
     switch (status) {
         case NumberStatus::NotFinite:
-            msg.append(what).append(" is ").append(quoted).append(", not a finite number");
+            msg.append(what).append(" is ").append(token).append(", not a finite number");
             return msg;
         case NumberStatus::OutOfRange:
-            msg.append(what).append(" ").append(quoted).append(" is out of range");
+            msg.append(what).append(" ").append(token).append(" is out of range");
             if (kind != "an integer") msg.append(" for a 32-bit float");
             return msg;
         case NumberStatus::NotANumber:
         case NumberStatus::Ok:
             break;
     }
-    msg.append("expected ").append(kind).append(" for ").append(what).append(", got ").append(quoted);
+    msg.append("expected ").append(kind).append(" for ").append(what).append(", got ").append(token);
     return msg;
 }
 

@@ -13,9 +13,28 @@
 
 namespace vkray {
 
-// The whole file as bytes; nullopt when it cannot be opened or read (a directory included), so
-// the caller can say which kind of file it wanted and who asked for it.
+// Input files are at most this large: line numbers and columns are ints, and no file a scene
+// needs comes close (the largest real mesh of scenes/ is 50 MB).
+inline constexpr uint64_t kMaxInputFileBytes = (uint64_t(1) << 31) - 1;
+
+// The whole file as bytes; nullopt when it cannot be read, with `whyNot` saying why ("no such file
+// or directory", "is a directory", "is a character device, not a regular file", "is 3 GiB, ..."),
+// so the caller can say which kind of file it wanted and who asked for it. Regular files and pipes
+// are read; devices are refused (/dev/zero would never end).
+std::optional<std::string> readFileBytes(const std::filesystem::path& file, std::string& whyNot);
 std::optional<std::string> readFileBytes(const std::filesystem::path& file);
+
+// How loaders get the bytes of the files a scene names (geo/obj meshes, MTL libraries): the file
+// system by default; the fuzzer serves them from memory so that fuzzed input touches no real file.
+using FileReader = std::function<std::optional<std::string>(const std::filesystem::path& file, std::string& whyNot)>;
+// readFileBytes as a FileReader.
+FileReader fileSystemReader();
+
+// `s` quoted for an error message: 'text', or its first bytes and its length when it is long, so
+// a 10 MB token makes a readable one-line message ('11111111...' (10000000 bytes)).
+std::string quoted(std::string_view s, size_t maxBytes = 48);
+// The same without the quotes, for numbers: 1.5, or 0.00000000...1 (60000 bytes).
+std::string excerpt(std::string_view s, size_t maxBytes = 48);
 
 enum class TextCheck {
     Utf8,   // .scene files: valid UTF-8 without control bytes (except tab, CR, VT, FF)
@@ -26,10 +45,13 @@ enum class TextCheck {
 std::string_view withoutUtf8Bom(std::string_view s);
 
 // Calls `fn(line, number)` for each line of `data` (1-based numbers, LF or CRLF endings, the
-// terminator removed) after rejecting UTF-16 (a byte-order mark) and skipping a UTF-8 BOM.
-// Throws vkray::Error naming `displayName`:line on binary data or invalid UTF-8.
+// terminator removed) after rejecting UTF-16 (with a byte-order mark, or ASCII text interleaved
+// with NUL bytes) and skipping a UTF-8 BOM. Throws vkray::Error naming `displayName`:line on
+// binary data, invalid UTF-8, or a line longer than `maxLineBytes`, with `context` appended to the
+// message (" (OBJ loaded at a.scene:3)").
 void forEachLine(std::string_view data, const std::string& displayName, TextCheck check,
-                 const std::function<void(std::string_view line, int number)>& fn);
+                 const std::function<void(std::string_view line, int number)>& fn, const std::string& context = {},
+                 size_t maxLineBytes = std::string_view::npos);
 
 struct Token {
     std::string_view text;

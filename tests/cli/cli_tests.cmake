@@ -121,3 +121,49 @@ vkray_expect_error(scene_too_large "triangles need 184 MiB.*maxStorageBufferRang
 vkray_expect_error(kd_empty_bonus "--kd-empty-bonus must be in \\[0, 1\\]" render ${CLI_DATA}/one_triangle.scene --accel kd-stack --kd-empty-bonus -0.5 -o ${CLI_OUT}/x.png)
 vkray_expect_error(kd_cost_nan "--kd-traversal-cost and --kd-intersection-cost must be finite and not negative" render ${CLI_DATA}/one_triangle.scene --accel kd-stack --kd-intersection-cost nan -o ${CLI_OUT}/x.png)
 vkray_expect_error(aac_delta_absurd "--aac-delta must be 1..1024" render ${CLI_DATA}/one_triangle.scene --aac-delta 1000000 -o ${CLI_OUT}/x.png)
+
+# Hardened input (issue 7): every case is one "error: " line naming the cause (and file:line where
+# there is one) and a non-zero exit, never a crash, a hang or a silently wrong image. Inputs too
+# large or too binary to commit (UTF-16, 10 MB lines, garbage) are written at test time.
+set(BAD_IN ${CLI_OUT}/bad-inputs)
+add_test(NAME cli.make_bad_inputs COMMAND ${CLI_DIR}/make_bad_inputs.sh ${BAD_IN} $<TARGET_FILE:vkray>)
+set_tests_properties(cli.make_bad_inputs PROPERTIES FIXTURES_SETUP bad_inputs)
+function(vkray_expect_error_generated name pattern)
+  vkray_expect_error(${name} "${pattern}" ${ARGN})
+  set_tests_properties(cli.error.${name} PROPERTIES FIXTURES_REQUIRED bad_inputs)
+endfunction()
+
+vkray_expect_error(truncated_line "truncated\\.scene:3:1: expected 3 numbers after 'vertex' \\(x y z\\), got 2" render ${CLI_DATA}/truncated.scene)
+vkray_expect_error(binary_scene "vkray:1:1: binary data \\(control byte 0x7F\\)" render $<TARGET_FILE:vkray>)
+vkray_expect_error(device_file "/dev/zero: cannot open scene file: is a character device, not a regular file" render /dev/zero)
+vkray_expect_error(directory_scene "data: cannot open scene file: is a directory" render ${CLI_DATA})
+vkray_expect_error_generated(utf16_bom "utf16le_bom\\.scene:1: UTF-16 is not supported; save as UTF-8" render ${BAD_IN}/utf16le_bom.scene)
+vkray_expect_error_generated(utf16le_no_bom "utf16le\\.scene:1: UTF-16 is not supported \\(no byte-order mark" render ${BAD_IN}/utf16le.scene)
+vkray_expect_error_generated(utf16be_no_bom "utf16be\\.scene:1: UTF-16 is not supported \\(no byte-order mark" render ${BAD_IN}/utf16be.scene)
+vkray_expect_error_generated(utf16_obj "utf16\\.obj:1: UTF-16 is not supported.*OBJ loaded at .*utf16_obj\\.scene:2" render ${BAD_IN}/utf16_obj.scene)
+vkray_expect_error_generated(long_line "long_line\\.scene:2: line is 10000011 bytes long, more than the 65536" render ${BAD_IN}/long_line.scene)
+# The message quotes the start of the 10 MB number and its length, not the whole of it.
+vkray_expect_error_generated(long_number_obj "long_number\\.obj:3:7: value 3 of 'v' '1{48}\\.\\.\\.' \\(10000000 bytes\\) is out of range" render ${BAD_IN}/long_number_obj.scene)
+vkray_expect_error_generated(binary_obj "garbage\\.obj:1:[0-9]+: binary data.*OBJ loaded at .*garbage_obj\\.scene:2" render ${BAD_IN}/garbage_obj.scene)
+vkray_expect_error_generated(obj_big_polygon "big_polygon\\.obj:2001:1: face of 2000 vertices, more than the 1024" render ${BAD_IN}/big_polygon.scene)
+vkray_expect_error_generated(push_depth "push_depth\\.scene:1026:1: pushTransform nested more than 1024 deep" render ${BAD_IN}/push_depth.scene)
+vkray_expect_error(negative_index "negative_index\\.scene:6:7: vertex index -1 out of range \\(3 defined, valid 0\\.\\.2\\)" render ${CLI_DATA}/negative_index.scene)
+vkray_expect_error(obj_truncated "obj_truncated\\.obj:3:1: expected 3 to 7 numbers after 'v', got 2" render ${CLI_DATA}/obj_truncated.scene)
+vkray_expect_error(obj_missing_mtl "obj_missing_mtl\\.scene:3: cannot open material library '.*obj_missing_mtl\\.mtl'.*no such file" render ${CLI_DATA}/obj_missing_mtl.scene)
+vkray_expect_error(obj_bad_index "obj_bad_index\\.obj:5:7: vertex index 7 out of range: the file defines 3 vertices" render ${CLI_DATA}/obj_bad_index.scene)
+vkray_expect_error(obj_negative_index "obj_negative_index\\.obj:4:9: relative vertex index -4 reaches before the first one" render ${CLI_DATA}/obj_negative_index.scene)
+vkray_expect_error(obj_nan "obj_nan\\.obj:2:5: value 2 of 'v' is 'NaN', not a finite number" render ${CLI_DATA}/obj_nan.scene)
+vkray_expect_error(obj_bad_polygon "obj_bad_polygon\\.scene:3: .*triangulated the faces into 0 triangles instead of 3" render ${CLI_DATA}/obj_bad_polygon.scene)
+# Includes cannot cycle: geo/obj load only OBJ and OFF meshes, OBJ loads only MTL, and OBJ's own
+# include (`call`) is refused rather than silently skipped.
+vkray_expect_error(geo_self "geo_self\\.scene:3: cannot load .*geo_self\\.scene': unsupported mesh format '\\.scene'" render ${CLI_DATA}/geo_self.scene)
+vkray_expect_error(obj_self "obj_self\\.obj:2:1: unknown OBJ statement 'camera'.*OBJ loaded at .*obj_self\\.obj:3" render ${CLI_DATA}/obj_self.obj)
+vkray_expect_error(obj_call "obj_call\\.obj:6:1: OBJ statement 'call' is not supported" render ${CLI_DATA}/obj_call.scene)
+vkray_expect_error(transform_underflow "transform_underflow\\.scene:13:1: the transform overflows or becomes singular" render ${CLI_DATA}/transform_underflow.scene)
+vkray_expect_error(maxdepth_huge "huge_maxdepth\\.scene:3:10: maxdepth 1000000000 is outside 1\\.\\.64" render ${CLI_DATA}/huge_maxdepth.scene)
+vkray_expect_error(maxdepth_flag_negative "--maxdepth -1: must be 1\\.\\.64" render ${CLI_DATA}/one_triangle.scene --maxdepth -1 -o ${CLI_OUT}/x.png)
+vkray_expect_error(maxdepth_flag_huge "--maxdepth 1000000000: must be 1\\.\\.64" render ${CLI_DATA}/one_triangle.scene --maxdepth 1000000000 -o ${CLI_OUT}/x.png)
+vkray_expect_error(threads_flag_huge "--threads must be 0 \\(all cores\\) or 1\\.\\.1024" render ${CLI_DATA}/one_triangle.scene --cpu --threads 100000 -o ${CLI_OUT}/x.png)
+# Larger than any device: refused by its count before anything is generated (a scene that grows
+# past 2^26 triangles line by line is refused at the line that would cross it: tests/scene).
+vkray_expect_error(generate_huge "generate_huge\\.scene:3:15: triangle count 50000000 is outside 1\\.\\.33554432" render ${CLI_DATA}/generate_huge.scene)

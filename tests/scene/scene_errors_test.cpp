@@ -123,14 +123,18 @@ INSTANTIATE_TEST_SUITE_P(
         ErrorCase{"# cut \xE2\x82\n", 1, 7, "invalid UTF-8"},
         ErrorCase{std::string("\xFF\xFEs\0i\0z\0e\0", 10), 1, 0, "UTF-16 is not supported; save as UTF-8"},
         ErrorCase{std::string("\xFE\xFF\0s\0i\0z\0e", 10), 1, 0, "UTF-16 is not supported; save as UTF-8"},
-        ErrorCase{std::string("s\0i\0z\0e\0", 8), 1, 2, "binary data (NUL byte)"}));
+        // UTF-16 without a byte-order mark: ASCII interleaved with NUL bytes, either order.
+        ErrorCase{std::string("s\0i\0z\0e\0", 8), 1, 0, "UTF-16 is not supported (no byte-order mark"},
+        ErrorCase{std::string("\0s\0i\0z\0e", 8), 1, 0, "UTF-16 is not supported (no byte-order mark"},
+        // Text that has a NUL byte later is binary data, not UTF-16.
+        ErrorCase{std::string("size\0\0\0\0", 8), 1, 5, "binary data (NUL byte)"}));
 
 TEST(SceneErrorsFile, MissingSceneFile) {
     try {
         loadScene("no/such/dir/missing.scene");
         FAIL() << "no error";
     } catch (const Error& e) {
-        EXPECT_EQ(std::string(e.what()), "no/such/dir/missing.scene: cannot open scene file");
+        EXPECT_EQ(std::string(e.what()), "no/such/dir/missing.scene: cannot open scene file: no such file or directory");
         ASSERT_TRUE(e.hasLocation());
         EXPECT_EQ(e.location().file, "no/such/dir/missing.scene");
     }
