@@ -1,6 +1,9 @@
 #!/usr/bin/env bash
 # Installs the Debian 12 packages vkray needs to build, run on lavapipe and test — only those
 # missing, so a second run costs a second. Uses sudo when not run as root.
+# usage: scripts/install-deps.sh [fuzz]
+#   fuzz   also clang and its runtime libraries (libFuzzer, ASan, UBSan) for `make fuzz`; the
+#          sanitizer build of `make sanitize` uses g++, whose sanitizer runtimes come with it
 set -euo pipefail
 
 packages=(
@@ -9,6 +12,13 @@ packages=(
   libglm-dev libtinyobjloader-dev libstb-dev
   libtbb-dev libcli11-dev nlohmann-json3-dev libgtest-dev
 )
+for extra in "$@"; do
+  case "$extra" in
+    # libclang-rt-14-dev (libFuzzer and the sanitizer runtimes) is only recommended by clang.
+    fuzz) packages+=(clang libclang-rt-14-dev) ;;
+    *) echo "install-deps: unknown group '$extra' (known: fuzz)" >&2; exit 2 ;;
+  esac
+done
 
 missing=()
 for p in "${packages[@]}"; do
