@@ -1,7 +1,4 @@
 // writeBenchReport (report.h): the output folder of `vkray bench`, every file checked as written.
-#include <cerrno>
-#include <cstdio>
-#include <cstring>
 #include <filesystem>
 #include <string>
 #include <system_error>
@@ -9,6 +6,7 @@
 #include "bench/report.h"
 #include "bench/report_images.h"
 #include "core/error.h"
+#include "core/file_output.h"
 
 namespace fs = std::filesystem;
 
@@ -25,18 +23,6 @@ void makeDirectory(const fs::path& dir) {
         throw fileError(dir, "cannot create the directory" + (ec ? ": " + ec.message() : ": a file of that name exists"));
 }
 
-// Writes all bytes or throws, closing the file either way.
-void writeFile(const fs::path& path, const void* bytes, size_t size) {
-    std::FILE* f = std::fopen(path.c_str(), "wb");
-    if (!f) throw fileError(path, std::string("cannot open for writing: ") + std::strerror(errno));
-    const size_t written = std::fwrite(bytes, 1, size, f);
-    int err = written == size ? 0 : errno;
-    if (std::fclose(f) != 0 && err == 0) err = errno;
-    if (written != size || err != 0) throw fileError(path, std::string("write failed: ") + std::strerror(err ? err : EIO));
-}
-
-void writeText(const fs::path& path, const std::string& text) { writeFile(path, text.data(), text.size()); }
-
 }  // namespace
 
 void writeBenchReport(const BenchResults& results, const fs::path& dir) {
@@ -49,10 +35,10 @@ void writeBenchReport(const BenchResults& results, const fs::path& dir) {
 
     makeDirectory(dir);
     makeDirectory(dir / "images");
-    writeText(dir / "bench.json", json);
-    writeText(dir / "bench.md", markdown);
-    writeText(dir / "report.html", html);
-    for (const ReportImage& im : images) writeFile(dir / "images" / im.fileName, im.png.data(), im.png.size());
+    writeFileText(dir / "bench.json", json);
+    writeFileText(dir / "bench.md", markdown);
+    writeFileText(dir / "report.html", html);
+    for (const ReportImage& im : images) writeFileBytes(dir / "images" / im.fileName, im.png.data(), im.png.size());
 }
 
 }  // namespace vkray::bench

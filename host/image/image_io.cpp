@@ -18,6 +18,7 @@
 #include <stb_image_write.h>
 
 #include "core/error.h"
+#include "core/file_output.h"
 
 namespace fs = std::filesystem;
 
@@ -55,20 +56,6 @@ void checkSize(const fs::path& path, int width, int height, int channels) {
                                   std::to_string(channels) + " channels");
 }
 
-// Writes the whole buffer; on failure removes the partial file so no half-written image is left behind.
-void writeBytes(const fs::path& path, const void* bytes, size_t size) {
-    std::FILE* f = std::fopen(path.c_str(), "wb");
-    if (!f) throw fileError(path, std::string("cannot open for writing: ") + std::strerror(errno));
-    const size_t written = std::fwrite(bytes, 1, size, f);
-    int err = written == size ? 0 : errno;
-    if (std::fclose(f) != 0 && err == 0) err = errno;
-    if (written != size || err != 0) {
-        std::error_code ignored;
-        fs::remove(path, ignored);
-        throw fileError(path, std::string("write failed: ") + std::strerror(err != 0 ? err : EIO));
-    }
-}
-
 // round(255 c) of c clamped to [0, 1]; NaN (which fails every comparison) becomes 0.
 unsigned char to8Bit(float c) {
     if (!(c > 0.0f)) return 0;
@@ -99,7 +86,7 @@ std::vector<unsigned char> encode8Bit(Format format, const Image& image) {
 void write8Bit(const fs::path& path, Format format, const Image& image) {
     const std::vector<unsigned char> encoded = encode8Bit(format, image);
     if (encoded.empty()) throw fileError(path, "cannot encode the image");
-    writeBytes(path, encoded.data(), encoded.size());
+    writeFileBytes(path, encoded.data(), encoded.size());
 }
 
 uint32_t byteSwap(uint32_t v) {
@@ -269,7 +256,7 @@ void writePfm(const fs::path& path, int width, int height, int channels, const f
             std::memcpy(out, &bits, sizeof bits);
         }
     }
-    writeBytes(path, bytes.data(), bytes.size());
+    writeFileBytes(path, bytes.data(), bytes.size());
 }
 
 void writeImage(const fs::path& path, const Image& image) {
