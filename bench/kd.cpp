@@ -21,7 +21,7 @@
 #include "accel/kd/kd_traversal.h"
 #include "accel/kd/sah_kd_builder.h"
 #include "bench/spread.h"
-#include "cpu/brute_force.h"
+#include "geometry/brute_force.h"
 #include "gpu/gpu_renderer.h"
 #include "gpu/vulkan_context.h"
 #include "scene/camera.h"
@@ -99,14 +99,14 @@ kd::KdBuildResult timeBuilds(const Scene& scene, const kd::KdConfig& config, con
 void cpuTraversalFigures(const Scene& scene, const kd::KdTree& tree, const Options& o) {
     const CameraFrame cam = makeCameraFrame(scene.camera, o.width, o.height);
     uint64_t stackNodes = 0;
-    for (KdTraversal t : {KdTraversal::Stack, KdTraversal::Restart, KdTraversal::Backtrack}) {
-        const auto tracer = kd::makeKdTracer(t, tree, cpu::triangleVertices(scene));
-        cpu::TraversalCounters c;
+    for (kd::Traversal t : {kd::Traversal::Stack, kd::Traversal::Restart, kd::Traversal::Backtrack}) {
+        const auto tracer = kd::makeKdTracer(t, tree, geometry::triangleVertices(scene));
+        geometry::TraversalCounters c;
         for (int j = 0; j < cam.height; ++j)
             for (int i = 0; i < cam.width; ++i) tracer->closest({cam.eye, primaryDirection(cam, i, j)}, INFINITY, &c);
         const double rays = double(cam.width) * cam.height;
-        if (t == KdTraversal::Stack) stackNodes = c.nodes;
-        const char* name = t == KdTraversal::Stack ? "kd-stack" : t == KdTraversal::Restart ? "kd-restart" : "kd-backtrack";
+        if (t == kd::Traversal::Stack) stackNodes = c.nodes;
+        const char* name = t == kd::Traversal::Stack ? "kd-stack" : t == kd::Traversal::Restart ? "kd-restart" : "kd-backtrack";
         std::printf("  CPU %-12s per camera ray: %6.1f nodes (%.2fx stack), %5.2f leaves, %6.1f triangles, %5.2f "
                     "restarts, %llu capped\n",
                     name, c.nodes / rays, double(c.nodes) / double(std::max<uint64_t>(stackNodes, 1)), c.leaves / rays,
@@ -117,12 +117,10 @@ void cpuTraversalFigures(const Scene& scene, const kd::KdTree& tree, const Optio
 void gpuTimes(const gpu::VulkanContext& ctx, const Scene& scene, const kd::KdConfig& config, const Options& o) {
     RenderOptions options{.width = o.width, .height = o.height, .maxDepth = scene.maxDepth};
     for (const char* name : {"kd-stack", "kd-restart", "kd-backtrack"}) {
-        AccelSpec spec = parseAccel(name);
-        spec.kdIntersectionCost = config.intersectionCost;
-        spec.kdTraversalCost = config.traversalCost;
+        AccelSpec spec = resolveAccel(name);
+        spec.kd = config;
         const auto built = buildAccel(scene, spec);
         const GpuAccelData data = built->gpuData();
-        options.accel = name;
         std::vector<double> ms;
         gpu::GpuRenderReport report;
         gpu::renderOnGpu(ctx, scene, options, data, &report);  // warm-up

@@ -6,7 +6,6 @@
 //
 //   vkray_bench_traversals [--runs N] [--size WxH] [--accel LIST] [--device D] SCENE...
 #include <algorithm>
-#include <chrono>
 #include <cstdio>
 #include <cstdlib>
 #include <exception>
@@ -16,6 +15,7 @@
 
 #include "accel/accel.h"
 #include "bench/spread.h"
+#include "core/timing.h"
 #include "gpu/gpu_renderer.h"
 #include "gpu/vulkan_context.h"
 #include "scene/scene_parser.h"
@@ -73,17 +73,15 @@ void benchScene(const gpu::VulkanContext& ctx, const std::string& file, const Op
     render.height = o.height;
     render.maxDepth = scene.maxDepth;
     for (const std::string& name : o.accels) {
-        const accel::AccelSpec spec = accel::parseAccel(name);
+        const accel::AccelSpec spec = accel::resolveAccel(name);
         std::vector<double> buildMs;
         std::unique_ptr<accel::BuiltAccel> built;
         for (int r = 0; r < 1 + o.runs; ++r) {  // the first build warms the allocator and the pool
-            const auto t0 = std::chrono::steady_clock::now();
+            const Clock::time_point t0 = Clock::now();
             built = accel::buildAccel(scene, spec);
-            const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-            if (r > 0) buildMs.push_back(ms);
+            if (r > 0) buildMs.push_back(msSince(t0));
         }
         const accel::GpuAccelData data = built->gpuData();
-        render.accel = name;
         gpu::GpuRenderReport report;
         render.countTraversal = false;
         gpu::renderOnGpu(ctx, scene, render, data, &report);  // warm-up (pipeline caches, first touch)

@@ -6,7 +6,7 @@
 #include "accel/bvh/bvh_accel.h"
 #include "accel/kd/kd_accel.h"
 #include "core/error.h"
-#include "cpu/brute_force.h"
+#include "geometry/brute_force.h"
 
 namespace vkray::accel {
 namespace {
@@ -14,56 +14,21 @@ namespace {
 // `brute`: nothing to build; the kernel and the CPU tracer test every triangle.
 class BruteAccel final : public BuiltAccel {
 public:
-    explicit BruteAccel(const Scene& scene) : tracer_(scene) {}
-    const cpu::Tracer& tracer() const override { return tracer_; }
+    std::unique_ptr<geometry::Tracer> makeTracer(const Scene& scene) const override {
+        return std::make_unique<geometry::BruteForceTracer>(scene);
+    }
     GpuAccelData gpuData() const override { return GpuAccelData{}; }  // kernel "brute", no arrays
     std::vector<AccelStat> stats() const override { return {}; }
-
-private:
-    cpu::BruteForceTracer tracer_;
 };
 
-std::string joined(const std::vector<std::string>& names) {
-    std::string s;
-    for (const std::string& n : names) s += (s.empty() ? "" : ", ") + n;
-    return s;
-}
-
 }  // namespace
-
-const std::vector<std::string>& accelNames() {
-    static const std::vector<std::string> names = {"bvh",        "bvh-fast",     "bvh-hq",   "bvh-sah",
-                                                   "kd-restart", "kd-backtrack", "kd-stack", "brute"};
-    return names;
-}
-
-AccelSpec parseAccel(const std::string& name) {
-    AccelSpec s;
-    s.name = name;
-    if (name == "brute") {
-        s.family = Family::Brute;
-    } else if (name == "bvh" || name == "bvh-fast" || name == "bvh-hq") {
-        s.family = Family::Bvh;
-    } else if (name == "bvh-sah") {
-        s.family = Family::Bvh;
-        s.bvhSahReference = true;
-    } else if (name == "kd-stack" || name == "kd-restart" || name == "kd-backtrack") {
-        s.family = Family::Kd;
-        s.kdTraversal = name == "kd-stack"     ? KdTraversal::Stack
-                        : name == "kd-restart" ? KdTraversal::Restart
-                                               : KdTraversal::Backtrack;
-    } else {
-        throw Error("unknown accelerator '" + name + "' (known: " + joined(accelNames()) + ")");
-    }
-    return s;
-}
 
 std::unique_ptr<BuiltAccel> buildAccel(const Scene& scene, const AccelSpec& spec,
                                        const BuildOptions& options) {
     switch (spec.family) {
-    case Family::Brute: return std::make_unique<BruteAccel>(scene);
-    case Family::Bvh: return buildBvhAccel(scene, spec, options);
-    case Family::Kd: return buildKdAccel(scene, spec, options);
+    case Family::Brute: return std::make_unique<BruteAccel>();
+    case Family::Bvh: return buildBvhAccel(scene, spec.bvh, options);
+    case Family::Kd: return buildKdAccel(scene, spec.kd, spec.kdTraversal, options);
     }
     throw Error("accelerator '" + spec.name + "': unknown family");
 }

@@ -1,56 +1,46 @@
-// Acceleration structures as the renderers see them: a name from the command line (DESIGN.md,
-// "Accelerator names") becomes an AccelSpec; buildAccel() builds only the structure that spec needs
-// (a scene rendered with `brute` builds nothing) and returns it as a BuiltAccel, which offers a CPU
-// tracer (for the reference renderer and unit tests) and the flattened arrays the GPU kernel reads.
+// Acceleration structures as the renderers see them: an AccelSpec (accel_spec.h: the name from the
+// command line and its tuning, resolved and validated) goes to buildAccel(), which builds only the
+// structure that spec needs (a scene rendered with `brute` builds nothing) and returns it as a
+// BuiltAccel: the flattened arrays the GPU kernel reads and, on request, a CPU tracer (for the
+// reference renderer and the tests).
 //
-// Each family lives in its own folder: accel/bvh/ (AAC after Gu et al. 2013, binned-SAH reference),
-// accel/kd/ (SAH kd-tree after Wald and Havran 2006, traversals after Foley and Sugerman 2005).
+// Each family lives in its own folder: accel/bvh/ (AAC after Gu, He, Fatahalian and Blelloch 2013,
+// binned-SAH reference), accel/kd/ (SAH kd-tree after Wald and Havran 2006, traversals after Foley
+// and Sugerman 2005).
 #pragma once
 
+#include <array>
 #include <cstddef>
 #include <cstdint>
-#include <functional>
 #include <memory>
 #include <string>
+#include <string_view>
 #include <vector>
 
-#include "cpu/tracer.h"
+#include "accel/accel_spec.h"
+#include "core/phase_log.h"
+#include "geometry/tracer.h"
 #include "scene/scene.h"
 
 namespace vkray::accel {
 
-enum class Family { Brute, Bvh, Kd };
+// The GPU render kernels, one per shaders/render_<kernelName()>.comp. gpu/gpu_renderer.cpp checks
+// at compile time that each has its SPIR-V, so a kernel named here and missing there fails the
+// build, not a render.
+enum class Kernel { Brute, Bvh, KdStack, KdRestart, KdBacktrack };
+inline constexpr std::array kKernels{Kernel::Brute, Kernel::Bvh, Kernel::KdStack, Kernel::KdRestart,
+                                     Kernel::KdBacktrack};
 
-// The three kd-tree traversals of Foley and Sugerman (2005); the tree is the same for all three.
-enum class KdTraversal { Stack, Restart, Backtrack };
-
-// Which structure to build and how, from `--accel NAME` and the tuning options. Tuning fields left
-// at their "unset" value mean "the preset's value"; the builders document their defaults.
-struct AccelSpec {
-    std::string name = "bvh";  // as given on the command line
-    Family family = Family::Bvh;
-    KdTraversal kdTraversal = KdTraversal::Restart;
-
-    // BVH (AAC): preset from the name (bvh, bvh-fast, bvh-hq); overrides when > 0.
-    int aacDelta = 0;
-    double aacEpsilon = 0.0;
-    bool bvhSahReference = false;  // the binned-SAH reference builder instead of AAC (`bvh-sah`)
-
-    // kd-tree SAH constants; overrides when > 0.
-    double kdTraversalCost = 0.0;
-    double kdIntersectionCost = 0.0;
-    double kdEmptyBonus = -1.0;  // overrides when >= 0
-    int kdMaxDepth = 0;
-};
-
-// Every accelerator name vkray accepts, in the order `--help` lists them.
-const std::vector<std::string>& accelNames();
-
-// The spec for a name; an unknown name is an Error listing the known ones.
-AccelSpec parseAccel(const std::string& name);
-
-// Progress of a long build, for a progress line: what is being done and the fraction done (0..1).
-using BuildProgress = std::function<void(const std::string& phase, double fraction)>;
+constexpr std::string_view kernelName(Kernel k) {
+    switch (k) {
+    case Kernel::Brute: return "brute";
+    case Kernel::Bvh: return "bvh";
+    case Kernel::KdStack: return "kd_stack";
+    case Kernel::KdRestart: return "kd_restart";
+    case Kernel::KdBacktrack: return "kd_backtrack";
+    }
+    return "";
+}
 
 struct BuildOptions {
     int threads = 0;  // worker threads; 0 = all cores. The result never depends on it.
@@ -67,8 +57,7 @@ struct AccelStat {
 
 // What the GPU kernel needs of a built structure, in the layouts of shaders/shared/*_layout.h.
 struct GpuAccelData {
-    // The kernel, by name: shaders/render_<kernel>.comp (for example "brute", "bvh", "kd_restart").
-    std::string kernel = "brute";
+    Kernel kernel = Kernel::Brute;
     // Triangle-buffer slot k holds scene triangle triangleOrder[k] (leaf order, for locality);
     // empty = scene order. GpuTriangle.original keeps the identity for AOVs either way.
     std::vector<uint32_t> triangleOrder;
@@ -83,8 +72,10 @@ class BuiltAccel {
 public:
     virtual ~BuiltAccel() = default;
 
-    // CPU traversal of the structure: same answers as brute force, ties included (cpu/tracer.h).
-    virtual const cpu::Tracer& tracer() const = 0;
+    // A CPU traversal of the structure in double precision: the same answers as brute force, ties
+    // included (geometry/tracer.h). Made only when asked for (a GPU render needs none), over
+    // `scene`, the scene the structure was built from; it must not outlive *this.
+    virtual std::unique_ptr<geometry::Tracer> makeTracer(const Scene& scene) const = 0;
     // The structure flattened for the GPU.
     virtual GpuAccelData gpuData() const = 0;
     // Build figures (time by phase, nodes, depth, SAH cost...).
@@ -94,10 +85,9 @@ public:
 std::unique_ptr<BuiltAccel> buildAccel(const Scene& scene, const AccelSpec& spec,
                                        const BuildOptions& options = {});
 
-// Builds several structures at the same time, each on its own thread with options.threads workers
-// (the mission's "the BVH and the kd-tree are built in parallel"): a render that needs both waits
-// for the slower one instead of the sum. Results are in the order of `specs`; the first failure is
-// rethrown after every build has ended.
+// Builds several structures at the same time, each on its own thread with options.threads workers,
+// so that a run that needs the BVH and the kd-tree waits for the slower build instead of the sum.
+// Results are in the order of `specs`; the first failure is rethrown after every build has ended.
 std::vector<std::unique_ptr<BuiltAccel>> buildAccelsConcurrently(const Scene& scene,
                                                                  const std::vector<AccelSpec>& specs,
                                                                  const BuildOptions& options = {});

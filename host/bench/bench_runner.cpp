@@ -1,7 +1,6 @@
 #include "bench/bench_runner.h"
 
 #include <algorithm>
-#include <chrono>
 #include <ctime>
 #include <cmath>
 #include <filesystem>
@@ -12,6 +11,7 @@
 #include "accel/accel.h"
 #include "bench/report.h"
 #include "core/error.h"
+#include "core/timing.h"
 #include "cpu/reference_renderer.h"
 #include "gpu/gpu_renderer.h"
 #include "gpu/scene_buffers.h"
@@ -22,10 +22,6 @@
 namespace vkray::bench {
 namespace {
 
-using Clock = std::chrono::steady_clock;
-double msSince(Clock::time_point start) {
-    return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
-}
 
 // Differences within this many 8-bit levels are what float vs double rounding gives
 // (tests/golden): the difference images show them blue, beyond it red.
@@ -60,13 +56,6 @@ double statValue(const std::vector<accel::AccelStat>& stats, const std::string& 
     for (const auto& s : stats)
         if (s.key == key) return s.value;
     return 0.0;
-}
-
-// Builds of one structure are timed once, whatever traversal walks it: kd-stack, kd-restart and
-// kd-backtrack share the tree (their build differs only in the arrays gpuData() flattens).
-std::string structureKey(const accel::AccelSpec& spec) {
-    if (spec.family == accel::Family::Kd) return "kd";
-    return spec.name == "bvh" ? "bvh-hq" : spec.name;
 }
 
 // A render's figures that one GPU run gives.
@@ -106,7 +95,7 @@ public:
 
         const Frame reference = renderReferenceImage(scene, render, result);
         for (const std::string& name : options_.accels)
-            result.accels.push_back(runAccel(scene, dark, render, accel::parseAccel(name), reference, result));
+            result.accels.push_back(runAccel(scene, dark, render, accel::resolveAccel(name), reference, result));
         for (const AccelResult& a : result.accels) result.errorPoints.push_back(acceleratorPoint(a, scene.maxDepth));
         result.concurrent = runConcurrentBuild(scene);
         for (int delta : options_.deltas) runDelta(scene, render, delta, reference, result);
@@ -131,14 +120,15 @@ private:
         result.referenceAccel = "bvh";
         step("reference: build bvh");
         auto t0 = Clock::now();
-        const auto built = accel::buildAccel(scene, accel::parseAccel("bvh"), {});
+        const auto built = accel::buildAccel(scene, accel::resolveAccel("bvh"), {});
+        const auto tracer = built->makeTracer(scene);
         result.referenceBuildMs = msSince(t0);
         Frame frame;
         std::vector<double> ms;
         for (int r = 0; r <= options_.repeat; ++r) {  // run 0 warms up and gives the image
             step("reference: CPU render (double)", r, options_.repeat);
             t0 = Clock::now();
-            frame = renderReference(scene, render, built->tracer());
+            frame = renderReference(scene, render, *tracer);
             if (r > 0) ms.push_back(msSince(t0));
         }
         result.referenceRenderMs = spreadOf(ms).median;
@@ -175,7 +165,7 @@ private:
     }
 
     Built buildTimed(const Scene& scene, const accel::AccelSpec& spec) {
-        const std::string key = structureKey(spec);
+        const std::string key = accel::structureKey(spec);
         if (const auto it = buildTimings_.find(key); it != buildTimings_.end())
             return buildOnce(scene, spec, it->second);
         Built b = timeBuilds(scene, spec, threads_);
@@ -272,7 +262,7 @@ private:
         a.buildStats = built.accel->stats();
         const accel::GpuAccelData data = built.accel->gpuData();
         built.accel.reset();  // the CPU side is not needed any more: free it before tracing
-        a.kernel = data.kernel;
+        a.kernel = std::string(accel::kernelName(data.kernel));
         a.structureBytes = data.bytes();
 
         const Traced t = traceTimed(scene, dark, render, data, spec.name, true);
@@ -332,7 +322,7 @@ private:
     std::optional<ConcurrentBuild> runConcurrentBuild(const Scene& scene) {
         std::optional<accel::AccelSpec> bvh, kd;
         for (const std::string& name : options_.accels) {
-            const accel::AccelSpec spec = accel::parseAccel(name);
+            const accel::AccelSpec spec = accel::resolveAccel(name);
             if (spec.family == accel::Family::Bvh && !bvh) bvh = spec;
             if (spec.family == accel::Family::Kd && !kd) kd = spec;
         }
@@ -340,8 +330,8 @@ private:
         ConcurrentBuild c;
         c.bvhAccel = bvh->name;
         c.kdAccel = kd->name;
-        c.bvhMs = buildTimings_.at(structureKey(*bvh)).back().ms;
-        c.kdMs = buildTimings_.at(structureKey(*kd)).back().ms;
+        c.bvhMs = buildTimings_.at(accel::structureKey(*bvh)).back().ms;
+        c.kdMs = buildTimings_.at(accel::structureKey(*kd)).back().ms;
         std::vector<double> ms;
         const accel::BuildOptions all{.threads = maxThreads(threads_), .progress = {}};
         for (int r = 0; r <= options_.repeat; ++r) {
@@ -357,8 +347,8 @@ private:
     // One point of seed 001's threshold sweep: AAC-HQ's epsilon with another delta.
     void runDelta(const Scene& scene, const RenderOptions& render, int delta, const Frame& reference,
                   SceneResult& result) {
-        accel::AccelSpec spec = accel::parseAccel("bvh");
-        spec.aacDelta = delta;
+        accel::AccelSpec spec = accel::resolveAccel("bvh");
+        spec.bvh.delta = delta;
         const std::string label = "aac delta " + std::to_string(delta);
         DeltaResult d;
         d.delta = delta;
@@ -409,11 +399,11 @@ private:
         if (depths.empty() || result.accels.empty()) return;
         std::string name = result.accels.front().accel;
         for (const AccelResult& a : result.accels)
-            if (accel::parseAccel(a.accel).family == accel::Family::Bvh) {
+            if (accel::resolveAccel(a.accel).family == accel::Family::Bvh) {
                 name = a.accel;
                 break;
             }
-        const accel::AccelSpec spec = accel::parseAccel(name);
+        const accel::AccelSpec spec = accel::resolveAccel(name);
         const Built built = buildOnce(scene, spec, {});
         const accel::GpuAccelData data = built.accel->gpuData();
         double buildMs = 0.0;
@@ -443,7 +433,9 @@ private:
     const BenchProgressFn& progress_;
     const Clock::time_point start_;
     std::vector<int> threads_ = options_.threads.empty() ? defaultThreadCounts() : options_.threads;
-    std::map<std::string, std::vector<ThreadTiming>> buildTimings_;  // per structureKey, per scene
+    // Per accel::structureKey, per scene: builds of one structure are timed once, whatever walks it
+    // (kd-stack, kd-restart and kd-backtrack share the tree).
+    std::map<std::string, std::vector<ThreadTiming>> buildTimings_;
     gpu::KernelCache kernels_{ctx_};  // pipelines are not what the bench measures
     int sceneIndex_ = 0, sceneCount_ = 0;
     std::string sceneName_;
@@ -464,7 +456,7 @@ void checkOptions(const BenchOptions& o) {
     if (o.scenes.empty()) throw Error("vkray bench: no scene given");
     if (o.accels.empty()) throw Error("vkray bench: --accel names no accelerator");
     if (o.repeat < 1 || o.repeat > 1000) throw Error("--repeat " + std::to_string(o.repeat) + ": expected 1..1000");
-    for (const std::string& a : o.accels) accel::parseAccel(a);  // an unknown name fails before any work
+    for (const std::string& a : o.accels) accel::resolveAccel(a);  // an unknown name fails before any work
     for (int t : o.threads)
         if (t < 1 || t > 1024) throw Error("--threads " + std::to_string(t) + ": expected 1..1024");
     for (int d : o.deltas)

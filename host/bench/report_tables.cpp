@@ -98,7 +98,7 @@ void addRow(Table& t, std::vector<std::string> cells, bool marked = false) {
 
 std::optional<accel::Family> familyOf(const std::string& accelName) {
     try {
-        return accel::parseAccel(accelName).family;
+        return accel::resolveAccel(accelName).family;
     } catch (const Error&) {
         return std::nullopt;  // a name this build does not know: in no family
     }

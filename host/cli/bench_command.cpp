@@ -37,7 +37,7 @@ bench::BenchOptions resolveOptions(const BenchArgs& args) {
     bench::BenchOptions o;
     o.scenes = args.scenes;
     if (!args.accels.empty()) o.accels = parseNameList(args.accels, "--accel");
-    for (const std::string& a : o.accels) accel::parseAccel(a);
+    for (const std::string& a : o.accels) accel::resolveAccel(a);
     if (!args.size.empty()) std::tie(o.width, o.height) = parseSize(args.size);
     if (args.repeat < 1 || args.repeat > 1000)
         throw Error("--repeat " + std::to_string(args.repeat) + ": expected 1..1000");

@@ -8,7 +8,7 @@
 #include <tbb/task_arena.h>
 
 #include "core/error.h"
-#include "cpu/brute_force.h"
+#include "geometry/brute_force.h"
 #include "cpu/whitted.h"
 #include "scene/camera.h"
 
@@ -35,11 +35,11 @@ void checkRenderable(const Scene& scene, const RenderOptions& options) {
 
 Frame renderReference(const Scene& scene, const RenderOptions& options, const RenderProgress& progress) {
     checkRenderable(scene, options);  // before building anything over a scene we cannot render
-    const cpu::BruteForceTracer tracer(scene);
+    const geometry::BruteForceTracer tracer(scene);
     return renderReference(scene, options, tracer, progress);
 }
 
-Frame renderReference(const Scene& scene, const RenderOptions& options, const cpu::Tracer& tracer,
+Frame renderReference(const Scene& scene, const RenderOptions& options, const geometry::Tracer& tracer,
                       const RenderProgress& progress) {
     checkRenderable(scene, options);
     const CameraFrame camera = makeCameraFrame(scene.camera, options.width, options.height);
@@ -55,7 +55,7 @@ Frame renderReference(const Scene& scene, const RenderOptions& options, const cp
     auto renderRows = [&](const tbb::blocked_range<int>& rows) {
         for (int j = rows.begin(); j != rows.end(); ++j) {
             for (int i = 0; i < frame.width; ++i) {
-                const cpu::Ray ray{camera.eye, primaryDirection(camera, i, j)};
+                const geometry::Ray ray{camera.eye, primaryDirection(camera, i, j)};
                 const cpu::PixelSample px = integrator.sample(ray);
                 const size_t k = frame.index(i, j);
                 frame.color[k] = glm::vec3(px.radiance);

@@ -4,7 +4,7 @@
 
 #include <functional>
 
-#include "cpu/tracer.h"
+#include "geometry/tracer.h"
 #include "render/frame.h"
 #include "render/render_options.h"
 #include "scene/scene.h"
@@ -25,7 +25,7 @@ Frame renderReference(const Scene& scene, const RenderOptions& options,
                       const RenderProgress& progress = {});
 
 // The same with any tracer built over `scene` (its triangle indices must be the scene's).
-Frame renderReference(const Scene& scene, const RenderOptions& options, const cpu::Tracer& tracer,
+Frame renderReference(const Scene& scene, const RenderOptions& options, const geometry::Tracer& tracer,
                       const RenderProgress& progress = {});
 
 }  // namespace vkray

@@ -9,11 +9,16 @@
 
 #include <glm/glm.hpp>
 
-#include "cpu/ray.h"
-#include "cpu/tracer.h"
+#include "geometry/ray.h"
+#include "geometry/tracer.h"
 #include "scene/scene.h"
 
 namespace vkray::cpu {
+
+// The geometry the CPU renderer traces with (geometry/): named here as the renderer reads them.
+using geometry::Hit;
+using geometry::Ray;
+using geometry::Tracer;
 
 // "Notation": the hit point and its normals.
 struct SurfacePoint {

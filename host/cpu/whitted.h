@@ -2,8 +2,8 @@
 // for one camera ray at a time. The renderer loops it over pixels and threads.
 #pragma once
 
-#include "cpu/ray.h"
-#include "cpu/tracer.h"
+#include "geometry/ray.h"
+#include "geometry/tracer.h"
 #include "scene/scene.h"
 
 namespace vkray::cpu {
@@ -11,24 +11,24 @@ namespace vkray::cpu {
 // What a camera ray produces: its radiance and the AOVs of its primary hit.
 struct PixelSample {
     glm::dvec3 radiance{0.0};
-    Hit primary;                 // primary.found() == false on a miss
+    geometry::Hit primary;       // primary.found() == false on a miss
     glm::dvec3 normal{0.0};      // N at the primary hit (facing the camera), 0 on a miss
 };
 
 class WhittedIntegrator {
 public:
     // `scene` and `tracer` must outlive the integrator; maxDepth >= 1 (primary rays are depth 1).
-    WhittedIntegrator(const Scene& scene, const Tracer& tracer, int maxDepth);
+    WhittedIntegrator(const Scene& scene, const geometry::Tracer& tracer, int maxDepth);
 
-    PixelSample sample(const Ray& cameraRay) const;
+    PixelSample sample(const geometry::Ray& cameraRay) const;
 
 private:
     // Adds weight ⊙ L(ray) to `radiance`, the form the GPU's iterative stack evaluates too.
-    void addRadiance(const Ray& ray, const Hit& hit, int depth, const glm::dvec3& weight,
-                     glm::dvec3& radiance) const;
+    void addRadiance(const geometry::Ray& ray, const geometry::Hit& hit, int depth,
+                     const glm::dvec3& weight, glm::dvec3& radiance) const;
 
     const Scene& scene_;
-    const Tracer& tracer_;
+    const geometry::Tracer& tracer_;
     int maxDepth_;
 };
 

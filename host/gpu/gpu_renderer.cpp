@@ -2,10 +2,10 @@
 
 #include <algorithm>
 #include <array>
-#include <chrono>
 #include <optional>
 
 #include "core/error.h"
+#include "core/timing.h"
 #include "gpu/buffer.h"
 #include "gpu/compute_kernel.h"
 #include "gpu/scene_buffers.h"
@@ -15,11 +15,6 @@
 
 namespace vkray::gpu {
 namespace {
-
-using Clock = std::chrono::steady_clock;
-double msSince(Clock::time_point start) {
-    return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
-}
 
 constexpr uint32_t kTilePixels = VKRAY_TILE_SIZE * VKRAY_TILE_SIZE;
 // Few tiles per submission: progress is reported per submission, and read-back overlaps nothing
@@ -74,15 +69,135 @@ void readTile(const GpuPixel* src, const Tile& tile, Frame& frame, GpuRenderRepo
         }
 }
 
-const generated::RenderKernelSpirv* findKernel(const std::string& name) {
+// The SPIR-V of a kernel, found at compile time: every accel::Kernel must have its
+// shaders/render_<name>.comp, or the build fails here.
+constexpr const generated::RenderKernelSpirv* findKernel(accel::Kernel kernel) {
     for (const auto& k : generated::kRenderKernels)
-        if (k.name == name) return &k;
+        if (k.name == accel::kernelName(kernel)) return &k;
     return nullptr;
 }
 
-}  // namespace
+constexpr bool everyKernelHasSpirv() {
+    for (accel::Kernel k : accel::kKernels)
+        if (!findKernel(k)) return false;
+    return true;
+}
+static_assert(everyKernelHasSpirv(), "an accel::Kernel has no shaders/render_<kernel>.comp");
 
-bool hasRenderKernel(const std::string& kernel) { return findKernel(kernel) != nullptr; }
+// Two timestamps around each submission; their differences add up to the GPU time of a render.
+class BatchTimer {
+public:
+    explicit BatchTimer(const VulkanContext& ctx) : ctx_(ctx) {
+        const uint32_t bits = ctx.timestampValidBits();
+        if (bits == 0) return;  // the queue has no timestamps: gpuMs stays -1
+        mask_ = bits >= 64 ? ~uint64_t(0) : (uint64_t(1) << bits) - 1;
+        queries_ = vk::raii::QueryPool(ctx.device(), vk::QueryPoolCreateInfo{.queryType = vk::QueryType::eTimestamp,
+                                                                             .queryCount = 2});
+    }
+    bool enabled() const { return mask_ != 0; }
+    void begin(const vk::raii::CommandBuffer& cmd) const {
+        if (!enabled()) return;
+        cmd.resetQueryPool(*queries_, 0, 2);
+        cmd.writeTimestamp(vk::PipelineStageFlagBits::eTopOfPipe, *queries_, 0);
+    }
+    void end(const vk::raii::CommandBuffer& cmd) const {
+        if (enabled()) cmd.writeTimestamp(vk::PipelineStageFlagBits::eBottomOfPipe, *queries_, 1);
+    }
+    // Milliseconds between the two stamps of the batch just waited for (0 when unavailable).
+    double batchMs() const {
+        if (!enabled()) return 0.0;
+        auto [result, stamps] = queries_.getResults<uint64_t>(
+            0, 2, 2 * sizeof(uint64_t), sizeof(uint64_t), vk::QueryResultFlagBits::e64 | vk::QueryResultFlagBits::eWait);
+        if (result != vk::Result::eSuccess) return 0.0;
+        const uint64_t ticks = ((stamps[1] & mask_) - (stamps[0] & mask_)) & mask_;
+        return double(ticks) * double(ctx_.info().timestampPeriodNs) * 1e-6;
+    }
+
+private:
+    const VulkanContext& ctx_;
+    uint64_t mask_ = 0;
+    vk::raii::QueryPool queries_{nullptr};
+};
+
+// Tiles per submission: at most kMaxTilesPerSubmission, and what one storage buffer holds.
+uint32_t tilesPerSubmission(const VulkanContext& ctx, size_t tiles) {
+    const uint64_t tileBytes = uint64_t(kTilePixels) * sizeof(GpuPixel);
+    return uint32_t(std::clamp<uint64_t>(
+        std::min<uint64_t>({tiles, kMaxTilesPerSubmission, ctx.info().maxStorageBufferRange / tileBytes}), 1,
+        kMaxTilesPerSubmission));
+}
+
+// Records the dispatches of tiles[first, first + count) into `cmd`, each writing its own slice of
+// the pixel buffer, then the barrier that makes the writes visible to the host.
+void recordBatch(const vk::raii::CommandBuffer& cmd, const ComputeKernel& kernel, std::span<const Tile> tiles,
+                 const GpuFrameParams& base) {
+    for (size_t k = 0; k < tiles.size(); ++k) {
+        const Tile& t = tiles[k];
+        GpuFrameParams p = base;
+        p.imageTile.z = t.x;
+        p.imageTile.w = t.y;
+        p.counts.z = uint32_t(k) * kTilePixels;
+        kernel.dispatch(cmd, &p, (t.width + VKRAY_WORKGROUP_X - 1) / VKRAY_WORKGROUP_X,
+                        (t.height + VKRAY_WORKGROUP_Y - 1) / VKRAY_WORKGROUP_Y);
+    }
+    // The host reads the pixels once the fence signals: make the kernel's writes visible to it.
+    vk::MemoryBarrier toHost{.srcAccessMask = vk::AccessFlagBits::eShaderWrite,
+                             .dstAccessMask = vk::AccessFlagBits::eHostRead};
+    cmd.pipelineBarrier(vk::PipelineStageFlagBits::eComputeShader, vk::PipelineStageFlagBits::eHost, {}, toHost,
+                        nullptr, nullptr);
+}
+
+void bindBuffers(ComputeKernel& kernel, const SceneBuffers& scene, const AccelBuffers& accel, const Buffer& pixels) {
+    std::array<vk::Buffer, VKRAY_BINDING_COUNT> bindings{};
+    bindings[VKRAY_BINDING_TRIANGLES] = scene.triangles.handle();
+    bindings[VKRAY_BINDING_NORMALS] = scene.normals.handle();
+    bindings[VKRAY_BINDING_MATERIALS] = scene.materials.handle();
+    bindings[VKRAY_BINDING_LIGHTS] = scene.lights.handle();
+    bindings[VKRAY_BINDING_PIXELS] = pixels.handle();
+    bindings[VKRAY_BINDING_ACCEL_NODES] = accel.nodes.handle();
+    bindings[VKRAY_BINDING_ACCEL_INDICES] = accel.indices.handle();
+    bindings[VKRAY_BINDING_ACCEL_EXTRA] = accel.extra.handle();
+    kernel.bindStorageBuffers(bindings);
+}
+
+// Dispatches the tiles, `perSubmission` at a time into `pixels`, and reads each batch into `frame`.
+void renderTiles(const VulkanContext& ctx, const ComputeKernel& kernel, const Buffer& pixels,
+                 std::span<const Tile> tiles, uint32_t perSubmission, const GpuFrameParams& base, Frame& frame,
+                 GpuRenderReport& rep, const TileProgress& progress) {
+    const BatchTimer timer(ctx);
+    rep.tiles = uint32_t(tiles.size());
+    rep.gpuMs = timer.enabled() ? 0.0 : -1.0;
+    for (size_t first = 0; first < tiles.size(); first += perSubmission) {
+        const std::span<const Tile> batch = tiles.subspan(first, std::min<size_t>(perSubmission, tiles.size() - first));
+        OneShotCommands commands(ctx);
+        const vk::raii::CommandBuffer& cmd = commands.begin();
+        timer.begin(cmd);
+        recordBatch(cmd, kernel, batch, base);
+        timer.end(cmd);
+        commands.submitAndWait();
+        ++rep.submissions;
+        rep.gpuMs += timer.batchMs();
+        const auto* src = static_cast<const GpuPixel*>(pixels.mapped());
+        for (size_t k = 0; k < batch.size(); ++k) readTile(src + k * kTilePixels, batch[k], frame, rep);
+        if (progress) progress(uint32_t(first + batch.size()), uint32_t(tiles.size()));
+    }
+}
+
+// llvmpipe ends all loops of an invocation after 65535 iterations in total; the kernel flags such
+// pixels, and an image with any of them is refused rather than written wrong.
+void throwIfCutShort(const VulkanContext& ctx, const Scene& scene, accel::Kernel kernel, uint64_t pixels) {
+    if (pixels == 0) return;
+    const std::string remedy = kernel == accel::Kernel::Brute
+                                   ? "an acceleration structure (--accel bvh), a smaller --maxdepth or fewer lights"
+                                   : "a smaller --maxdepth or fewer lights";
+    throw Error(std::to_string(pixels) + " pixels were cut short on '" + ctx.info().name +
+                "': its shader loops stop early (llvmpipe ends all loops of a pixel after 65535 iterations in "
+                "total); with the " + std::string(accel::kernelName(kernel)) + " kernel this scene of " +
+                std::to_string(scene.triangles.size()) + " triangles needs " + remedy +
+                ", or another device; no image was written");
+}
+
+}  // namespace
 
 KernelCache::KernelCache(const VulkanContext& ctx) : ctx_(ctx) {}
 KernelCache::~KernelCache() = default;
@@ -96,22 +211,19 @@ ComputeKernel& KernelCache::kernel(const std::string& name, std::span<const uint
 }
 
 Frame renderOnGpu(const VulkanContext& ctx, const Scene& scene, const RenderOptions& options,
-                  GpuRenderReport* report, const TileProgress& progress) {
-    accel::BuildOptions buildOptions;
-    buildOptions.threads = options.threads;
-    const auto built = accel::buildAccel(scene, accel::parseAccel(options.accel), buildOptions);
+                  const accel::AccelSpec& spec, GpuRenderReport* report, const TileProgress& progress) {
+    const auto built =
+        accel::buildAccel(scene, spec, accel::BuildOptions{.threads = options.threads, .progress = {}});
     return renderOnGpu(ctx, scene, options, built->gpuData(), report, progress);
 }
 
 Frame renderOnGpu(const VulkanContext& ctx, const Scene& scene, const RenderOptions& options,
                   const accel::GpuAccelData& accel, GpuRenderReport* report, const TileProgress& progress,
                   KernelCache* kernels) {
-    const generated::RenderKernelSpirv* spirv = findKernel(accel.kernel);
-    if (!spirv) throw Error("internal: no render kernel shaders/render_" + accel.kernel + ".comp");
     GpuRenderReport local;
     GpuRenderReport& rep = report ? *report : local;
     rep = GpuRenderReport{};
-    rep.kernel = accel.kernel;
+    rep.kernel = std::string(accel::kernelName(accel.kernel));
     const GpuFrameParams baseParams = frameParams(scene, options);  // validates camera and size
 
     auto start = Clock::now();
@@ -127,96 +239,24 @@ Frame renderOnGpu(const VulkanContext& ctx, const Scene& scene, const RenderOpti
     rep.features.countTraversal = options.countTraversal;
     std::optional<KernelCache> ownKernels;
     if (!kernels) kernels = &ownKernels.emplace(ctx);
-    ComputeKernel& kernel = kernels->kernel(accel.kernel, spirv->code, rep.features.specialization());
+    ComputeKernel& kernel =
+        kernels->kernel(rep.kernel, findKernel(accel.kernel)->code, rep.features.specialization());
     rep.pipelineMs = msSince(start);
 
     const std::vector<Tile> tiles = splitIntoTiles(uint32_t(options.width), uint32_t(options.height));
-    const uint64_t tileBytes = uint64_t(kTilePixels) * sizeof(GpuPixel);
-    const uint32_t perSubmission = uint32_t(std::clamp<uint64_t>(
-        std::min<uint64_t>({tiles.size(), kMaxTilesPerSubmission,
-                            ctx.info().maxStorageBufferRange / tileBytes}),
-        1, kMaxTilesPerSubmission));
-    Buffer pixels(ctx, perSubmission * tileBytes, vk::BufferUsageFlagBits::eStorageBuffer,
-                  MemoryUse::Readback, "pixels");
-    std::array<vk::Buffer, VKRAY_BINDING_COUNT> bindings{};
-    bindings[VKRAY_BINDING_TRIANGLES] = sceneBuffers.triangles.handle();
-    bindings[VKRAY_BINDING_NORMALS] = sceneBuffers.normals.handle();
-    bindings[VKRAY_BINDING_MATERIALS] = sceneBuffers.materials.handle();
-    bindings[VKRAY_BINDING_LIGHTS] = sceneBuffers.lights.handle();
-    bindings[VKRAY_BINDING_PIXELS] = pixels.handle();
-    bindings[VKRAY_BINDING_ACCEL_NODES] = accelBuffers.nodes.handle();
-    bindings[VKRAY_BINDING_ACCEL_INDICES] = accelBuffers.indices.handle();
-    bindings[VKRAY_BINDING_ACCEL_EXTRA] = accelBuffers.extra.handle();
-    kernel.bindStorageBuffers(bindings);
-
-    const bool timestamps = ctx.timestampValidBits() > 0;
-    vk::raii::QueryPool queries{nullptr};
-    if (timestamps)
-        queries = vk::raii::QueryPool(ctx.device(), vk::QueryPoolCreateInfo{
-                                                        .queryType = vk::QueryType::eTimestamp,
-                                                        .queryCount = 2});
-    const uint64_t validMask = ctx.timestampValidBits() >= 64
-                                   ? ~uint64_t(0)
-                                   : (uint64_t(1) << ctx.timestampValidBits()) - 1;
+    const uint32_t perSubmission = tilesPerSubmission(ctx, tiles.size());
+    Buffer pixels(ctx, uint64_t(perSubmission) * kTilePixels * sizeof(GpuPixel),
+                  vk::BufferUsageFlagBits::eStorageBuffer, MemoryUse::Readback, "pixels");
+    bindBuffers(kernel, sceneBuffers, accelBuffers, pixels);
 
     Frame frame;
     frame.resize(options.width, options.height);
     if (options.countTraversal) rep.nodesPerPixel.assign(frame.color.size(), 0u);
-    rep.tiles = uint32_t(tiles.size());
-    rep.gpuMs = timestamps ? 0.0 : -1.0;
     start = Clock::now();
-    for (size_t first = 0; first < tiles.size(); first += perSubmission) {
-        const size_t count = std::min<size_t>(perSubmission, tiles.size() - first);
-        OneShotCommands commands(ctx);
-        const vk::raii::CommandBuffer& cmd = commands.begin();
-        if (timestamps) {
-            cmd.resetQueryPool(*queries, 0, 2);
-            cmd.writeTimestamp(vk::PipelineStageFlagBits::eTopOfPipe, *queries, 0);
-        }
-        for (size_t k = 0; k < count; ++k) {
-            const Tile& t = tiles[first + k];
-            GpuFrameParams p = baseParams;
-            p.imageTile.z = t.x;
-            p.imageTile.w = t.y;
-            p.counts.z = uint32_t(k) * kTilePixels;
-            kernel.dispatch(cmd, &p, (t.width + VKRAY_WORKGROUP_X - 1) / VKRAY_WORKGROUP_X,
-                            (t.height + VKRAY_WORKGROUP_Y - 1) / VKRAY_WORKGROUP_Y);
-        }
-        if (timestamps) cmd.writeTimestamp(vk::PipelineStageFlagBits::eBottomOfPipe, *queries, 1);
-        // The host reads the pixels once the fence signals: make the kernel's writes visible to it.
-        vk::MemoryBarrier toHost{.srcAccessMask = vk::AccessFlagBits::eShaderWrite,
-                                 .dstAccessMask = vk::AccessFlagBits::eHostRead};
-        cmd.pipelineBarrier(vk::PipelineStageFlagBits::eComputeShader, vk::PipelineStageFlagBits::eHost,
-                            {}, toHost, nullptr, nullptr);
-        commands.submitAndWait();
-        ++rep.submissions;
-
-        if (timestamps) {
-            auto [result, stamps] = queries.getResults<uint64_t>(
-                0, 2, 2 * sizeof(uint64_t), sizeof(uint64_t),
-                vk::QueryResultFlagBits::e64 | vk::QueryResultFlagBits::eWait);
-            if (result == vk::Result::eSuccess) {
-                const uint64_t ticks = ((stamps[1] & validMask) - (stamps[0] & validMask)) & validMask;
-                rep.gpuMs += double(ticks) * double(ctx.info().timestampPeriodNs) * 1e-6;
-            }
-        }
-        const auto* src = static_cast<const GpuPixel*>(pixels.mapped());
-        for (size_t k = 0; k < count; ++k) readTile(src + k * kTilePixels, tiles[first + k], frame, rep);
-        if (progress) progress(uint32_t(first + count), uint32_t(tiles.size()));
-    }
+    renderTiles(ctx, kernel, pixels, tiles, perSubmission, baseParams, frame, rep, progress);
     rep.renderMs = msSince(start);
     ctx.checkValidation();
-    if (rep.pixelsCutShort > 0) {
-        const std::string remedy = accel.kernel == "brute"
-                                       ? "an acceleration structure (--accel bvh), a smaller --maxdepth or "
-                                         "fewer lights"
-                                       : "a smaller --maxdepth or fewer lights";
-        throw Error(std::to_string(rep.pixelsCutShort) + " pixels were cut short on '" + ctx.info().name +
-                    "': its shader loops stop early (llvmpipe ends all loops of a pixel after 65535 "
-                    "iterations in total); with --accel " + options.accel + " this scene of " +
-                    std::to_string(scene.triangles.size()) + " triangles needs " + remedy +
-                    ", or another device; no image was written");
-    }
+    throwIfCutShort(ctx, scene, accel.kernel, rep.pixelsCutShort);
     return frame;
 }
 

@@ -1,5 +1,6 @@
-// Renders a scene with the Vulkan compute kernel (shaders/render.comp): uploads the scene, specialises
-// the kernel for what the scene needs, dispatches the image tile by tile, reads back colour and AOVs.
+// Renders a scene with a Vulkan compute kernel (shaders/render_<kernel>.comp, one per accelerator):
+// uploads the scene and the built structure, specialises the kernel for what the scene needs,
+// dispatches the image tile by tile and reads back colour and AOVs.
 #pragma once
 
 #include <cstdint>
@@ -21,7 +22,7 @@
 namespace vkray::gpu {
 
 struct GpuRenderReport {
-    std::string kernel;          // shaders/render_<kernel>.comp
+    std::string kernel;          // shaders/render_<kernel>.comp (accel::kernelName)
     ShaderFeatures features;
     uint32_t tiles = 0;          // dispatches of at most VKRAY_TILE_SIZE^2 pixels
     uint32_t submissions = 0;    // batches of tiles submitted together
@@ -63,16 +64,14 @@ private:
     std::map<std::pair<std::string, std::vector<std::pair<uint32_t, uint32_t>>>, std::unique_ptr<ComputeKernel>> kernels_;
 };
 
-// Whether a render kernel exists for GpuAccelData::kernel.
-bool hasRenderKernel(const std::string& kernel);
-
 // Renders with an acceleration structure already built (accel::buildAccel(...)->gpuData()).
 Frame renderOnGpu(const VulkanContext& ctx, const Scene& scene, const RenderOptions& options,
                   const accel::GpuAccelData& accel, GpuRenderReport* report = nullptr,
                   const TileProgress& progress = {}, KernelCache* kernels = nullptr);
 
-// Builds options.accel first (all cores), then renders: the form tests use.
+// Builds `spec` first (options.threads workers), then renders: the form tests use.
 Frame renderOnGpu(const VulkanContext& ctx, const Scene& scene, const RenderOptions& options,
-                  GpuRenderReport* report = nullptr, const TileProgress& progress = {});
+                  const accel::AccelSpec& spec, GpuRenderReport* report = nullptr,
+                  const TileProgress& progress = {});
 
 }  // namespace vkray::gpu

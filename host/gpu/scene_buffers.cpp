@@ -1,7 +1,7 @@
 #include "gpu/scene_buffers.h"
 
 #include "core/error.h"
-#include "cpu/ray_triangle.h"
+#include "geometry/ray_triangle.h"
 
 namespace vkray::gpu {
 namespace {
@@ -43,7 +43,7 @@ PackedScene packScene(const Scene& scene, const std::vector<uint32_t>& triangleO
         // still give the kernels' float edge functions a non-zero det. Decided once here, exactly,
         // by the CPU's test (the kd builder leaves the same triangles out): such a triangle becomes
         // the point p0, whose edge functions are exactly 0 in any arithmetic.
-        const bool degenerate = cpu::isDegenerate({glm::dvec3(t.p0), glm::dvec3(t.p1), glm::dvec3(t.p2)});
+        const bool degenerate = geometry::isDegenerate({glm::dvec3(t.p0), glm::dvec3(t.p1), glm::dvec3(t.p2)});
         p.triangles.push_back({.p0 = t.p0, .material = t.material, .p1 = degenerate ? t.p0 : t.p1,
                                .original = uint32_t(i), .p2 = degenerate ? t.p0 : t.p2, .pad0 = 0});
     }

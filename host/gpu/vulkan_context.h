@@ -1,6 +1,8 @@
 // Headless Vulkan for compute: instance (with the Khronos validation layer when asked), physical
 // device choice, one logical device with one compute queue. Every handle is a vk::raii owner; every
-// failing call throws (vk::SystemError names the call and the result; GpuError wraps it for main()).
+// failing call throws: vk::SystemError names the call and the result, and main() prints it as one
+// "error: " line (the calls a user's setup can make fail, such as creating the instance, rethrow it
+// as vkray::Error with the remedy).
 #pragma once
 
 #include <cstdint>
@@ -26,8 +28,9 @@ struct DeviceInfo {
 };
 
 struct ContextOptions {
-    // Enable the Khronos validation layer; any validation error makes checkValidation() throw.
-    // Defaults to the environment variable VKRAY_VALIDATION=1.
+    // Enable the Khronos validation layer; any validation error makes checkValidation() throw. Off
+    // unless asked for: `vkray` asks when VKRAY_VALIDATION=1 (validationRequestedByEnvironment()),
+    // the tests always.
     bool validation = false;
     std::string device;  // "" = best (discrete > integrated > virtual > cpu), "N" = index, else substring
 };

@@ -1,7 +1,7 @@
-// Options every renderer takes; the CLI fills them from the scene file and the command line.
+// Options every renderer takes; the CLI fills them from the scene file and the command line. The
+// acceleration structure is not among them: a renderer is handed the structure itself (a built
+// accelerator for the GPU, a geometry::Tracer for the CPU reference).
 #pragma once
-
-#include <string>
 
 namespace vkray {
 
@@ -9,9 +9,6 @@ struct RenderOptions {
     int width = 0, height = 0;  // image size (the scene's `size` unless overridden)
     int maxDepth = 5;           // primary rays count as depth 1
     int threads = 0;            // CPU worker threads; 0 = all cores
-    // Library default: brute force, the reference the tests compare against. The command line
-    // defaults to `bvh` (DESIGN.md).
-    std::string accel = "brute";
     // Compile traversal counters into the kernel (nodes, leaves, triangle tests per ray): the
     // statistics variant; off, timing runs pay nothing for counting.
     bool countTraversal = false;

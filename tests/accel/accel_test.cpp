@@ -1,7 +1,9 @@
-// The accelerator registry: every DESIGN.md name parses to the family and traversal it names, an
-// unknown name is an error that lists the known ones, and every accelerator built over the same
-// scene answers like brute force through the common BuiltAccel interface.
+// The accelerator registry: every name resolves to the family and traversal it names, with its preset
+// and the tuning options checked; an unknown name is an error that lists the known ones; and every
+// accelerator built over the same scene answers like brute force through the common BuiltAccel
+// interface.
 #include <algorithm>
+#include <cmath>
 #include <random>
 #include <string>
 
@@ -9,33 +11,90 @@
 
 #include "accel/accel.h"
 #include "core/error.h"
-#include "cpu/brute_force.h"
+#include "geometry/brute_force.h"
 
 namespace vkray::accel {
 namespace {
 
-TEST(Accel, EveryDesignNameParses) {
+TEST(Accel, EveryNameResolvesToItsFamilyAndTraversal) {
     for (const std::string name : {"bvh", "bvh-fast", "bvh-hq", "kd-restart", "kd-backtrack", "kd-stack", "brute"})
         EXPECT_NE(std::find(accelNames().begin(), accelNames().end(), name), accelNames().end()) << name;
-    EXPECT_EQ(parseAccel("brute").family, Family::Brute);
-    EXPECT_EQ(parseAccel("bvh-hq").family, Family::Bvh);
-    EXPECT_TRUE(parseAccel("bvh-sah").bvhSahReference);
-    EXPECT_FALSE(parseAccel("bvh").bvhSahReference);
-    EXPECT_EQ(parseAccel("kd-stack").kdTraversal, KdTraversal::Stack);
-    EXPECT_EQ(parseAccel("kd-restart").kdTraversal, KdTraversal::Restart);
-    EXPECT_EQ(parseAccel("kd-backtrack").kdTraversal, KdTraversal::Backtrack);
-    EXPECT_EQ(parseAccel("kd-backtrack").family, Family::Kd);
+    EXPECT_EQ(resolveAccel("brute").family, Family::Brute);
+    EXPECT_EQ(resolveAccel("bvh-hq").family, Family::Bvh);
+    EXPECT_EQ(resolveAccel("bvh-sah").bvh.builder, bvh::Config::Builder::BinnedSah);
+    EXPECT_EQ(resolveAccel("bvh").bvh.builder, bvh::Config::Builder::Aac);
+    EXPECT_EQ(resolveAccel("kd-stack").kdTraversal, kd::Traversal::Stack);
+    EXPECT_EQ(resolveAccel("kd-restart").kdTraversal, kd::Traversal::Restart);
+    EXPECT_EQ(resolveAccel("kd-backtrack").kdTraversal, kd::Traversal::Backtrack);
+    EXPECT_EQ(resolveAccel("kd-backtrack").family, Family::Kd);
+    EXPECT_EQ(resolveAccel(kDefaultAccel).name, "bvh");
 }
 
 TEST(Accel, UnknownNameListsTheKnownOnes) {
     try {
-        parseAccel("octree");
+        resolveAccel("octree");
         FAIL() << "expected an error";
     } catch (const Error& e) {
         const std::string what = e.what();
         EXPECT_NE(what.find("octree"), std::string::npos) << what;
         EXPECT_NE(what.find("kd-backtrack"), std::string::npos) << what;
     }
+}
+
+TEST(AccelSpec, PresetsAndOverrides) {
+    EXPECT_EQ(resolveAccel("bvh-fast").bvh.delta, 4);
+    EXPECT_DOUBLE_EQ(resolveAccel("bvh-fast").bvh.epsilon, 0.2);
+    EXPECT_EQ(resolveAccel("bvh-hq").bvh.delta, 20);
+    const AccelSpec tuned = resolveAccel("bvh-hq", {{"--aac-delta", 9}, {"--aac-epsilon", 0.25}});
+    EXPECT_EQ(tuned.bvh.delta, 9);
+    EXPECT_DOUBLE_EQ(tuned.bvh.epsilon, 0.25);
+    EXPECT_THROW(resolveAccel("bvh-hq", {{"--aac-epsilon", 0.7}}), Error);
+    EXPECT_THROW(resolveAccel("bvh-sah", {{"--aac-delta", 3}}), Error);  // the binned-SAH builder has no delta
+    const AccelSpec kd = resolveAccel("kd-stack", {{"--kd-max-depth", 56}, {"--kd-empty-bonus", 0.0}});
+    EXPECT_EQ(kd.kd.maxDepth, 56);
+    EXPECT_EQ(kd.kd.emptyBonus, 0.0);
+    EXPECT_FALSE(resolveAccel("kd-stack", {{"--kd-max-depth", std::nullopt}}).kd.maxDepth.has_value());
+}
+
+// Each tuning option is refused outside its range, for a non-integer where it counts whole things,
+// and for an accelerator it does not tune; the error names the option.
+TEST(AccelSpec, EveryTuningOptionIsRangeCheckedAndNamed) {
+    const auto expectError = [](const std::string& accel, const std::string& flag, double value,
+                                const std::string& words) {
+        try {
+            resolveAccel(accel, {{flag, value}});
+            ADD_FAILURE() << accel << " " << flag << " " << value << ": expected an error";
+        } catch (const Error& e) {
+            const std::string what = e.what();
+            EXPECT_NE(what.find(flag), std::string::npos) << what;
+            EXPECT_NE(what.find(words), std::string::npos) << what;
+        }
+    };
+    expectError("bvh", "--aac-delta", 0, "must be 1..1024");
+    expectError("bvh", "--aac-delta", 1025, "must be 1..1024");
+    expectError("bvh", "--aac-delta", 4.5, "must be 1..1024");
+    expectError("bvh", "--aac-epsilon", 0.5, "must be in [0, 0.5)");
+    expectError("bvh", "--aac-epsilon", std::nan(""), "must be in [0, 0.5)");
+    expectError("kd-restart", "--kd-traversal-cost", -1, "must be finite and not negative");
+    expectError("kd-restart", "--kd-intersection-cost", INFINITY, "must be finite and not negative");
+    expectError("kd-restart", "--kd-empty-bonus", 1.5, "must be in [0, 1]");
+    // The kd-stack kernel's stack bounds the depth: the limit the command line accepts is the one the
+    // builder honours, not silently clamped.
+    expectError("kd-restart", "--kd-max-depth", kd::KdConfig::kMaxDepthLimit + 1, "must be 1..56");
+    expectError("kd-restart", "--kd-max-depth", 0, "must be 1..56");
+    expectError("bvh", "--kd-max-depth", 10, "applies to kd-restart, kd-backtrack, kd-stack only");
+    expectError("kd-stack", "--aac-delta", 8, "applies to bvh, bvh-fast, bvh-hq only");
+    expectError("brute", "--kd-empty-bonus", 0.5, "applies to");
+    for (const TuningOption& o : tuningOptions()) EXPECT_EQ(o.flag.substr(0, 2), "--") << o.flag;
+}
+
+TEST(AccelSpec, StructureKeysTellWhichBuildsAreShared) {
+    EXPECT_EQ(structureKey(resolveAccel("bvh")), structureKey(resolveAccel("bvh-hq")));
+    EXPECT_NE(structureKey(resolveAccel("bvh")), structureKey(resolveAccel("bvh-fast")));
+    EXPECT_NE(structureKey(resolveAccel("bvh-sah")), structureKey(resolveAccel("bvh-fast")));
+    EXPECT_EQ(structureKey(resolveAccel("kd-stack")), structureKey(resolveAccel("kd-backtrack")));
+    EXPECT_NE(structureKey(resolveAccel("kd-stack")),
+              structureKey(resolveAccel("kd-stack", {{"--kd-intersection-cost", 5}})));
 }
 
 // A random soup of small triangles in the unit cube, one material.
@@ -59,8 +118,9 @@ class EveryAccel : public ::testing::TestWithParam<std::string> {};
 
 TEST_P(EveryAccel, AnswersLikeBruteForce) {
     const Scene scene = randomSoup(600, 7);
-    const auto built = buildAccel(scene, parseAccel(GetParam()), BuildOptions{.threads = 2, .progress = {}});
-    const cpu::BruteForceTracer brute(scene);
+    const auto built = buildAccel(scene, resolveAccel(GetParam()), BuildOptions{.threads = 2, .progress = {}});
+    const auto tracer = built->makeTracer(scene);
+    const geometry::BruteForceTracer brute(scene);
     std::mt19937 rng(11);
     std::uniform_real_distribution<double> u(-1.0, 1.0);
     int hits = 0;
@@ -68,14 +128,14 @@ TEST_P(EveryAccel, AnswersLikeBruteForce) {
         // From outside or inside the soup towards a point in it: most rays meet something.
         const glm::dvec3 origin{u(rng) * 3.0, u(rng) * 3.0, u(rng) * 3.0};
         const glm::dvec3 target{u(rng), u(rng), u(rng)};
-        const cpu::Ray ray{origin, glm::normalize(target - origin)};
-        const cpu::Hit want = brute.closest(ray, 1e30), got = built->tracer().closest(ray, 1e30);
+        const geometry::Ray ray{origin, glm::normalize(target - origin)};
+        const geometry::Hit want = brute.closest(ray, 1e30), got = tracer->closest(ray, 1e30);
         ASSERT_EQ(got.triangle, want.triangle) << GetParam() << " ray " << k;
         if (want.found()) {
             ++hits;
             EXPECT_NEAR(got.t, want.t, 1e-9 * want.t);
         }
-        EXPECT_EQ(built->tracer().occluded(ray, 1.5), brute.occluded(ray, 1.5)) << GetParam() << " ray " << k;
+        EXPECT_EQ(tracer->occluded(ray, 1.5), brute.occluded(ray, 1.5)) << GetParam() << " ray " << k;
     }
     EXPECT_GT(hits, 1000);  // the rays do meet the soup
 

@@ -37,14 +37,14 @@ vkray_expect_error(aov_not_pfm "d\\.png: AOV files are PFM: the name must end in
 vkray_expect_error(compare_missing "missing\\.png" compare ${CLI_OUT}/missing.png ${CLI_OUT}/missing2.png)
 
 # Success paths: devices, a GPU render with AOVs, the CPU reference, and compare between them.
-add_test(NAME cli.devices COMMAND $<TARGET_FILE:vkray> devices)
-set_tests_properties(cli.devices PROPERTIES PASS_REGULAR_EXPRESSION "maxStorageBufferRange")
+add_test(NAME cli.devices COMMAND ${CLI_DIR}/expect_output.sh "maxStorageBufferRange" $<TARGET_FILE:vkray> devices)
 add_test(NAME cli.render_gpu
-         COMMAND $<TARGET_FILE:vkray> render ${CMAKE_SOURCE_DIR}/scenes/default.scene --size 96x96
+         COMMAND ${CLI_DIR}/expect_output.sh "left out:"
+                 $<TARGET_FILE:vkray> render ${CMAKE_SOURCE_DIR}/scenes/default.scene --size 96x96
                  --accel brute -o ${CLI_OUT}/default-gpu.png --aov depth=${CLI_OUT}/depth.pfm
                  --aov primid=${CLI_OUT}/primid.pfm --aov normal=${CLI_OUT}/normal.pfm --stats)
 set_tests_properties(cli.render_gpu PROPERTIES TIMEOUT 300 ENVIRONMENT "VKRAY_VALIDATION=1"
-  PASS_REGULAR_EXPRESSION "left out:" FIXTURES_SETUP default_renders)
+  FIXTURES_SETUP default_renders)
 add_test(NAME cli.render_cpu
          COMMAND $<TARGET_FILE:vkray> render ${CMAKE_SOURCE_DIR}/scenes/default.scene --size 96x96 --cpu
                  --accel brute -o ${CLI_OUT}/default-cpu.png --aov primid=${CLI_OUT}/primid-cpu.pfm)
@@ -75,29 +75,29 @@ vkray_expect_error(gen_not_scene "gen: -o .*g\\.txt: the output must be a \\.sce
 vkray_expect_error(gen_unwritable "gen: cannot write .*no/such/dir/g\\.scene" gen soup --triangles 10 -o ${CLI_OUT}/no/such/dir/g.scene)
 
 # `vkray gen` writes a scene that renders (CPU reference, tiny: brute force over 1000 triangles).
-add_test(NAME cli.gen_terrain COMMAND $<TARGET_FILE:vkray> gen terrain --triangles 1000 --seed 3 -o ${CLI_OUT}/gen-terrain.scene)
-set_tests_properties(cli.gen_terrain PROPERTIES FIXTURES_SETUP gen_scene
-  PASS_REGULAR_EXPRESSION "terrain, 1012 triangles \\+ 2 floor, seed 3")
-add_test(NAME cli.gen_render COMMAND $<TARGET_FILE:vkray> render ${CLI_OUT}/gen-terrain.scene --cpu --size 32x24
+add_test(NAME cli.gen_terrain COMMAND ${CLI_DIR}/expect_output.sh "terrain, 1012 triangles \\+ 2 floor, seed 3"
+                                     $<TARGET_FILE:vkray> gen terrain --triangles 1000 --seed 3 -o ${CLI_OUT}/gen-terrain.scene)
+set_tests_properties(cli.gen_terrain PROPERTIES FIXTURES_SETUP gen_scene)
+add_test(NAME cli.gen_render COMMAND ${CLI_DIR}/expect_output.sh "scene: +1014 triangles" $<TARGET_FILE:vkray> render ${CLI_OUT}/gen-terrain.scene --cpu --size 32x24
                                     -o ${CLI_OUT}/gen-terrain.png --stats)
-set_tests_properties(cli.gen_render PROPERTIES FIXTURES_REQUIRED gen_scene TIMEOUT 300
-  PASS_REGULAR_EXPRESSION "scene: +1014 triangles")
+set_tests_properties(cli.gen_render PROPERTIES FIXTURES_REQUIRED gen_scene TIMEOUT 300)
 
 # Every accelerator end to end on the GPU (default.scene, 96x96; `bvh` is the default), each image
 # compared with the CPU reference like cli.compare_gpu_cpu (primary hits are compared, ties told
 # apart, by tests/gpu/*), and the CPU renderer with a BVH (what makes --cpu usable on big meshes).
 add_test(NAME cli.render_accel.bvh
-         COMMAND $<TARGET_FILE:vkray> render ${CMAKE_SOURCE_DIR}/scenes/default.scene --size 96x96
+         COMMAND ${CLI_DIR}/expect_output.sh "accel bvh" $<TARGET_FILE:vkray> render ${CMAKE_SOURCE_DIR}/scenes/default.scene --size 96x96
                  -o ${CLI_OUT}/default-bvh.png --stats)
 set_tests_properties(cli.render_accel.bvh PROPERTIES TIMEOUT 300 ENVIRONMENT "VKRAY_VALIDATION=1"
-  PASS_REGULAR_EXPRESSION "accel bvh" FIXTURES_SETUP accel_bvh)
+  FIXTURES_SETUP accel_bvh)
 foreach(accel bvh bvh-fast bvh-hq bvh-sah kd-stack kd-restart kd-backtrack)
   if(NOT accel STREQUAL "bvh")
     add_test(NAME cli.render_accel.${accel}
-             COMMAND $<TARGET_FILE:vkray> render ${CMAKE_SOURCE_DIR}/scenes/default.scene --size 96x96
+             COMMAND ${CLI_DIR}/expect_output.sh "accel ${accel}"
+                     $<TARGET_FILE:vkray> render ${CMAKE_SOURCE_DIR}/scenes/default.scene --size 96x96
                      --accel ${accel} -o ${CLI_OUT}/default-${accel}.png --stats)
     set_tests_properties(cli.render_accel.${accel} PROPERTIES TIMEOUT 300 ENVIRONMENT "VKRAY_VALIDATION=1"
-      PASS_REGULAR_EXPRESSION "accel ${accel}" FIXTURES_SETUP accel_${accel})
+      FIXTURES_SETUP accel_${accel})
   endif()
   # Bounds of tests/gpu/gpu_vs_cpu_test.cpp (measured <= 0.53% of pixels over 8/255, all on the
   # edges where two walls meet, where float and double may pick either triangle of a tie).

@@ -12,7 +12,7 @@
 #include "core/error.h"
 #include "cpu/reference_renderer.h"
 #include "scene/camera.h"
-#include "scene_builder.h"
+#include "support/scene_builder.h"
 
 namespace vkray {
 namespace {

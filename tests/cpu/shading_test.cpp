@@ -7,7 +7,7 @@
 
 #include "cpu/shading.h"
 #include "cpu/whitted.h"
-#include "scene_builder.h"
+#include "support/scene_builder.h"
 
 namespace vkray::cpu {
 namespace {

@@ -46,9 +46,9 @@ TEST_P(BvhOnGpu, SameHitsAndImageAsReferenceAndBrute) {
     if (c.file == "bunny.scene" && !std::filesystem::exists(file.parent_path() / "meshes" / "bunny.obj"))
         GTEST_SKIP() << "scenes/meshes/bunny.obj missing: run scripts/fetch-scenes.sh";
     const Scene scene = loadScene(file);
-    RenderOptions options{.width = c.width, .height = c.height, .maxDepth = scene.maxDepth, .accel = c.accel};
+    RenderOptions options{.width = c.width, .height = c.height, .maxDepth = scene.maxDepth};
 
-    const auto built = accel::buildAccel(scene, accel::parseAccel(c.accel));
+    const auto built = accel::buildAccel(scene, accel::resolveAccel(c.accel));
     gpu::GpuRenderReport report;
     const Frame gpuFrame = gpu::renderOnGpu(test::gpuContext(), scene, options, built->gpuData(), &report);
     EXPECT_EQ(report.kernel, "bvh");
@@ -56,7 +56,7 @@ TEST_P(BvhOnGpu, SameHitsAndImageAsReferenceAndBrute) {
     EXPECT_EQ(report.cappedRays, 0u);
     // The CPU reference traces with the same BVH on the CPU, which answers exactly as brute force
     // does (tests/accel/bvh), so large meshes stay checkable.
-    const Frame cpuFrame = renderReference(scene, options, built->tracer());
+    const Frame cpuFrame = renderReference(scene, options, *built->makeTracer(scene));
 
     const test::PrimIdAgreement hits = test::comparePrimaryHits(scene, gpuFrame, cpuFrame);
     const Image g = test::quantisedColor(gpuFrame), r = test::quantisedColor(cpuFrame);
@@ -74,8 +74,7 @@ TEST_P(BvhOnGpu, SameHitsAndImageAsReferenceAndBrute) {
 
     if (!c.bruteOnGpu) return;
     RenderOptions bruteOptions = options;
-    bruteOptions.accel = "brute";
-    const Frame bruteFrame = gpu::renderOnGpu(test::gpuContext(), scene, bruteOptions);
+    const Frame bruteFrame = test::renderGpu(scene, bruteOptions);
     // Both kernels run the same float triangle test, so they differ only where a ray meets two
     // triangles at the same float t (a shared edge): whichever is tested first wins. Measured:
     // identical images except cornell with bvh-fast (45 ties; RMSE 0.009, bad 0.27%).

@@ -6,7 +6,7 @@
 
 #include "core/error.h"
 #include "cpu/reference_renderer.h"
-#include "cpu/scene_builder.h"
+#include "support/scene_builder.h"
 #include "gpu/buffer.h"
 #include "gpu/gpu_renderer.h"
 #include "gpu_test_util.h"
@@ -32,7 +32,7 @@ TEST(GpuRenderer, TilesCoverTheImageInPlace) {
     const Scene s = litSquare();
     RenderOptions o{.width = 300, .height = 260, .maxDepth = 1};
     gpu::GpuRenderReport report;
-    const Frame g = gpu::renderOnGpu(test::gpuContext(), s, o, &report);
+    const Frame g = test::renderGpu(s, o, &report);
     const Frame c = renderReference(s, o);
     EXPECT_EQ(report.tiles, 4u);
     ASSERT_EQ(g.color.size(), c.color.size());
@@ -46,7 +46,7 @@ TEST(GpuRenderer, TilesCoverTheImageInPlace) {
 TEST(GpuRenderer, DepthAndPrimIdAovs) {
     Scene s = litSquare();
     RenderOptions o{.width = 33, .height = 33, .maxDepth = 1};
-    const Frame f = gpu::renderOnGpu(test::gpuContext(), s, o);
+    const Frame f = test::renderGpu(s, o);
     // The centre pixel of an odd image looks straight down -z: t = 5 exactly, on triangle 0 or 1
     // (it lies on their shared diagonal).
     const size_t centre = f.index(16, 16);
@@ -64,7 +64,7 @@ TEST(GpuRenderer, MissesAreBlackWithInfiniteDepth) {
     m.ambient = glm::vec3(0.5f);
     test::addSquare(s, 0.0f, 0.5f, true, test::addMaterial(s, m));  // small: corners miss
     RenderOptions o{.width = 16, .height = 16, .maxDepth = 3};
-    const Frame f = gpu::renderOnGpu(test::gpuContext(), s, o);
+    const Frame f = test::renderGpu(s, o);
     const size_t corner = f.index(0, 0);
     EXPECT_EQ(f.primId[corner], -1);
     EXPECT_EQ(f.depth[corner], std::numeric_limits<float>::infinity());
@@ -84,12 +84,12 @@ TEST(GpuRenderer, MaxDepthOneLeavesOutReflection) {
     test::addSquare(s, 10.0f, 30.0f, false, test::addMaterial(s, glow));
     RenderOptions o{.width = 9, .height = 9, .maxDepth = 1};
     gpu::GpuRenderReport report;
-    Frame f = gpu::renderOnGpu(test::gpuContext(), s, o, &report);
+    Frame f = test::renderGpu(s, o, &report);
     EXPECT_FALSE(report.features.reflection);
     EXPECT_EQ(f.color[f.index(4, 4)], glm::vec3(0.0f));
     o.maxDepth = 2;
     o.width = o.height = 64;
-    f = gpu::renderOnGpu(test::gpuContext(), s, o, &report);
+    f = test::renderGpu(s, o, &report);
     EXPECT_TRUE(report.features.reflection);
     EXPECT_FALSE(report.features.refraction);
     // Every pixel sees the emitter in the mirror: a reflected ray that hit its own mirror (a
@@ -112,7 +112,7 @@ TEST(GpuRenderer, NoShadowAcneAtGrazingLight) {
     const float a = glm::radians(2.0f);
     test::addDirectionalLight(s, {std::cos(a), std::sin(a), 0.0f}, glm::vec3(1.0f));
     RenderOptions o{.width = 64, .height = 64, .maxDepth = 1};
-    const Frame f = gpu::renderOnGpu(test::gpuContext(), s, o);
+    const Frame f = test::renderGpu(s, o);
     size_t hits = 0;
     for (size_t i = 0; i < f.color.size(); ++i) {
         if (f.primId[i] < 0) continue;
@@ -159,8 +159,8 @@ TEST(GpuRenderer, UnknownDeviceIsAnError) {
 }
 
 TEST(GpuRenderer, UnknownAcceleratorIsAnError) {
-    RenderOptions o{.width = 8, .height = 8, .maxDepth = 1, .accel = "octree"};
-    EXPECT_THROW(gpu::renderOnGpu(test::gpuContext(), litSquare(), o), Error);
+    RenderOptions o{.width = 8, .height = 8, .maxDepth = 1};
+    EXPECT_THROW(test::renderGpu(litSquare(), o, nullptr, "octree"), Error);
 }
 
 }  // namespace

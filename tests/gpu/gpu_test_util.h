@@ -7,11 +7,14 @@
 #include <limits>
 #include <memory>
 #include <string>
+#include <string_view>
 
 #include <gtest/gtest.h>
 
-#include "cpu/ray.h"
-#include "cpu/ray_triangle.h"
+#include "accel/accel_spec.h"
+#include "geometry/ray.h"
+#include "geometry/ray_triangle.h"
+#include "gpu/gpu_renderer.h"
 #include "gpu/vulkan_context.h"
 #include "image/compare.h"
 #include "image/image.h"
@@ -30,6 +33,13 @@ inline const gpu::VulkanContext& gpuContext() {
             gpu::ContextOptions{.validation = true, .device = dev ? dev : ""});
     }();
     return *ctx;
+}
+
+// Builds the accelerator named `accel` (`brute`, the reference the GPU tests compare with, unless
+// told) and renders on the test device.
+inline Frame renderGpu(const Scene& scene, const RenderOptions& options, gpu::GpuRenderReport* report = nullptr,
+                       std::string_view accel = "brute") {
+    return gpu::renderOnGpu(gpuContext(), scene, options, accel::resolveAccel(accel), report);
 }
 
 // The colour of a Frame as it would be written to an 8-bit file (clamped, quantised).
@@ -72,8 +82,8 @@ inline PrimIdAgreement comparePrimaryHits(const Scene& scene, const Frame& gpu, 
             const Triangle& t = scene.triangles[size_t(gpu.primId[k])];
             const glm::dvec3 c = (glm::dvec3(t.p0) + glm::dvec3(t.p1) + glm::dvec3(t.p2)) / 3.0;
             const auto grow = [&](const glm::vec3& p) { return c + (glm::dvec3(p) - c) * (1.0 + 1e-5); };
-            const cpu::Ray ray{cam.eye, primaryDirection(cam, i, j)};
-            const auto hit = cpu::intersectTriangle(ray, {grow(t.p0), grow(t.p1), grow(t.p2)}, 0.0,
+            const geometry::Ray ray{cam.eye, primaryDirection(cam, i, j)};
+            const auto hit = geometry::intersectTriangle(ray, {grow(t.p0), grow(t.p1), grow(t.p2)}, 0.0,
                                                     std::numeric_limits<double>::infinity());
             if (hit && std::abs(hit->t - ref.depth[k]) <= 1e-5 * ref.depth[k]) ++a.ties;
         }

@@ -31,7 +31,7 @@ TEST_P(GpuVsCpu, SamePrimaryHitsAndImage) {
     const SceneCase& c = GetParam();
     const Scene scene = loadScene(std::filesystem::path(VKRAY_SOURCE_DIR) / "scenes" / c.file);
     RenderOptions options{.width = c.width, .height = c.height, .maxDepth = scene.maxDepth};
-    const Frame gpuFrame = gpu::renderOnGpu(test::gpuContext(), scene, options);
+    const Frame gpuFrame = test::renderGpu(scene, options);
     const Frame cpuFrame = renderReference(scene, options);
 
     // Primary hits: the same watertight test in float (GPU) and double (CPU). Required: >= 99.9%

@@ -44,7 +44,7 @@ const References& referencesFor(const KdCase& c) {
         r.scene = loadScene(std::filesystem::path(VKRAY_SOURCE_DIR) / "scenes" / c.file);
         const RenderOptions options{.width = c.width, .height = c.height, .maxDepth = r.scene.maxDepth};
         r.cpu = renderReference(r.scene, options);
-        r.gpuBrute = gpu::renderOnGpu(test::gpuContext(), r.scene, options);
+        r.gpuBrute = test::renderGpu(r.scene, options);
         it = cache.emplace(key, std::move(r)).first;
     }
     return it->second;
@@ -55,9 +55,9 @@ class KdGpu : public ::testing::TestWithParam<KdCase> {};
 TEST_P(KdGpu, ImageMatchesCpuReferenceAndHitsMatchGpuBrute) {
     const KdCase& c = GetParam();
     const References& ref = referencesFor(c);
-    RenderOptions options{.width = c.width, .height = c.height, .maxDepth = ref.scene.maxDepth, .accel = c.accel};
+    RenderOptions options{.width = c.width, .height = c.height, .maxDepth = ref.scene.maxDepth};
     gpu::GpuRenderReport report;
-    const Frame kdFrame = gpu::renderOnGpu(test::gpuContext(), ref.scene, options, &report);
+    const Frame kdFrame = test::renderGpu(ref.scene, options, &report, c.accel);
     EXPECT_EQ(report.kernel, "kd_" + c.accel.substr(3));
     EXPECT_EQ(report.cappedRays, 0u) << "a traversal reached its iteration cap";
     EXPECT_EQ(report.pixelsCutShort, 0u);
@@ -92,10 +92,10 @@ class KdGpuCounters : public ::testing::TestWithParam<std::string> {};
 TEST_P(KdGpuCounters, RecordTheWork) {
     const KdCase c{GetParam(), "cornell.scene", 128, 128};
     const References& ref = referencesFor(c);
-    RenderOptions options{.width = 64, .height = 64, .maxDepth = ref.scene.maxDepth, .accel = c.accel,
+    RenderOptions options{.width = 64, .height = 64, .maxDepth = ref.scene.maxDepth,
                           .countTraversal = true};
     gpu::GpuRenderReport report;
-    gpu::renderOnGpu(test::gpuContext(), ref.scene, options, &report);
+    test::renderGpu(ref.scene, options, &report, c.accel);
     EXPECT_GE(report.nodesVisited, report.raysTraced + report.shadowRays);
     EXPECT_GE(report.nodesVisited, report.leavesVisited);
     EXPECT_GT(report.trianglesTested, 0u);

@@ -6,7 +6,7 @@
 
 #include "accel/bvh/morton.h"
 #include "accel/bvh/primitives.h"
-#include "cpu/ray_triangle.h"
+#include "geometry/ray_triangle.h"
 #include "scene/generators.h"
 #include "scene/scene_builder.h"
 
@@ -51,7 +51,7 @@ TEST(BurstGenerator, NoDegenerateTrianglesAndSizesSpanEightOctaves) {
     const Scene s = burst(5000, 1);
     float smallest = 1e30f, largest = 0.0f;
     for (const Triangle& t : s.triangles) {
-        ASSERT_FALSE(cpu::isDegenerate({glm::dvec3(t.p0), glm::dvec3(t.p1), glm::dvec3(t.p2)}));
+        ASSERT_FALSE(geometry::isDegenerate({glm::dvec3(t.p0), glm::dvec3(t.p1), glm::dvec3(t.p2)}));
         const float extent = glm::length(t.p1 - t.p0) + glm::length(t.p2 - t.p0);
         smallest = std::min(smallest, extent);
         largest = std::max(largest, extent);

@@ -35,7 +35,7 @@ const glm::vec3 kLo(-2, -2, -1), kHi(2, 2, 1);
 
 accel::GpuAccelData cyclicBvh() {
     accel::GpuAccelData data;
-    data.kernel = "bvh";
+    data.kernel = accel::Kernel::Bvh;
     const std::vector<gpu::GpuBvhNode> nodes = {
         {.lo = kLo, .rightOrFirst = 0, .hi = kHi, .count = 0},  // inner: left = 1, right = itself
         {.lo = kLo, .rightOrFirst = 0, .hi = kHi, .count = 1},  // leaf: triangle slot 0
@@ -44,7 +44,7 @@ accel::GpuAccelData cyclicBvh() {
     return data;
 }
 
-accel::GpuAccelData cyclicKd(const char* kernel) {
+accel::GpuAccelData cyclicKd(accel::Kernel kernel) {
     accel::GpuAccelData data;
     data.kernel = kernel;
     const gpu::KdTreeHeader header{.lo = kLo, .nodeCount = 2, .hi = kHi, .indexCount = 1};
@@ -55,18 +55,18 @@ accel::GpuAccelData cyclicKd(const char* kernel) {
     std::memcpy(data.nodes.data(), &header, sizeof(header));
     std::memcpy(data.nodes.data() + sizeof(header), nodes.data(), nodes.size() * sizeof(gpu::KdNode));
     data.indices = accel::asBytes(std::vector<uint32_t>{0});
-    if (std::strcmp(kernel, "kd_backtrack") == 0)
+    if (kernel == accel::Kernel::KdBacktrack)
         data.extra = accel::asBytes(std::vector<gpu::KdNodeExtra>{
             {.lo = kLo, .parent = VKRAY_KD_NO_PARENT, .hi = kHi, .pad0 = 0}, {.lo = kLo, .parent = 0, .hi = kHi, .pad0 = 0}});
     return data;
 }
 
-class IterationCap : public ::testing::TestWithParam<const char*> {};
+class IterationCap : public ::testing::TestWithParam<accel::Kernel> {};
 
 TEST_P(IterationCap, RunawayRaysEndAndAreCounted) {
     const Scene scene = oneTriangleScene();
-    const std::string kernel = GetParam();
-    const accel::GpuAccelData data = kernel == "bvh" ? cyclicBvh() : cyclicKd(kernel.c_str());
+    const accel::Kernel kernel = GetParam();
+    const accel::GpuAccelData data = kernel == accel::Kernel::Bvh ? cyclicBvh() : cyclicKd(kernel);
     RenderOptions options{.width = kSize, .height = kSize, .maxDepth = 1};
     gpu::GpuRenderReport report;
     const Frame f = gpu::renderOnGpu(test::gpuContext(), scene, options, data, &report);
@@ -77,7 +77,10 @@ TEST_P(IterationCap, RunawayRaysEndAndAreCounted) {
     EXPECT_EQ(f.primId.size(), size_t(kSize * kSize));
 }
 
-INSTANTIATE_TEST_SUITE_P(Stress, IterationCap, ::testing::Values("bvh", "kd_stack", "kd_restart", "kd_backtrack"));
+INSTANTIATE_TEST_SUITE_P(Stress, IterationCap,
+                         ::testing::Values(accel::Kernel::Bvh, accel::Kernel::KdStack, accel::Kernel::KdRestart,
+                                           accel::Kernel::KdBacktrack),
+                         [](const auto& info) { return std::string(accel::kernelName(info.param)); });
 
 }  // namespace
 }  // namespace vkray

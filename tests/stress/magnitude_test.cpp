@@ -59,9 +59,9 @@ void printRow(const char* name, const char* what, const stress::Disagreement& d,
 TEST_P(Magnitude, GpuFollowsTheCpuAtEveryMagnitude) {
     const Mapping& m = GetParam();
     const Scene scene = stress::mappedScene(baseScene(), m.scale, m.offset);
-    const RenderOptions options{.width = scene.width, .height = scene.height, .maxDepth = scene.maxDepth, .accel = "bvh"};
+    const RenderOptions options{.width = scene.width, .height = scene.height, .maxDepth = scene.maxDepth};
     gpu::GpuRenderReport report;
-    const Frame gpuFrame = gpu::renderOnGpu(test::gpuContext(), scene, options, &report);
+    const Frame gpuFrame = test::renderGpu(scene, options, &report, "bvh");
     const Frame cpuFrame = renderReference(scene, options);
 
     const stress::Disagreement gpuVsCpu = stress::disagreement(gpuFrame, cpuFrame, &scene);

@@ -37,7 +37,7 @@ struct StressCase {
     std::string name;  // test name
     std::string file;  // under scenes/stress/
     int maxDepth = 0;  // 0: the scene's
-    // kd-tree tuning for the case (AccelSpec overrides); BVH and brute ignore it.
+    // kd-tree tuning for the case (AccelSpec::kd); BVH and brute ignore it.
     std::function<void(accel::AccelSpec&)> tune = nullptr;
     // Float against double, GPU against the CPU reference: the largest primid mismatch fraction,
     // image RMSE and fraction of pixels off by more than 8/255 allowed (each case says why).
@@ -85,7 +85,7 @@ TEST_P(Cases, EveryAcceleratorAgrees) {
     const RenderOptions base{.width = scene.width, .height = scene.height,
                              .maxDepth = c.maxDepth ? c.maxDepth : scene.maxDepth};
     const auto specFor = [&](const std::string& name) {
-        accel::AccelSpec spec = accel::parseAccel(name);
+        accel::AccelSpec spec = accel::resolveAccel(name);
         if (c.tune) c.tune(spec);
         return spec;
     };
@@ -95,13 +95,14 @@ TEST_P(Cases, EveryAcceleratorAgrees) {
     // Ground truth, and every CPU accelerator against it: the same answers, exactly.
     const Frame ref = c.referenceAccel == "brute"
                           ? renderReference(scene, base)
-                          : renderReference(scene, base, accel::buildAccel(scene, specFor(c.referenceAccel))->tracer());
+                          : renderReference(scene, base,
+                                            *accel::buildAccel(scene, specFor(c.referenceAccel))->makeTracer(scene));
     EXPECT_EQ(leaks(ref).total(), 0u) << "the CPU reference leaks";
     keepImage(c.name + "-cpu", ref);
     for (const std::string& name : kAccels) {
         if (name == "brute") continue;
         const auto built = accel::buildAccel(scene, specFor(name));
-        const Frame f = renderReference(scene, base, built->tracer());
+        const Frame f = renderReference(scene, base, *built->makeTracer(scene));
         const stress::Disagreement d = stress::disagreement(f, ref, &scene);
         printRow(c.name, "cpu " + name, d, 0, 0, leaks(f).total());
         EXPECT_EQ(d.primIdMismatches, 0u) << "CPU " << name;
@@ -112,10 +113,8 @@ TEST_P(Cases, EveryAcceleratorAgrees) {
     std::optional<Frame> gpuBrute;
     for (const std::string& name : kAccels) {
         const auto built = accel::buildAccel(scene, specFor(name));
-        RenderOptions options = base;
-        options.accel = name;
         gpu::GpuRenderReport report;
-        const Frame f = gpu::renderOnGpu(test::gpuContext(), scene, options, built->gpuData(), &report);
+        const Frame f = gpu::renderOnGpu(test::gpuContext(), scene, base, built->gpuData(), &report);
         if (!gpuBrute) gpuBrute = f;
         const stress::Disagreement d = stress::disagreement(f, ref, &scene);
         const size_t vsBrute = primIdDifferences(f, *gpuBrute);
@@ -184,16 +183,16 @@ std::vector<StressCase> cases() {
     all.push_back({.name = "maxdepth_1", .file = "mirror-corridor.scene", .maxDepth = 1, .maxMismatch = 0.0,
                    .maxRmse = 0.0, .maxBad = 0.0});
     // 122 triangles, depth 56 (the limit; the default would be 17): kd-restart pays it per leaf.
-    all.push_back({.name = "kd_deep", .file = "kd-zeno.scene", .tune = [](accel::AccelSpec& s) { s.kdMaxDepth = 56; },
+    all.push_back({.name = "kd_deep", .file = "kd-zeno.scene", .tune = [](accel::AccelSpec& s) { s.kd.maxDepth = 56; },
                    .maxMismatch = 0.0, .maxRmse = 0.0, .maxBad = 0.0});
     // A traversal cost no split can beat: the kd-tree is one leaf holding every triangle.
     all.push_back({.name = "kd_one_leaf", .file = "split-planes.scene",
-                   .tune = [](accel::AccelSpec& s) { s.kdTraversalCost = 1e6; }, .maxMismatch = 0.002,
+                   .tune = [](accel::AccelSpec& s) { s.kd.traversalCost = 1e6; }, .maxMismatch = 0.002,
                    .maxRmse = 0.01, .maxBad = 0.002});
     // The kd-tree at its default depth limit (29 for 100k triangles) takes minutes on this scene:
     // every triangle straddles every split (docs/stability.md); depth 8 leaves 33 leaves of up to
     // ~14,000 triangles each, the "very large leaves" case.
-    all.push_back({.name = "burst_100k", .file = "burst-100k.scene", .tune = [](accel::AccelSpec& s) { s.kdMaxDepth = 8; },
+    all.push_back({.name = "burst_100k", .file = "burst-100k.scene", .tune = [](accel::AccelSpec& s) { s.kd.maxDepth = 8; },
                    .maxMismatch = 0.0, .maxRmse = 0.01, .maxBad = 0.002, .referenceAccel = "bvh-hq"});
     return all;
 }

@@ -13,8 +13,8 @@
 #include <glm/glm.hpp>
 
 #include "../gpu/gpu_test_util.h"
-#include "cpu/ray.h"
-#include "cpu/ray_triangle.h"
+#include "geometry/ray.h"
+#include "geometry/ray_triangle.h"
 #include "image/compare.h"
 #include "render/frame.h"
 #include "scene/camera.h"
@@ -55,24 +55,24 @@ inline constexpr double kRoundingReach = 1e-5;
 // Why the primary hit of camera ray `ray` is triangle `got` in one renderer and `want` (at distance
 // `wantDepth`) in the reference; -1 is a miss. Decided with the exact (double, watertight) test on
 // triangles grown or shrunk about their centroid by kRoundingReach.
-inline Mismatch classifyMismatch(const Scene& scene, const cpu::Ray& ray, int32_t got, int32_t want, double wantDepth) {
+inline Mismatch classifyMismatch(const Scene& scene, const geometry::Ray& ray, int32_t got, int32_t want, double wantDepth) {
     const auto scaled = [&](int32_t id, double factor) {
         const Triangle& t = scene.triangles[size_t(id)];
         const glm::dvec3 c = (glm::dvec3(t.p0) + glm::dvec3(t.p1) + glm::dvec3(t.p2)) / 3.0;
         const auto move = [&](const glm::vec3& p) { return c + (glm::dvec3(p) - c) * factor; };
-        return cpu::TriangleVertices{move(t.p0), move(t.p1), move(t.p2)};
+        return geometry::TriangleVertices{move(t.p0), move(t.p1), move(t.p2)};
     };
     const double inf = std::numeric_limits<double>::infinity();
     if (got >= 0 && want >= 0) {
-        const auto hit = cpu::intersectTriangle(ray, scaled(got, 1.0 + kRoundingReach), 0.0, inf);
+        const auto hit = geometry::intersectTriangle(ray, scaled(got, 1.0 + kRoundingReach), 0.0, inf);
         if (hit && std::abs(hit->t - wantDepth) <= kRoundingReach * wantDepth) return Mismatch::Tie;
     }
     // A graze: the reference's triangle hit only just inside its edge (it misses when shrunk), or
     // the other renderer's triangle missed by the exact ray but hit when grown.
-    if (want >= 0 && !cpu::intersectTriangle(ray, scaled(want, 1.0 - kRoundingReach), 0.0, inf))
+    if (want >= 0 && !geometry::intersectTriangle(ray, scaled(want, 1.0 - kRoundingReach), 0.0, inf))
         return Mismatch::Graze;
-    if (got >= 0 && !cpu::intersectTriangle(ray, scaled(got, 1.0), 0.0, inf) &&
-        cpu::intersectTriangle(ray, scaled(got, 1.0 + kRoundingReach), 0.0, inf))
+    if (got >= 0 && !geometry::intersectTriangle(ray, scaled(got, 1.0), 0.0, inf) &&
+        geometry::intersectTriangle(ray, scaled(got, 1.0 + kRoundingReach), 0.0, inf))
         return Mismatch::Graze;
     return Mismatch::Unexplained;
 }
@@ -89,7 +89,7 @@ inline Disagreement disagreement(const Frame& a, const Frame& ref, const Scene* 
             if (a.primId[k] == ref.primId[k]) continue;
             ++d.primIdMismatches;
             if (!scene) continue;
-            const cpu::Ray ray{cam.eye, primaryDirection(cam, i, j)};
+            const geometry::Ray ray{cam.eye, primaryDirection(cam, i, j)};
             switch (classifyMismatch(*scene, ray, a.primId[k], ref.primId[k], double(ref.depth[k]))) {
                 case Mismatch::Tie: ++d.ties; break;
                 case Mismatch::Graze: ++d.grazes; break;

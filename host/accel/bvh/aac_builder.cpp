@@ -9,9 +9,9 @@
 
 #include <tbb/parallel_for.h>
 
-#include "accel/bvh/fork_join.h"
+#include "core/fork_join.h"
 #include "accel/bvh/morton.h"
-#include "accel/bvh/parallel_alloc.h"
+#include "core/parallel_alloc.h"
 #include "core/error.h"
 
 namespace vkray::bvh {

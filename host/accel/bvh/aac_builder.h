@@ -21,7 +21,7 @@
 #include <cstdint>
 
 #include "accel/bvh/bvh.h"
-#include "accel/bvh/phase_log.h"
+#include "core/phase_log.h"
 #include "accel/bvh/primitives.h"
 
 namespace vkray::bvh {

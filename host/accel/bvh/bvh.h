@@ -8,6 +8,7 @@
 
 #include <cstdint>
 #include <limits>
+#include <string>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -69,6 +70,9 @@ struct Config {
     // alpha = 1/2 - epsilon and c = delta^(1/2 + epsilon) / 2, so that f(delta) = delta / 2.
     int delta = 4;
     double epsilon = 0.2;
+    // Leaf ranges are clustered by an all-pairs search, O(delta^2) per merge: larger deltas would
+    // turn a build into hours.
+    static constexpr int kMaxDelta = 1024;
 
     // Binned SAH reference (Wald, "On fast Construction of SAH-based Bounding Volume Hierarchies",
     // RT 2007, section 3: 16-32 bins lose little against a full sweep): bins per axis.
@@ -93,6 +97,9 @@ struct Config {
         c.epsilon = epsilon;
         return c;
     }
+
+    // "AAC delta=20 epsilon=0.1" or "binned SAH, 32 bins", then the leaf collapse's constants.
+    std::string describe() const;
 };
 
 // A node id in a BinaryTree whose second child is kPrimitive is a leaf holding one primitive.

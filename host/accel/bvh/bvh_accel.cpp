@@ -1,8 +1,5 @@
 #include "accel/bvh/bvh_accel.h"
 
-#include <chrono>
-#include <cstdio>
-
 #include <tbb/task_arena.h>
 
 #include "accel/bvh/aac_builder.h"
@@ -12,18 +9,14 @@
 #include "accel/bvh/primitives.h"
 #include "accel/bvh/sah_builder.h"
 #include "core/error.h"
+#include "core/format.h"
+#include "core/timing.h"
 
 namespace vkray::bvh {
 namespace {
 
-std::string number(double v) {
-    char buf[32];
-    std::snprintf(buf, sizeof buf, "%g", v);
-    return buf;
-}
-
 std::string sahUnit(const Config& c) {
-    return "Ct=" + number(c.sah.traversal) + ", Ci=" + number(c.sah.intersection) +
+    return "Ct=" + shortNumber(c.sah.traversal) + ", Ci=" + shortNumber(c.sah.intersection) +
            ", normalised by root area, leaves <= " + std::to_string(c.maxLeafSize);
 }
 
@@ -34,23 +27,24 @@ BinaryTree buildTree(const PrimitiveSet& prims, const Config& config, PhaseLog& 
 
 class BvhAccel final : public accel::BuiltAccel {
 public:
-    BvhAccel(const Scene& scene, const Config& config, BuildResult result, int threads)
-        : config_(config), phases_(std::move(result.phases)), totalMs_(result.totalMs), threads_(threads),
-          tracer_(std::move(result.flat), scene.triangles) {}
+    BvhAccel(const Config& config, BuildResult result, int threads)
+        : config_(config), flat_(std::move(result.flat)), phases_(std::move(result.phases)),
+          totalMs_(result.totalMs), threads_(threads) {}
 
-    const cpu::Tracer& tracer() const override { return tracer_; }
+    std::unique_ptr<geometry::Tracer> makeTracer(const Scene& scene) const override {
+        return std::make_unique<BvhTracer>(flat_, scene.triangles);
+    }
 
     accel::GpuAccelData gpuData() const override {
-        const FlatBvh& flat = tracer_.bvh();
         accel::GpuAccelData data;
-        data.kernel = "bvh";
-        data.triangleOrder = flat.triangleOrder;
-        data.nodes = accel::asBytes(flat.nodes);
+        data.kernel = accel::Kernel::Bvh;
+        data.triangleOrder = flat_.triangleOrder;
+        data.nodes = accel::asBytes(flat_.nodes);
         return data;
     }
 
     std::vector<accel::AccelStat> stats() const override {
-        const FlatBvh& flat = tracer_.bvh();
+        const FlatBvh& flat = flat_;
         std::vector<accel::AccelStat> s;
         s.push_back({"build_ms", totalMs_, "ms"});
         for (const auto& [name, ms] : phases_) s.push_back({name + "_ms", ms, "ms"});
@@ -74,37 +68,24 @@ public:
 
 private:
     Config config_;
+    FlatBvh flat_;
     std::vector<std::pair<std::string, double>> phases_;
     double totalMs_;
     int threads_;
-    BvhTracer tracer_;
 };
 
 }  // namespace
 
-// Plain `bvh` is AAC-HQ: on the meshes of docs/bvh.md its trees cost a few percent less under the
-// SAH than AAC-Fast's, at well under 2x the build time, and a render traces far more rays than
-// the build touches primitives.
-Config bvhDefaultConfig() { return Config::aacHq(); }
-
-Config configFor(const accel::AccelSpec& spec) {
-    Config c = spec.bvhSahReference   ? Config::binnedSah()
-               : spec.name == "bvh-fast" ? Config::aacFast()
-               : spec.name == "bvh-hq"   ? Config::aacHq()
-                                         : bvhDefaultConfig();
-    const bool overrides = spec.aacDelta > 0 || spec.aacEpsilon > 0.0;
-    if (spec.bvhSahReference && overrides)
-        throw Error("accelerator '" + spec.name + "' is the binned-SAH reference: --aac-delta and "
-                    "--aac-epsilon apply to bvh, bvh-fast and bvh-hq only");
-    if (spec.aacDelta > 0) c.delta = spec.aacDelta;
-    if (spec.aacEpsilon > 0.0) c.epsilon = spec.aacEpsilon;
-    if (c.builder == Config::Builder::Aac) validateAacConfig(c);
-    return c;
+std::string Config::describe() const {
+    const std::string builderText = builder == Builder::Aac
+                                        ? "AAC delta=" + shortNumber(delta) + " epsilon=" + shortNumber(epsilon)
+                                        : "binned SAH, " + std::to_string(sahBins) + " bins";
+    return builderText + "; " + sahUnit(*this);
 }
 
 BuildResult buildFlatBvh(std::span<const Triangle> triangles, const Config& config, int threads,
-                         PhaseLog::Progress progress) {
-    const auto start = std::chrono::steady_clock::now();
+                         BuildProgress progress) {
+    const Clock::time_point start = Clock::now();
     PhaseLog log(std::move(progress));
     tbb::task_arena arena(threads > 0 ? threads : tbb::task_arena::automatic);
     FlatBvh flat = arena.execute([&] {
@@ -114,18 +95,18 @@ BuildResult buildFlatBvh(std::span<const Triangle> triangles, const Config& conf
         return log.run("flatten", 1.0, [&] { return flatten(tree, collapsed); });
     });
     log.finish();
-    const std::chrono::duration<double, std::milli> ms = std::chrono::steady_clock::now() - start;
-    return BuildResult{std::move(flat), log.phases(), ms.count()};
+    return BuildResult{std::move(flat), log.phases(), msSince(start)};
 }
 
 }  // namespace vkray::bvh
 
 namespace vkray::accel {
 
-std::unique_ptr<BuiltAccel> buildBvhAccel(const Scene& scene, const AccelSpec& spec, const BuildOptions& options) {
-    const bvh::Config config = bvh::configFor(spec);
+std::unique_ptr<BuiltAccel> buildBvhAccel(const Scene& scene, const bvh::Config& config,
+                                          const BuildOptions& options) {
+    if (config.builder == bvh::Config::Builder::Aac) bvh::validateAacConfig(config);
     bvh::BuildResult result = bvh::buildFlatBvh(scene.triangles, config, options.threads, options.progress);
-    return std::make_unique<bvh::BvhAccel>(scene, config, std::move(result), options.threads);
+    return std::make_unique<bvh::BvhAccel>(config, std::move(result), options.threads);
 }
 
 }  // namespace vkray::accel

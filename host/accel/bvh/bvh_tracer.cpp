@@ -45,7 +45,7 @@ struct BvhTracer::BoxRay {
     glm::dvec3 origin, inv;
     bool flat[3];  // direction component +-0 (or so small its inverse overflows)
 
-    explicit BoxRay(const cpu::Ray& ray) : origin(ray.origin) {
+    explicit BoxRay(const geometry::Ray& ray) : origin(ray.origin) {
         for (int a = 0; a < 3; ++a) {
             inv[a] = 1.0 / ray.dir[a];
             flat[a] = std::isinf(inv[a]);
@@ -74,19 +74,19 @@ struct BvhTracer::BoxRay {
     }
 };
 
-BvhTracer::BvhTracer(FlatBvh bvh, std::span<const Triangle> triangles) : bvh_(std::move(bvh)) {
+BvhTracer::BvhTracer(const FlatBvh& bvh, std::span<const Triangle> triangles) : bvh_(bvh) {
     triangles_.reserve(bvh_.triangleOrder.size());
     for (uint32_t k : bvh_.triangleOrder) triangles_.push_back(triangles[k]);
     // Near-first traversal keeps at most one far child per level, plus the root.
     stackSize_ = bvh_.maxDepth + 2;
 }
 
-cpu::Hit BvhTracer::closest(const cpu::Ray& ray, double tmax, cpu::TraversalCounters* counters) const {
-    cpu::Hit best;
+geometry::Hit BvhTracer::closest(const geometry::Ray& ray, double tmax, geometry::TraversalCounters* counters) const {
+    geometry::Hit best;
     if (bvh_.nodes.empty()) return best;
     const BoxRay boxRay(ray);
-    const cpu::WatertightRay wray(ray);
-    cpu::TraversalCounters work;
+    const geometry::WatertightRay wray(ray);
+    geometry::TraversalCounters work;
     // Hits must be below tmax until one is found, then at most its t (a tie may still win).
     const auto limit = [&] { return best.found() ? best.t : tmax; };
 
@@ -106,7 +106,7 @@ cpu::Hit BvhTracer::closest(const cpu::Ray& ray, double tmax, cpu::TraversalCoun
                 const auto hit = wray.intersect(vertices(k), 0.0, hi);
                 if (!hit) continue;
                 if (!best.found() || hit->t < best.t || original(k) < best.triangle)
-                    best = cpu::Hit{original(k), hit->t, hit->b0, hit->b1, hit->b2};
+                    best = geometry::Hit{original(k), hit->t, hit->b0, hit->b1, hit->b2};
             }
             continue;
         }
@@ -132,11 +132,11 @@ cpu::Hit BvhTracer::closest(const cpu::Ray& ray, double tmax, cpu::TraversalCoun
     return best;
 }
 
-bool BvhTracer::occluded(const cpu::Ray& ray, double tmax, cpu::TraversalCounters* counters) const {
+bool BvhTracer::occluded(const geometry::Ray& ray, double tmax, geometry::TraversalCounters* counters) const {
     if (bvh_.nodes.empty()) return false;
     const BoxRay boxRay(ray);
-    const cpu::WatertightRay wray(ray);
-    cpu::TraversalCounters work;
+    const geometry::WatertightRay wray(ray);
+    geometry::TraversalCounters work;
     bool hit = false;
     TraversalStack stack(stackSize_);
     double tEnter = 0.0;

@@ -18,34 +18,32 @@
 #include <glm/glm.hpp>
 
 #include "accel/bvh/bvh.h"
-#include "cpu/ray_triangle.h"
-#include "cpu/tracer.h"
+#include "geometry/ray_triangle.h"
+#include "geometry/tracer.h"
 #include "scene/scene.h"
 
 namespace vkray::bvh {
 
-class BvhTracer final : public cpu::Tracer {
+class BvhTracer final : public geometry::Tracer {
 public:
-    // Takes the flat tree (the GPU's arrays, which bvh() then offers) and copies the scene's
+    // Walks `bvh` (the GPU's arrays, which must outlive the tracer) and copies the scene's
     // triangles (triangle-identity order) into leaf order; boxes and vertices are widened to double
     // as they are tested, exactly as BruteForceTracer widens them.
-    BvhTracer(FlatBvh bvh, std::span<const Triangle> triangles);
+    BvhTracer(const FlatBvh& bvh, std::span<const Triangle> triangles);
 
-    const FlatBvh& bvh() const { return bvh_; }
-
-    cpu::Hit closest(const cpu::Ray& ray, double tmax, cpu::TraversalCounters* counters = nullptr) const override;
-    bool occluded(const cpu::Ray& ray, double tmax, cpu::TraversalCounters* counters = nullptr) const override;
+    geometry::Hit closest(const geometry::Ray& ray, double tmax, geometry::TraversalCounters* counters = nullptr) const override;
+    bool occluded(const geometry::Ray& ray, double tmax, geometry::TraversalCounters* counters = nullptr) const override;
 
 private:
     struct BoxRay;
 
-    cpu::TriangleVertices vertices(uint32_t slot) const {
+    geometry::TriangleVertices vertices(uint32_t slot) const {
         const Triangle& t = triangles_[slot];
         return {glm::dvec3(t.p0), glm::dvec3(t.p1), glm::dvec3(t.p2)};
     }
     int32_t original(uint32_t slot) const { return int32_t(bvh_.triangleOrder[slot]); }
 
-    FlatBvh bvh_;
+    const FlatBvh& bvh_;
     std::vector<Triangle> triangles_;  // leaf order
     uint32_t stackSize_ = 0;           // deepest stack a traversal can need
 };

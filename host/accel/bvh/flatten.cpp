@@ -3,8 +3,8 @@
 #include <algorithm>
 #include <vector>
 
-#include "accel/bvh/fork_join.h"
-#include "accel/bvh/parallel_alloc.h"
+#include "core/fork_join.h"
+#include "core/parallel_alloc.h"
 
 namespace vkray::bvh {
 namespace {

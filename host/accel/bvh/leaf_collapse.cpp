@@ -1,7 +1,7 @@
 #include "accel/bvh/leaf_collapse.h"
 
-#include "accel/bvh/fork_join.h"
-#include "accel/bvh/parallel_alloc.h"
+#include "core/fork_join.h"
+#include "core/parallel_alloc.h"
 
 namespace vkray::bvh {
 namespace {

@@ -5,7 +5,7 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
-#include "accel/bvh/parallel_alloc.h"
+#include "core/parallel_alloc.h"
 
 namespace vkray::bvh {
 namespace {

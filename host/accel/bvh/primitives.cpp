@@ -4,7 +4,7 @@
 #include <tbb/parallel_for.h>
 #include <tbb/parallel_reduce.h>
 
-#include "accel/bvh/parallel_alloc.h"
+#include "core/parallel_alloc.h"
 
 namespace vkray::bvh {
 namespace {

@@ -10,8 +10,8 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_reduce.h>
 
-#include "accel/bvh/fork_join.h"
-#include "accel/bvh/parallel_alloc.h"
+#include "core/fork_join.h"
+#include "core/parallel_alloc.h"
 #include "core/error.h"
 
 namespace vkray::bvh {

@@ -6,7 +6,7 @@
 #pragma once
 
 #include "accel/bvh/bvh.h"
-#include "accel/bvh/phase_log.h"
+#include "core/phase_log.h"
 #include "accel/bvh/primitives.h"
 
 namespace vkray::bvh {

@@ -4,39 +4,40 @@
 
 #include "accel/kd/kd_traversal.h"
 #include "accel/kd/sah_kd_builder.h"
-#include "cpu/brute_force.h"
+#include "geometry/brute_force.h"
 
 namespace vkray::accel {
 namespace {
 
-const char* kernelName(KdTraversal t) {
+Kernel kernelFor(kd::Traversal t) {
     switch (t) {
-    case KdTraversal::Stack: return "kd_stack";
-    case KdTraversal::Restart: return "kd_restart";
-    case KdTraversal::Backtrack: return "kd_backtrack";
+    case kd::Traversal::Stack: return Kernel::KdStack;
+    case kd::Traversal::Restart: return Kernel::KdRestart;
+    case kd::Traversal::Backtrack: return Kernel::KdBacktrack;
     }
-    return "kd_restart";
+    return Kernel::KdRestart;
 }
 
-// The kd family's BuiltAccel: one SAH tree, walked by the traversal the spec names on the CPU and GPU.
+// The kd family's BuiltAccel: one SAH tree, walked by one traversal on the CPU and the GPU.
 class KdAccel final : public BuiltAccel {
 public:
-    KdAccel(const Scene& scene, const AccelSpec& spec, const BuildOptions& options)
-        : traversal_(spec.kdTraversal), config_(configFor(spec)),
-          build_(kd::buildSahKdTree(scene.triangles, config_, options.threads, options.progress)),
-          tracer_(kd::makeKdTracer(traversal_, build_.tree, cpu::triangleVertices(scene))) {}
+    KdAccel(const Scene& scene, const kd::KdConfig& config, kd::Traversal traversal, const BuildOptions& options)
+        : traversal_(traversal), config_(config),
+          build_(kd::buildSahKdTree(scene.triangles, config_, options.threads, options.progress)) {}
 
-    const cpu::Tracer& tracer() const override { return *tracer_; }
+    std::unique_ptr<geometry::Tracer> makeTracer(const Scene& scene) const override {
+        return kd::makeKdTracer(traversal_, build_.tree, geometry::triangleVertices(scene));
+    }
 
     GpuAccelData gpuData() const override {
         GpuAccelData data;
-        data.kernel = kernelName(traversal_);
+        data.kernel = kernelFor(traversal_);
         const kd::KdTree& t = build_.tree;
         data.nodes = asBytes(std::vector<gpu::KdTreeHeader>{t.header});
         const std::vector<std::byte> nodeBytes = asBytes(t.nodes);
         data.nodes.insert(data.nodes.end(), nodeBytes.begin(), nodeBytes.end());
         data.indices = asBytes(t.indices);
-        if (traversal_ == KdTraversal::Backtrack) data.extra = asBytes(t.extra);  // only it pays for them
+        if (traversal_ == kd::Traversal::Backtrack) data.extra = asBytes(t.extra);  // only it pays for them
         return data;
     }
 
@@ -60,25 +61,16 @@ public:
     }
 
 private:
-    static kd::KdConfig configFor(const AccelSpec& spec) {
-        kd::KdConfig c;
-        if (spec.kdTraversalCost > 0.0) c.traversalCost = spec.kdTraversalCost;
-        if (spec.kdIntersectionCost > 0.0) c.intersectionCost = spec.kdIntersectionCost;
-        if (spec.kdEmptyBonus >= 0.0) c.emptyBonus = spec.kdEmptyBonus;
-        if (spec.kdMaxDepth > 0) c.maxDepth = spec.kdMaxDepth;
-        return c;
-    }
-
-    KdTraversal traversal_;
+    kd::Traversal traversal_;
     kd::KdConfig config_;
     kd::KdBuildResult build_;
-    std::unique_ptr<kd::KdTracer> tracer_;
 };
 
 }  // namespace
 
-std::unique_ptr<BuiltAccel> buildKdAccel(const Scene& scene, const AccelSpec& spec, const BuildOptions& options) {
-    return std::make_unique<KdAccel>(scene, spec, options);
+std::unique_ptr<BuiltAccel> buildKdAccel(const Scene& scene, const kd::KdConfig& config, kd::Traversal traversal,
+                                         const BuildOptions& options) {
+    return std::make_unique<KdAccel>(scene, config, traversal, options);
 }
 
 }  // namespace vkray::accel

@@ -12,7 +12,7 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 
 // Where the ray meets the plane x[axis] = plane: the one expression every traversal step and box
 // clip uses (see the header). Only called with dir[axis] != 0.
-double planeHit(const cpu::Ray& ray, int axis, float plane) {
+double planeHit(const geometry::Ray& ray, int axis, float plane) {
     return (double(plane) - ray.origin[axis]) / ray.dir[axis];
 }
 
@@ -28,7 +28,7 @@ struct SplitStep {
 // One inner node of seed 000's search-split(): which children the segment [tmin, tmax] reaches.
 // A ray lying in the plane takes the side the pass's mask names and records the axis; plane hits
 // equal to an end of the segment are ordered by the pass's ranks (PassState::compare).
-SplitStep stepInner(const cpu::Ray& ray, const gpu::KdNode& node, uint32_t index, const Segment& seg,
+SplitStep stepInner(const geometry::Ray& ray, const gpu::KdNode& node, uint32_t index, const Segment& seg,
                     PassState& pass) {
     const int axis = node.axis();
     const uint32_t below = index + 1, above = node.aboveChild();
@@ -70,8 +70,8 @@ constexpr double kStopSlack = 1e-9;
 // with `<=`, 2 of 3969 camera rays kept a higher index).
 class ClosestVisitor final : public LeafVisitor {
 public:
-    ClosestVisitor(const KdTree& tree, const std::vector<cpu::TriangleVertices>& tris, const cpu::Ray& ray,
-                   double tmax, cpu::TraversalCounters& counters)
+    ClosestVisitor(const KdTree& tree, const std::vector<geometry::TriangleVertices>& tris, const geometry::Ray& ray,
+                   double tmax, geometry::TraversalCounters& counters)
         : tree_(tree), tris_(tris), wray_(ray), counters_(counters) {
         best.t = tmax;
     }
@@ -85,25 +85,25 @@ public:
             const double upper = best.found() ? std::nextafter(best.t, kInf) : best.t;
             const auto hit = wray_.intersect(tris_[k], 0.0, upper);
             if (hit && (hit->t < best.t || (hit->t == best.t && int32_t(k) < best.triangle)))
-                best = cpu::Hit{int32_t(k), hit->t, hit->b0, hit->b1, hit->b2};
+                best = geometry::Hit{int32_t(k), hit->t, hit->b0, hit->b1, hit->b2};
         }
         return best.found() && best.t * (1.0 + kStopSlack) < exit;
     }
 
-    cpu::Hit best;
+    geometry::Hit best;
 
 private:
     const KdTree& tree_;
-    const std::vector<cpu::TriangleVertices>& tris_;
-    cpu::WatertightRay wray_;
-    cpu::TraversalCounters& counters_;
+    const std::vector<geometry::TriangleVertices>& tris_;
+    geometry::WatertightRay wray_;
+    geometry::TraversalCounters& counters_;
 };
 
 // Any hit in (0, tmax): the first occluder ends the search, wherever on the ray it lies.
 class AnyHitVisitor final : public LeafVisitor {
 public:
-    AnyHitVisitor(const KdTree& tree, const std::vector<cpu::TriangleVertices>& tris, const cpu::Ray& ray,
-                  double tmax, cpu::TraversalCounters& counters)
+    AnyHitVisitor(const KdTree& tree, const std::vector<geometry::TriangleVertices>& tris, const geometry::Ray& ray,
+                  double tmax, geometry::TraversalCounters& counters)
         : tree_(tree), tris_(tris), wray_(ray), tmax_(tmax), counters_(counters) {}
 
     bool visit(const gpu::KdNode& leaf, double) override {
@@ -121,15 +121,15 @@ public:
 
 private:
     const KdTree& tree_;
-    const std::vector<cpu::TriangleVertices>& tris_;
-    cpu::WatertightRay wray_;
+    const std::vector<geometry::TriangleVertices>& tris_;
+    geometry::WatertightRay wray_;
     double tmax_;
-    cpu::TraversalCounters& counters_;
+    geometry::TraversalCounters& counters_;
 };
 
 }  // namespace
 
-std::optional<Segment> clipToBox(const cpu::Ray& ray, const glm::vec3& lo, const glm::vec3& hi, Segment s,
+std::optional<Segment> clipToBox(const geometry::Ray& ray, const glm::vec3& lo, const glm::vec3& hi, Segment s,
                                  PassState& pass) {
     for (int axis = 0; axis < 3; ++axis) {
         if (ray.dir[axis] == 0.0) {  // no division by +-0 (0 * inf would be NaN): test the slab
@@ -151,7 +151,7 @@ std::optional<Segment> clipToBox(const cpu::Ray& ray, const glm::vec3& lo, const
     return s;
 }
 
-std::optional<Segment> clipToBox(const cpu::Ray& ray, const glm::vec3& lo, const glm::vec3& hi, Segment s) {
+std::optional<Segment> clipToBox(const geometry::Ray& ray, const glm::vec3& lo, const glm::vec3& hi, Segment s) {
     PassState pass;
     return clipToBox(ray, lo, hi, s, pass);
 }
@@ -186,7 +186,7 @@ int nextPass(unsigned inPlane, unsigned tied, uint64_t walked) {
 // At most 8 passes: in-plane axes have no plane crossings, so they never tie; the masks over the
 // in-plane axes times the orders of the tied ones are 8 (two in-plane axes), 4 (one, and two tied),
 // or 6 (none, three tied).
-void KdTracer::walk(const cpu::Ray& ray, Segment segment, LeafVisitor& visitor, cpu::TraversalCounters& c) const {
+void KdTracer::walk(const geometry::Ray& ray, Segment segment, LeafVisitor& visitor, geometry::TraversalCounters& c) const {
     unsigned inPlane = 0, tied = 0;
     uint64_t walked = 0;
     int steps = 0;
@@ -204,22 +204,22 @@ void KdTracer::walk(const cpu::Ray& ray, Segment segment, LeafVisitor& visitor, 
     }
 }
 
-KdTracer::KdTracer(const KdTree& tree, std::vector<cpu::TriangleVertices> triangles, int maxSteps)
+KdTracer::KdTracer(const KdTree& tree, std::vector<geometry::TriangleVertices> triangles, int maxSteps)
     : tree_(tree), triangles_(std::move(triangles)), maxSteps_(maxSteps) {}
 
-cpu::Hit KdTracer::closest(const cpu::Ray& ray, double tmax, cpu::TraversalCounters* counters) const {
-    cpu::TraversalCounters local;
-    cpu::TraversalCounters& c = counters ? *counters : local;
+geometry::Hit KdTracer::closest(const geometry::Ray& ray, double tmax, geometry::TraversalCounters* counters) const {
+    geometry::TraversalCounters local;
+    geometry::TraversalCounters& c = counters ? *counters : local;
     ClosestVisitor visitor(tree_, triangles_, ray, tmax, c);
     walk(ray, {0.0, tmax}, visitor, c);
-    cpu::Hit best = visitor.best;
+    geometry::Hit best = visitor.best;
     if (!best.found()) best.t = kInf;
     return best;
 }
 
-bool KdTracer::occluded(const cpu::Ray& ray, double tmax, cpu::TraversalCounters* counters) const {
-    cpu::TraversalCounters local;
-    cpu::TraversalCounters& c = counters ? *counters : local;
+bool KdTracer::occluded(const geometry::Ray& ray, double tmax, geometry::TraversalCounters* counters) const {
+    geometry::TraversalCounters local;
+    geometry::TraversalCounters& c = counters ? *counters : local;
     AnyHitVisitor visitor(tree_, triangles_, ray, tmax, c);
     walk(ray, {0.0, tmax}, visitor, c);
     return visitor.occluded;
@@ -227,8 +227,8 @@ bool KdTracer::occluded(const cpu::Ray& ray, double tmax, cpu::TraversalCounters
 
 // Seed 000, figure 9, as a loop: one iteration per node; the stack holds the far children with
 // their segments, nearest on top.
-bool KdStackTracer::walkPass(const cpu::Ray& ray, Segment seg, PassState& pass, LeafVisitor& visitor,
-                             cpu::TraversalCounters& c, int& steps) const {
+bool KdStackTracer::walkPass(const geometry::Ray& ray, Segment seg, PassState& pass, LeafVisitor& visitor,
+                             geometry::TraversalCounters& c, int& steps) const {
     struct Pending {
         uint32_t node;
         Segment seg;
@@ -267,8 +267,8 @@ bool KdStackTracer::walkPass(const cpu::Ray& ray, Segment seg, PassState& pass, 
 // The descent sends the segment to the first child only when the plane lies strictly beyond tmin
 // (stepInner: thit <= tmin goes second), so the leaf just left, whose exit is tmin, is never entered
 // again: every restart advances strictly past the exit, and each leaf is visited once.
-bool KdRestartTracer::walkPass(const cpu::Ray& ray, Segment global, PassState& pass, LeafVisitor& visitor,
-                               cpu::TraversalCounters& c, int& steps) const {
+bool KdRestartTracer::walkPass(const geometry::Ray& ray, Segment global, PassState& pass, LeafVisitor& visitor,
+                               geometry::TraversalCounters& c, int& steps) const {
     uint32_t node = 0;
     Segment seg = global;
     for (;; ++steps) {
@@ -296,8 +296,8 @@ bool KdRestartTracer::walkPass(const cpu::Ray& ray, Segment global, PassState& p
 // ancestor the segment still passes through for a positive length (box exit > tmin: an ancestor
 // whose box the ray leaves exactly at tmin holds nothing new). Climbing steps share the loop (and
 // the cap) with descending steps.
-bool KdBacktrackTracer::walkPass(const cpu::Ray& ray, Segment global, PassState& pass, LeafVisitor& visitor,
-                                 cpu::TraversalCounters& c, int& steps) const {
+bool KdBacktrackTracer::walkPass(const geometry::Ray& ray, Segment global, PassState& pass, LeafVisitor& visitor,
+                                 geometry::TraversalCounters& c, int& steps) const {
     uint32_t node = 0;
     Segment seg = global;
     bool climbing = false;
@@ -335,12 +335,12 @@ bool KdBacktrackTracer::walkPass(const cpu::Ray& ray, Segment global, PassState&
     }
 }
 
-std::unique_ptr<KdTracer> makeKdTracer(KdTraversal traversal, const KdTree& tree,
-                                       std::vector<cpu::TriangleVertices> triangles, int maxSteps) {
+std::unique_ptr<KdTracer> makeKdTracer(kd::Traversal traversal, const KdTree& tree,
+                                       std::vector<geometry::TriangleVertices> triangles, int maxSteps) {
     switch (traversal) {
-    case KdTraversal::Stack: return std::make_unique<KdStackTracer>(tree, std::move(triangles), maxSteps);
-    case KdTraversal::Restart: return std::make_unique<KdRestartTracer>(tree, std::move(triangles), maxSteps);
-    case KdTraversal::Backtrack: return std::make_unique<KdBacktrackTracer>(tree, std::move(triangles), maxSteps);
+    case kd::Traversal::Stack: return std::make_unique<KdStackTracer>(tree, std::move(triangles), maxSteps);
+    case kd::Traversal::Restart: return std::make_unique<KdRestartTracer>(tree, std::move(triangles), maxSteps);
+    case kd::Traversal::Backtrack: return std::make_unique<KdBacktrackTracer>(tree, std::move(triangles), maxSteps);
     }
     return nullptr;
 }

@@ -42,10 +42,9 @@
 #include <optional>
 #include <vector>
 
-#include "accel/accel.h"
 #include "accel/kd/kd_tree.h"
-#include "cpu/ray_triangle.h"
-#include "cpu/tracer.h"
+#include "geometry/ray_triangle.h"
+#include "geometry/tracer.h"
 
 namespace vkray::accel::kd {
 
@@ -87,27 +86,27 @@ protected:
     ~LeafVisitor() = default;
 };
 
-class KdTracer : public cpu::Tracer {
+class KdTracer : public geometry::Tracer {
 public:
     // `tree` must outlive the tracer; `triangles` in scene order (the indices' meaning).
-    KdTracer(const KdTree& tree, std::vector<cpu::TriangleVertices> triangles, int maxSteps = VKRAY_KD_MAX_STEPS);
+    KdTracer(const KdTree& tree, std::vector<geometry::TriangleVertices> triangles, int maxSteps = VKRAY_KD_MAX_STEPS);
 
-    cpu::Hit closest(const cpu::Ray& ray, double tmax, cpu::TraversalCounters* counters = nullptr) const override;
-    bool occluded(const cpu::Ray& ray, double tmax, cpu::TraversalCounters* counters = nullptr) const override;
+    geometry::Hit closest(const geometry::Ray& ray, double tmax, geometry::TraversalCounters* counters = nullptr) const override;
+    bool occluded(const geometry::Ray& ray, double tmax, geometry::TraversalCounters* counters = nullptr) const override;
 
     // Hands the leaves the ray's segment passes to `visitor`, in ray order, once per side mask that
     // the ray's in-plane nodes call for (see above); stops when the visitor is satisfied.
-    void walk(const cpu::Ray& ray, Segment segment, LeafVisitor& visitor, cpu::TraversalCounters& counters) const;
+    void walk(const geometry::Ray& ray, Segment segment, LeafVisitor& visitor, geometry::TraversalCounters& counters) const;
 
     // One pass (PassState: side mask and tie order in, in-plane and tied axes out): what the three
     // traversals differ in. `steps` counts loop iterations over all passes. Returns false when the
     // iteration cap ended it (counted in counters.capped).
-    virtual bool walkPass(const cpu::Ray& ray, Segment segment, PassState& pass, LeafVisitor& visitor,
-                          cpu::TraversalCounters& counters, int& steps) const = 0;
+    virtual bool walkPass(const geometry::Ray& ray, Segment segment, PassState& pass, LeafVisitor& visitor,
+                          geometry::TraversalCounters& counters, int& steps) const = 0;
 
 protected:
     const KdTree& tree_;
-    std::vector<cpu::TriangleVertices> triangles_;
+    std::vector<geometry::TriangleVertices> triangles_;
     int maxSteps_;
 };
 
@@ -115,8 +114,8 @@ protected:
 class KdStackTracer final : public KdTracer {
 public:
     using KdTracer::KdTracer;
-    bool walkPass(const cpu::Ray& ray, Segment segment, PassState& pass, LeafVisitor& visitor,
-                  cpu::TraversalCounters& counters, int& steps) const override;
+    bool walkPass(const geometry::Ray& ray, Segment segment, PassState& pass, LeafVisitor& visitor,
+                  geometry::TraversalCounters& counters, int& steps) const override;
 };
 
 // Stackless kd-restart (Foley and Sugerman 4.1): after a leaf, tmin = the leaf's exit and the search
@@ -124,8 +123,8 @@ public:
 class KdRestartTracer final : public KdTracer {
 public:
     using KdTracer::KdTracer;
-    bool walkPass(const cpu::Ray& ray, Segment segment, PassState& pass, LeafVisitor& visitor,
-                  cpu::TraversalCounters& counters, int& steps) const override;
+    bool walkPass(const geometry::Ray& ray, Segment segment, PassState& pass, LeafVisitor& visitor,
+                  geometry::TraversalCounters& counters, int& steps) const override;
 };
 
 // Stackless kd-backtrack (Foley and Sugerman 4.2): after a leaf, climb by parent links to the
@@ -133,8 +132,8 @@ public:
 class KdBacktrackTracer final : public KdTracer {
 public:
     using KdTracer::KdTracer;
-    bool walkPass(const cpu::Ray& ray, Segment segment, PassState& pass, LeafVisitor& visitor,
-                  cpu::TraversalCounters& counters, int& steps) const override;
+    bool walkPass(const geometry::Ray& ray, Segment segment, PassState& pass, LeafVisitor& visitor,
+                  geometry::TraversalCounters& counters, int& steps) const override;
 };
 
 // Passes are numbered code = mask | order << 3 (order: one of the 6 rank permutations, kKdRanks).
@@ -143,12 +142,12 @@ public:
 // kdNextPass() in kd_common.glsl.
 int nextPass(unsigned inPlane, unsigned tied, uint64_t walked);
 
-std::unique_ptr<KdTracer> makeKdTracer(KdTraversal traversal, const KdTree& tree,
-                                       std::vector<cpu::TriangleVertices> triangles, int maxSteps = VKRAY_KD_MAX_STEPS);
+std::unique_ptr<KdTracer> makeKdTracer(kd::Traversal traversal, const KdTree& tree,
+                                       std::vector<geometry::TriangleVertices> triangles, int maxSteps = VKRAY_KD_MAX_STEPS);
 
 // The ray's segment inside the closed box within `within`, or nothing (exposed for the tests).
-std::optional<Segment> clipToBox(const cpu::Ray& ray, const glm::vec3& lo, const glm::vec3& hi, Segment within);
-std::optional<Segment> clipToBox(const cpu::Ray& ray, const glm::vec3& lo, const glm::vec3& hi, Segment within,
+std::optional<Segment> clipToBox(const geometry::Ray& ray, const glm::vec3& lo, const glm::vec3& hi, Segment within);
+std::optional<Segment> clipToBox(const geometry::Ray& ray, const glm::vec3& lo, const glm::vec3& hi, Segment within,
                                  PassState& pass);
 
 }  // namespace vkray::accel::kd

@@ -5,13 +5,20 @@
 #include <cstdio>
 #include <utility>
 
+#include "core/error.h"
+
 namespace vkray::accel::kd {
 
 int KdConfig::resolvedMaxDepth(size_t triangleCount) const {
     // pbrt 3rd ed., section 4.4.2: "8 + 1.3 log2(N)" bounds the depth for any N.
-    const int depth = maxDepth > 0 ? maxDepth
-                                   : int(std::lround(8.0 + 1.3 * std::log2(double(std::max<size_t>(triangleCount, 1)))));
-    return std::clamp(depth, 0, VKRAY_KD_MAX_DEPTH);
+    if (maxDepth) {
+        if (*maxDepth < 0 || *maxDepth > kMaxDepthLimit)
+            throw Error("kd-tree maximum depth must be 0.." + std::to_string(kMaxDepthLimit) + " (got " +
+                        std::to_string(*maxDepth) + ")");
+        return *maxDepth;
+    }
+    const int depth = int(std::lround(8.0 + 1.3 * std::log2(double(std::max<size_t>(triangleCount, 1)))));
+    return std::min(depth, kMaxDepthLimit);
 }
 
 std::string KdConfig::describe() const {

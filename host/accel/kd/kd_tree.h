@@ -5,6 +5,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -32,14 +33,21 @@ struct KdConfig {
     double traversalCost = 1.0;     // Ct: one inner-node step
     double intersectionCost = 20.0; // Ci: one ray-triangle test
     double emptyBonus = 0.5;        // eb: discount on the intersection term when a side is empty
-    // Deepest level a node may sit at (the root is level 0); 0 = pbrt's 8 + 1.3 log2 N, rounded.
-    // Never more than VKRAY_KD_MAX_DEPTH, the kd-stack kernel's stack size.
-    int maxDepth = 0;
+    // Deepest level a node may sit at (the root is level 0), at most kMaxDepthLimit; unset: pbrt's
+    // 8 + 1.3 log2 N, rounded, and capped at kMaxDepthLimit.
+    std::optional<int> maxDepth;
+    // The kd-stack kernel's stack holds one entry per level.
+    static constexpr int kMaxDepthLimit = VKRAY_KD_MAX_DEPTH;
 
     int resolvedMaxDepth(size_t triangleCount) const;
     // "pbrt SAH: Ct=1 Ci=20 eb=0.5" — printed with the SAH cost in --stats.
     std::string describe() const;
 };
+
+// The three traversals of one tree, after Foley and Sugerman, "KD-Tree Acceleration Structures for
+// a GPU Raytracer", Graphics Hardware 2005: the standard stack traversal (the baseline), and the
+// stackless kd-restart (section 4.1) and kd-backtrack (section 4.2).
+enum class Traversal { Stack, Restart, Backtrack };
 
 // An axis-aligned box in float (the scene's precision; every split lies on a float).
 struct Box {

@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <array>
 #include <atomic>
-#include <chrono>
 #include <cmath>
 #include <limits>
 #include <memory>
@@ -15,7 +14,9 @@
 #include <tbb/parallel_sort.h>
 #include <tbb/task_arena.h>
 
-#include "cpu/ray_triangle.h"
+#include "core/fork_join.h"
+#include "core/timing.h"
+#include "geometry/ray_triangle.h"
 
 namespace vkray::accel::kd {
 namespace {
@@ -58,9 +59,6 @@ struct BuildNode {
     std::unique_ptr<BuildNode> below, above;
     std::vector<uint32_t> triangles;  // leaves only, ascending
 };
-
-using Clock = std::chrono::steady_clock;
-double msSince(Clock::time_point t) { return std::chrono::duration<double, std::milli>(Clock::now() - t).count(); }
 
 Box boundsOf(const Triangle& t) {
     return Box{glm::min(t.p0, glm::min(t.p1, t.p2)), glm::max(t.p0, glm::max(t.p1, t.p2))};
@@ -315,12 +313,7 @@ std::unique_ptr<BuildNode> Builder::build(NodeEvents ev, const Box& box, int dep
     auto [belowEv, aboveEv] = splitEvents(std::move(ev), s, belowBox, aboveBox);
     const auto buildBelow = [&, &bEv = belowEv, &bBox = belowBox] { node->below = build(std::move(bEv), bBox, depth + 1); };
     const auto buildAbove = [&, &aEv = aboveEv, &aBox = aboveBox] { node->above = build(std::move(aEv), aBox, depth + 1); };
-    if (parallel) {
-        tbb::parallel_invoke(buildBelow, buildAbove);
-    } else {
-        buildBelow();
-        buildAbove();
-    }
+    forkJoin(parallel, buildBelow, buildAbove);
     return node;
 }
 
@@ -355,7 +348,7 @@ KdBuildResult buildSahKdTree(const std::vector<Triangle>& triangles, const KdCon
         bool any = false;
         for (uint32_t t = 0; t < triangles.size(); ++t) {
             const Triangle& tri = triangles[t];
-            if (cpu::isDegenerate({glm::dvec3(tri.p0), glm::dvec3(tri.p1), glm::dvec3(tri.p2)})) continue;
+            if (geometry::isDegenerate({glm::dvec3(tri.p0), glm::dvec3(tri.p1), glm::dvec3(tri.p2)})) continue;
             const Box b = boundsOf(tri);
             root = any ? Box{glm::min(root.lo, b.lo), glm::max(root.hi, b.hi)} : b;
             any = true;

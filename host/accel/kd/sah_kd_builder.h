@@ -23,7 +23,7 @@
 
 #include <vector>
 
-#include "accel/accel.h"
+#include "core/phase_log.h"
 #include "accel/kd/kd_tree.h"
 #include "scene/scene.h"
 

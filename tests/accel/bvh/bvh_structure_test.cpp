@@ -199,44 +199,19 @@ TEST(BvhStructure, LeafCollapseLowersTheSahCost) {
     EXPECT_LT(collapsed.nodes.size(), one.nodes.size());
 }
 
-// The spec accel::parseAccel makes of a bvh name (this binary links the bvh family only).
-accel::AccelSpec bvhSpec(const std::string& name) {
-    accel::AccelSpec spec;
-    spec.name = name;
-    spec.family = accel::Family::Bvh;
-    spec.bvhSahReference = name == "bvh-sah";
-    return spec;
-}
-
-TEST(BvhAccel, PresetsOverridesAndStats) {
+TEST(BvhAccel, BuildReportsPhasesAndStats) {
     const Scene s = test::cornellBox();
-    accel::AccelSpec spec = bvhSpec("bvh-fast");
-    EXPECT_EQ(configFor(spec).delta, 4);
-    EXPECT_DOUBLE_EQ(configFor(spec).epsilon, 0.2);
-    spec = bvhSpec("bvh-hq");
-    EXPECT_EQ(configFor(spec).delta, 20);
-    spec.aacDelta = 9;
-    spec.aacEpsilon = 0.25;
-    EXPECT_EQ(configFor(spec).delta, 9);
-    EXPECT_DOUBLE_EQ(configFor(spec).epsilon, 0.25);
-    spec.aacEpsilon = 0.7;
-    EXPECT_THROW(configFor(spec), std::exception);
-    accel::AccelSpec sah = bvhSpec("bvh-sah");
-    EXPECT_EQ(configFor(sah).builder, Config::Builder::BinnedSah);
-    sah.aacDelta = 3;
-    EXPECT_THROW(configFor(sah), std::exception);
-
     std::vector<std::string> phases;
     accel::BuildOptions options{.threads = 2, .progress = [&](const std::string& p, double f) {
                                     EXPECT_GE(f, 0.0);
                                     EXPECT_LE(f, 1.0);
                                     phases.push_back(p);
                                 }};
-    const auto built = accel::buildBvhAccel(s, bvhSpec("bvh"), options);
+    const auto built = accel::buildBvhAccel(s, Config::aacHq(), options);
     EXPECT_EQ(phases.front(), "primitives");
     EXPECT_EQ(phases.back(), "done");
     const accel::GpuAccelData gpu = built->gpuData();
-    EXPECT_EQ(gpu.kernel, "bvh");
+    EXPECT_EQ(gpu.kernel, accel::Kernel::Bvh);
     EXPECT_EQ(gpu.triangleOrder.size(), s.triangles.size());
     EXPECT_EQ(gpu.nodes.size() % sizeof(gpu::GpuBvhNode), 0u);
     std::vector<std::string> keys;

@@ -15,7 +15,7 @@
 #include "accel/bvh/bvh_accel.h"
 #include "accel/bvh/bvh_tracer.h"
 #include "bvh_test_meshes.h"
-#include "cpu/brute_force.h"
+#include "geometry/brute_force.h"
 
 namespace vkray::bvh {
 namespace {
@@ -31,10 +31,10 @@ std::vector<Presets> presets() {
     return {{"bvh-fast", Config::aacFast()}, {"bvh-hq", Config::aacHq()}, {"bvh-sah", Config::binnedSah()}};
 }
 
-std::vector<cpu::Ray> randomRays(uint32_t seed, int count) {
+std::vector<geometry::Ray> randomRays(uint32_t seed, int count) {
     std::mt19937 rng(seed);
     std::uniform_real_distribution<double> u(-1.0, 1.0);
-    std::vector<cpu::Ray> rays;
+    std::vector<geometry::Ray> rays;
     for (int k = 0; k < count; ++k) {
         glm::dvec3 d(u(rng), u(rng), u(rng));
         while (glm::length(d) < 1e-3) d = glm::dvec3(u(rng), u(rng), u(rng));
@@ -47,11 +47,11 @@ std::vector<cpu::Ray> randomRays(uint32_t seed, int count) {
 // Rays along +-x, +-y, +-z (other components exactly 0 or -0): from random points, and from points
 // whose coordinates are vertex coordinates of the scene, so that many run inside the planes of
 // flat walls and along the edges of the grid.
-std::vector<cpu::Ray> axisParallelRays(const Scene& scene, uint32_t seed, int count) {
+std::vector<geometry::Ray> axisParallelRays(const Scene& scene, uint32_t seed, int count) {
     std::mt19937 rng(seed);
     std::uniform_real_distribution<double> u(-1.5, 1.5);
     std::uniform_int_distribution<size_t> pick(0, scene.triangles.size() - 1);
-    std::vector<cpu::Ray> rays;
+    std::vector<geometry::Ray> rays;
     for (int k = 0; k < count; ++k) {
         const int axis = k % 3;
         const double sign = (k / 3) % 2 ? -1.0 : 1.0;
@@ -74,11 +74,11 @@ std::vector<cpu::Ray> axisParallelRays(const Scene& scene, uint32_t seed, int co
 
 // Rays whose (unnormalised) direction points exactly at a vertex or at an edge point: the watertight
 // test's hardest cases, where two triangles share the answer.
-std::vector<cpu::Ray> raysAtVerticesAndEdges(const Scene& scene, uint32_t seed, int count) {
+std::vector<geometry::Ray> raysAtVerticesAndEdges(const Scene& scene, uint32_t seed, int count) {
     std::mt19937 rng(seed);
     std::uniform_real_distribution<double> u(-2.0, 2.0);
     std::uniform_int_distribution<size_t> pick(0, scene.triangles.size() - 1);
-    std::vector<cpu::Ray> rays;
+    std::vector<geometry::Ray> rays;
     for (int k = 0; k < count; ++k) {
         const Triangle& t = scene.triangles[pick(rng)];
         const glm::dvec3 p0(t.p0), p1(t.p1), p2(t.p2);
@@ -96,13 +96,13 @@ struct Agreement {
 };
 
 // Compares closest and any hit for every ray with tmax = inf and with a tmax that cuts some hits.
-void expectSameAsBruteForce(const cpu::Tracer& bvh, const cpu::BruteForceTracer& brute,
-                            const std::vector<cpu::Ray>& rays, const std::vector<cpu::TriangleVertices>& tris,
+void expectSameAsBruteForce(const geometry::Tracer& bvh, const geometry::BruteForceTracer& brute,
+                            const std::vector<geometry::Ray>& rays, const std::vector<geometry::TriangleVertices>& tris,
                             Agreement& a) {
-    for (const cpu::Ray& ray : rays) {
+    for (const geometry::Ray& ray : rays) {
         for (double tmax : {kInf, 1.5}) {
-            const cpu::Hit want = brute.closest(ray, tmax);
-            const cpu::Hit got = bvh.closest(ray, tmax);
+            const geometry::Hit want = brute.closest(ray, tmax);
+            const geometry::Hit got = bvh.closest(ray, tmax);
             ++a.rays;
             ASSERT_EQ(got.triangle, want.triangle)
                 << "origin (" << ray.origin.x << ", " << ray.origin.y << ", " << ray.origin.z << ") dir ("
@@ -115,7 +115,7 @@ void expectSameAsBruteForce(const cpu::Tracer& bvh, const cpu::BruteForceTracer&
             if (want.found()) {
                 ++a.hits;
                 // A tie: another triangle hit at exactly the same t (the BVH had to pick the same one).
-                const cpu::WatertightRay w(ray);
+                const geometry::WatertightRay w(ray);
                 for (size_t k = 0; k < tris.size(); ++k)
                     if (int32_t(k) != want.triangle)
                         if (const auto h = w.intersect(tris[k], 0.0, tmax); h && h->t == want.t) {
@@ -129,14 +129,15 @@ void expectSameAsBruteForce(const cpu::Tracer& bvh, const cpu::BruteForceTracer&
 
 TEST(BvhTracer, SameHitsAsBruteForce) {
     for (const test::NamedMesh& mesh : test::testMeshes()) {
-        const std::vector<cpu::TriangleVertices> tris = cpu::triangleVertices(mesh.scene);
-        const cpu::BruteForceTracer brute(mesh.scene);
-        const std::vector<cpu::Ray> random = randomRays(101, 1500);
-        const std::vector<cpu::Ray> axis = axisParallelRays(mesh.scene, 202, 1500);
-        const std::vector<cpu::Ray> edges = raysAtVerticesAndEdges(mesh.scene, 303, 1500);
+        const std::vector<geometry::TriangleVertices> tris = geometry::triangleVertices(mesh.scene);
+        const geometry::BruteForceTracer brute(mesh.scene);
+        const std::vector<geometry::Ray> random = randomRays(101, 1500);
+        const std::vector<geometry::Ray> axis = axisParallelRays(mesh.scene, 202, 1500);
+        const std::vector<geometry::Ray> edges = raysAtVerticesAndEdges(mesh.scene, 303, 1500);
         for (const Presets& p : presets()) {
             SCOPED_TRACE(mesh.name + " / " + p.name);
-            const BvhTracer bvh(buildFlatBvh(mesh.scene.triangles, p.config).flat, mesh.scene.triangles);
+            const FlatBvh flat = buildFlatBvh(mesh.scene.triangles, p.config).flat;
+            const BvhTracer bvh(flat, mesh.scene.triangles);
             Agreement random_, axis_, edges_;
             expectSameAsBruteForce(bvh, brute, random, tris, random_);
             expectSameAsBruteForce(bvh, brute, axis, tris, axis_);
@@ -158,10 +159,11 @@ TEST(BvhTracer, SameHitsAsBruteForce) {
 
 TEST(BvhTracer, CountsLessWorkThanBruteForce) {
     const Scene s = test::uvSphere({0.0f, 0.0f, 0.0f}, 1.0f, 60, 120);
-    const BvhTracer bvh(buildFlatBvh(s.triangles, Config::aacHq()).flat, s.triangles);
-    cpu::TraversalCounters c;
+    const FlatBvh flat = buildFlatBvh(s.triangles, Config::aacHq()).flat;
+    const BvhTracer bvh(flat, s.triangles);
+    geometry::TraversalCounters c;
     int hits = 0;
-    for (const cpu::Ray& ray : randomRays(7, 500)) hits += bvh.closest(ray, kInf, &c).found();
+    for (const geometry::Ray& ray : randomRays(7, 500)) hits += bvh.closest(ray, kInf, &c).found();
     EXPECT_GT(hits, 100);
     EXPECT_GT(c.nodes, 0u);
     EXPECT_GT(c.leaves, 0u);
@@ -172,8 +174,9 @@ TEST(BvhTracer, CountsLessWorkThanBruteForce) {
 
 TEST(BvhTracer, EmptySceneMissesEverything) {
     const Scene empty;
-    const BvhTracer bvh(buildFlatBvh(empty.triangles, Config::aacFast()).flat, empty.triangles);
-    const cpu::Ray ray{{0.0, 0.0, 0.0}, {0.0, 0.0, 1.0}};
+    const FlatBvh flat = buildFlatBvh(empty.triangles, Config::aacFast()).flat;
+    const BvhTracer bvh(flat, empty.triangles);
+    const geometry::Ray ray{{0.0, 0.0, 0.0}, {0.0, 0.0, 1.0}};
     EXPECT_FALSE(bvh.closest(ray, kInf).found());
     EXPECT_FALSE(bvh.occluded(ray, kInf));
 }

@@ -12,7 +12,7 @@
 
 #include "accel/kd/kd_tree.h"
 #include "accel/kd/sah_kd_builder.h"
-#include "cpu/ray_triangle.h"
+#include "geometry/ray_triangle.h"
 #include "kd_test_util.h"
 
 namespace vkray::accel::kd {
@@ -68,7 +68,7 @@ void expectConservative(const Scene& s, const KdTree& t) {
     size_t checked = 0;
     for (uint32_t k = 0; k < s.triangles.size(); ++k) {
         const Triangle& tri = s.triangles[k];
-        if (cpu::isDegenerate({glm::dvec3(tri.p0), glm::dvec3(tri.p1), glm::dvec3(tri.p2)})) continue;
+        if (geometry::isDegenerate({glm::dvec3(tri.p0), glm::dvec3(tri.p1), glm::dvec3(tri.p2)})) continue;
         for (const glm::dvec3& p : exactPointsOf(tri)) {
             std::vector<uint32_t> leaves;
             leavesHolding(t, 0, p, leaves);

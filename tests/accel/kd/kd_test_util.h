@@ -11,7 +11,7 @@
 #include <glm/glm.hpp>
 
 #include "accel/kd/sah_kd_builder.h"
-#include "cpu/ray.h"
+#include "geometry/ray.h"
 #include "scene/scene.h"
 #include "scene/scene_parser.h"
 

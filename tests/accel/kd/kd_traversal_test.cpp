@@ -21,7 +21,7 @@
 #include <gtest/gtest.h>
 
 #include "accel/kd/kd_traversal.h"
-#include "cpu/brute_force.h"
+#include "geometry/brute_force.h"
 #include "kd_test_util.h"
 #include "scene/camera.h"
 
@@ -33,13 +33,13 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 struct Fixture {
     Scene scene;
     KdTree tree;
-    std::unique_ptr<cpu::BruteForceTracer> brute;
+    std::unique_ptr<geometry::BruteForceTracer> brute;
     std::unique_ptr<KdTracer> kd;
 
-    Fixture(Scene s, KdTraversal traversal) : scene(std::move(s)) {
+    Fixture(Scene s, kd::Traversal traversal) : scene(std::move(s)) {
         tree = buildSahKdTree(scene.triangles, KdConfig{}, 2).tree;
-        brute = std::make_unique<cpu::BruteForceTracer>(scene);
-        kd = makeKdTracer(traversal, tree, cpu::triangleVertices(scene));
+        brute = std::make_unique<geometry::BruteForceTracer>(scene);
+        kd = makeKdTracer(traversal, tree, geometry::triangleVertices(scene));
     }
 };
 
@@ -47,10 +47,10 @@ struct Agreement {
     size_t rays = 0, hits = 0, ties = 0, capped = 0;
 };
 
-void expectSameClosest(const Fixture& f, const cpu::Ray& ray, double tmax, Agreement& a) {
-    cpu::TraversalCounters c;
-    const cpu::Hit want = f.brute->closest(ray, tmax);
-    const cpu::Hit got = f.kd->closest(ray, tmax, &c);
+void expectSameClosest(const Fixture& f, const geometry::Ray& ray, double tmax, Agreement& a) {
+    geometry::TraversalCounters c;
+    const geometry::Hit want = f.brute->closest(ray, tmax);
+    const geometry::Hit got = f.kd->closest(ray, tmax, &c);
     ++a.rays;
     a.capped += c.capped;
     if (want.found()) ++a.hits;
@@ -64,13 +64,13 @@ void expectSameClosest(const Fixture& f, const cpu::Ray& ray, double tmax, Agree
     ASSERT_TRUE(got.found() && want.found())
         << "origin (" << ray.origin.x << ", " << ray.origin.y << ", " << ray.origin.z << ") dir (" << ray.dir.x
         << ", " << ray.dir.y << ", " << ray.dir.z << "): kd " << got.triangle << " brute " << want.triangle;
-    const auto again = cpu::intersectTriangle(ray, cpu::triangleVertices(f.scene)[size_t(got.triangle)], 0.0, tmax);
+    const auto again = geometry::intersectTriangle(ray, geometry::triangleVertices(f.scene)[size_t(got.triangle)], 0.0, tmax);
     ASSERT_TRUE(again.has_value());
     ASSERT_NEAR(again->t, want.t, 1e-12 * want.t) << "kd " << got.triangle << " brute " << want.triangle;
     ++a.ties;
 }
 
-void expectSameOccluded(const Fixture& f, const cpu::Ray& ray, double tmax) {
+void expectSameOccluded(const Fixture& f, const geometry::Ray& ray, double tmax) {
     EXPECT_EQ(f.kd->occluded(ray, tmax), f.brute->occluded(ray, tmax));
 }
 
@@ -81,7 +81,7 @@ void report(const char* what, const Agreement& a, size_t tiesPerHundred = 1) {
     EXPECT_GT(a.hits, a.rays / 10) << "a test whose rays miss everything proves nothing";
 }
 
-class KdTraversalTest : public ::testing::TestWithParam<KdTraversal> {};
+class KdTraversalTest : public ::testing::TestWithParam<kd::Traversal> {};
 
 TEST_P(KdTraversalTest, RandomRaysMatchBruteForce) {
     const Fixture f(test::randomSoup(42, 2500), GetParam());
@@ -89,7 +89,7 @@ TEST_P(KdTraversalTest, RandomRaysMatchBruteForce) {
     Agreement a;
     for (int k = 0; k < 4000; ++k) {
         // Origins inside and outside the scene; every fourth ray has a finite tmax.
-        const cpu::Ray ray{test::randomPointIn(rng, f.tree.header.lo, f.tree.header.hi, 1.6), test::randomDirection(rng)};
+        const geometry::Ray ray{test::randomPointIn(rng, f.tree.header.lo, f.tree.header.hi, 1.6), test::randomDirection(rng)};
         const double tmax = k % 4 == 0 ? 0.05 + 2.0 * std::uniform_real_distribution<double>(0, 1)(rng) : kInf;
         expectSameClosest(f, ray, tmax, a);
         expectSameOccluded(f, ray, tmax);
@@ -168,7 +168,7 @@ TEST_P(KdTraversalTest, RaysThroughEdgesAndVerticesMatchBruteForce) {
 // visit the same leaves in the same order, so their leaf counts agree exactly.
 TEST_P(KdTraversalTest, RaysThroughLeafCornersVisitEachLeafOnce) {
     const Fixture f(test::randomSoup(21, 2000), GetParam());
-    const auto stack = makeKdTracer(KdTraversal::Stack, f.tree, cpu::triangleVertices(f.scene));
+    const auto stack = makeKdTracer(kd::Traversal::Stack, f.tree, geometry::triangleVertices(f.scene));
     std::mt19937 rng(5);
     Agreement a;
     for (uint32_t i = 0; i < f.tree.nodes.size(); i += 7) {
@@ -178,13 +178,13 @@ TEST_P(KdTraversalTest, RaysThroughLeafCornersVisitEachLeafOnce) {
         // Directions of +-1 per axis, and an origin 3 steps back: the ray crosses x, y and z of the
         // corner at t = 3 exactly, with exactly equal plane hits.
         const glm::dvec3 d(rng() % 2 ? 1.0 : -1.0, rng() % 2 ? 1.0 : -1.0, rng() % 2 ? 1.0 : -1.0);
-        const cpu::Ray ray{corner - 3.0 * d, d};
-        cpu::TraversalCounters mine, base;
+        const geometry::Ray ray{corner - 3.0 * d, d};
+        geometry::TraversalCounters mine, base;
         f.kd->closest(ray, kInf, &mine);
         stack->closest(ray, kInf, &base);
         ASSERT_EQ(mine.capped, 0u);
         ASSERT_EQ(mine.leaves, base.leaves) << "leaf " << i;
-        const cpu::TraversalCounters before = mine;
+        const geometry::TraversalCounters before = mine;
         f.kd->occluded(ray, kInf, &mine);
         ASSERT_EQ(mine.capped, before.capped);
         expectSameClosest(f, ray, kInf, a);
@@ -220,15 +220,15 @@ TEST_P(KdTraversalTest, IterationCapEndsAndCountsARunawayRay) {
     t.extra = {gpu::KdNodeExtra{{-1, -1, -1}, VKRAY_KD_NO_PARENT, {1, 1, 1}, 0},
                gpu::KdNodeExtra{{-1, -1, -1}, 0, {0, 1, 1}, 0}};
     const auto tracer = makeKdTracer(GetParam(), t, {}, 500);
-    const cpu::Ray ray{{-2.0, 0.1, 0.2}, {1.0, 0.0, 0.0}};
-    cpu::TraversalCounters c;
+    const geometry::Ray ray{{-2.0, 0.1, 0.2}, {1.0, 0.0, 0.0}};
+    geometry::TraversalCounters c;
     EXPECT_FALSE(tracer->closest(ray, kInf, &c).found());
     EXPECT_EQ(c.capped, 1u);
     EXPECT_LE(c.nodes, 500u);
     EXPECT_FALSE(tracer->occluded(ray, kInf, &c));
     EXPECT_EQ(c.capped, 2u);
     // A ray that never crosses the plane ends normally.
-    cpu::TraversalCounters ok;
+    geometry::TraversalCounters ok;
     tracer->closest({{-0.5, 0.0, 0.0}, {0.0, 1.0, 0.0}}, kInf, &ok);
     EXPECT_EQ(ok.capped, 0u);
 }
@@ -237,14 +237,14 @@ TEST_P(KdTraversalTest, IterationCapEndsAndCountsARunawayRay) {
 TEST_P(KdTraversalTest, CountersAddUp) {
     const Fixture f(test::meshScene(), GetParam());
     std::mt19937 rng(8);
-    cpu::TraversalCounters c;
+    geometry::TraversalCounters c;
     for (int k = 0; k < 500; ++k)
         f.kd->closest({test::randomPointIn(rng, f.tree.header.lo, f.tree.header.hi, 1.0), test::randomDirection(rng)},
                       kInf, &c);
     EXPECT_GE(c.nodes, c.leaves);
     EXPECT_GT(c.leaves, 500u);
     EXPECT_GT(c.triangles, 0u);
-    if (GetParam() == KdTraversal::Stack) {
+    if (GetParam() == kd::Traversal::Stack) {
         EXPECT_EQ(c.restarts, 0u);
     } else {
         EXPECT_GT(c.restarts, 0u);
@@ -271,13 +271,13 @@ TEST_P(KdTraversalTest, RayInSplitPlaneFindsTriangleTouchingItFromAbove) {
     h.tree.indices = {1, 0};
     h.tree.extra = {boxOf({-1, -1, -1}, {1, 3, 1}, VKRAY_KD_NO_PARENT), boxOf({-1, -1, -1}, {0, 3, 1}, 0),
                     boxOf({0, -1, -1}, {1, 3, 1}, 0)};
-    const auto kd = makeKdTracer(GetParam(), h.tree, cpu::triangleVertices(h.scene));
-    const cpu::BruteForceTracer brute(h.scene);
+    const auto kd = makeKdTracer(GetParam(), h.tree, geometry::triangleVertices(h.scene));
+    const geometry::BruteForceTracer brute(h.scene);
     for (const double dx : {0.0, -0.0}) {
-        const cpu::Ray ray{{0.0, -1.0, 0.25}, {dx, 1.0, 0.0}};
-        const cpu::Hit want = brute.closest(ray, kInf);
+        const geometry::Ray ray{{0.0, -1.0, 0.25}, {dx, 1.0, 0.0}};
+        const geometry::Hit want = brute.closest(ray, kInf);
         ASSERT_EQ(want.triangle, 0);
-        const cpu::Hit got = kd->closest(ray, kInf);
+        const geometry::Hit got = kd->closest(ray, kInf);
         EXPECT_EQ(got.triangle, 0);
         EXPECT_EQ(got.t, want.t);
         EXPECT_TRUE(kd->occluded(ray, 2.0));  // only triangle 0 lies before t = 2
@@ -302,13 +302,13 @@ TEST_P(KdTraversalTest, RayAlongTwoSplitPlanesNeedsFourPasses) {
     h.tree.extra = {boxOf(lo, hi, VKRAY_KD_NO_PARENT),  boxOf(lo, {0, 1, 5}, 0),        boxOf(lo, {0, 0, 5}, 1),
                     boxOf({-1, 0, -1}, {0, 1, 5}, 1),   boxOf({0, -1, -1}, hi, 0),      boxOf({0, -1, -1}, {1, 0, 5}, 4),
                     boxOf({0, 0, -1}, hi, 4)};
-    const auto kd = makeKdTracer(GetParam(), h.tree, cpu::triangleVertices(h.scene));
-    const cpu::BruteForceTracer brute(h.scene);
-    const cpu::Ray ray{{0.0, 0.0, -1.0}, {0.0, -0.0, 1.0}};
-    const cpu::Hit want = brute.closest(ray, kInf);
+    const auto kd = makeKdTracer(GetParam(), h.tree, geometry::triangleVertices(h.scene));
+    const geometry::BruteForceTracer brute(h.scene);
+    const geometry::Ray ray{{0.0, 0.0, -1.0}, {0.0, -0.0, 1.0}};
+    const geometry::Hit want = brute.closest(ray, kInf);
     ASSERT_EQ(want.triangle, 0);
-    cpu::TraversalCounters c;
-    const cpu::Hit got = kd->closest(ray, kInf, &c);
+    geometry::TraversalCounters c;
+    const geometry::Hit got = kd->closest(ray, kInf, &c);
     EXPECT_EQ(got.triangle, 0);
     EXPECT_EQ(got.t, want.t);
     EXPECT_EQ(c.leaves, 4u) << "one leaf per side mask";
@@ -328,12 +328,12 @@ TEST(KdClip, ZeroDirectionComponentsNeverMakeNaN) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Traversals, KdTraversalTest,
-                         ::testing::Values(KdTraversal::Stack, KdTraversal::Restart, KdTraversal::Backtrack),
+                         ::testing::Values(kd::Traversal::Stack, kd::Traversal::Restart, kd::Traversal::Backtrack),
                          [](const auto& info) {
                              switch (info.param) {
-                             case KdTraversal::Stack: return std::string("Stack");
-                             case KdTraversal::Restart: return std::string("Restart");
-                             case KdTraversal::Backtrack: return std::string("Backtrack");
+                             case kd::Traversal::Stack: return std::string("Stack");
+                             case kd::Traversal::Restart: return std::string("Restart");
+                             case kd::Traversal::Backtrack: return std::string("Backtrack");
                              }
                              return std::string("Unknown");
                          });

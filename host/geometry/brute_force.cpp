@@ -1,8 +1,8 @@
-#include "cpu/brute_force.h"
+#include "geometry/brute_force.h"
 
 #include <utility>
 
-namespace vkray::cpu {
+namespace vkray::geometry {
 
 std::vector<TriangleVertices> triangleVertices(const Scene& scene) {
     std::vector<TriangleVertices> out;
@@ -44,4 +44,4 @@ bool BruteForceTracer::occluded(const Ray& ray, double tmax, TraversalCounters* 
     return false;
 }
 
-}  // namespace vkray::cpu
+}  // namespace vkray::geometry

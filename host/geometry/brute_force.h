@@ -5,11 +5,11 @@
 
 #include <vector>
 
-#include "cpu/ray_triangle.h"
-#include "cpu/tracer.h"
+#include "geometry/ray_triangle.h"
+#include "geometry/tracer.h"
 #include "scene/scene.h"
 
-namespace vkray::cpu {
+namespace vkray::geometry {
 
 // The scene's triangles widened to double, in triangle-identity order.
 std::vector<TriangleVertices> triangleVertices(const Scene& scene);
@@ -28,4 +28,4 @@ private:
     std::vector<TriangleVertices> triangles_;
 };
 
-}  // namespace vkray::cpu
+}  // namespace vkray::geometry

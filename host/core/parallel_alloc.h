@@ -23,7 +23,7 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
-namespace vkray::bvh {
+namespace vkray {
 
 // Below this many bytes the plain resize is cheaper than a parallel loop.
 inline constexpr size_t kFirstTouchBytes = size_t(1) << 20;
@@ -60,4 +60,4 @@ void resizeFirstTouched(std::vector<T>& v, size_t n) {
     v.resize(n);
 }
 
-}  // namespace vkray::bvh
+}  // namespace vkray

@@ -5,7 +5,7 @@
 
 #include <glm/glm.hpp>
 
-namespace vkray::cpu {
+namespace vkray::geometry {
 
 // Precondition everywhere a Ray is traced: `dir` is finite and not zero. Camera and secondary rays
 // have unit directions, so `t` is a distance; intersection itself does not need a unit `dir`.
@@ -14,4 +14,4 @@ struct Ray {
     glm::dvec3 dir{0.0, 0.0, -1.0};
 };
 
-}  // namespace vkray::cpu
+}  // namespace vkray::geometry

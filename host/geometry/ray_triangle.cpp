@@ -1,4 +1,4 @@
-#include "cpu/ray_triangle.h"
+#include "geometry/ray_triangle.h"
 
 #include <algorithm>
 #include <cmath>
@@ -8,7 +8,7 @@
 // differences (see the comment in intersect()). GCC contracts a*b - c*d into an fma only with
 // -ffp-contract=fast, which it does not use in ISO mode (-std=c++20, CMAKE_CXX_EXTENSIONS OFF).
 
-namespace vkray::cpu {
+namespace vkray::geometry {
 
 namespace {
 // 16 u, u = 2^-53 the unit roundoff of double: see intersect().
@@ -90,4 +90,4 @@ std::optional<TriangleHit> intersectTriangle(const Ray& ray, const TriangleVerti
     return WatertightRay(ray).intersect(tri, tmin, tmax);
 }
 
-}  // namespace vkray::cpu
+}  // namespace vkray::geometry

@@ -6,9 +6,9 @@
 
 #include <gtest/gtest.h>
 
-#include "cpu/ray_triangle.h"
+#include "geometry/ray_triangle.h"
 
-namespace vkray::cpu {
+namespace vkray::geometry {
 namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
@@ -188,4 +188,4 @@ TEST(RayTriangle, DifferenceOfProductsHasExactSign) {
 }
 
 }  // namespace
-}  // namespace vkray::cpu
+}  // namespace vkray::geometry

@@ -7,9 +7,9 @@
 #include <cstdint>
 #include <limits>
 
-#include "cpu/ray.h"
+#include "geometry/ray.h"
 
-namespace vkray::cpu {
+namespace vkray::geometry {
 
 struct Hit {
     int32_t triangle = -1;  // original triangle index (DESIGN.md, "Triangle identity"); -1 = miss
@@ -51,4 +51,4 @@ public:
     virtual bool occluded(const Ray& ray, double tmax, TraversalCounters* counters = nullptr) const = 0;
 };
 
-}  // namespace vkray::cpu
+}  // namespace vkray::geometry

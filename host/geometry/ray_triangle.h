@@ -17,9 +17,9 @@
 
 #include <glm/glm.hpp>
 
-#include "cpu/ray.h"
+#include "geometry/ray.h"
 
-namespace vkray::cpu {
+namespace vkray::geometry {
 
 using TriangleVertices = std::array<glm::dvec3, 3>;
 
@@ -55,4 +55,4 @@ double differenceOfProducts(double a, double b, double c, double d);
 // edge vectors p1 - p0 and p2 - p0 (exact for float vertices within 2^29 of each other's scale).
 bool isDegenerate(const TriangleVertices& tri);
 
-}  // namespace vkray::cpu
+}  // namespace vkray::geometry

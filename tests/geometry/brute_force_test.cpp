@@ -9,10 +9,10 @@
 
 #include <gtest/gtest.h>
 
-#include "cpu/brute_force.h"
-#include "scene_builder.h"
+#include "geometry/brute_force.h"
+#include "support/scene_builder.h"
 
-namespace vkray::cpu {
+namespace vkray::geometry {
 namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
@@ -155,4 +155,4 @@ TEST(BruteForce, SceneTrianglesAreWidenedInOrder) {
 }
 
 }  // namespace
-}  // namespace vkray::cpu
+}  // namespace vkray::geometry

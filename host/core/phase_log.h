@@ -1,38 +1,38 @@
 // Times the phases of a build (for --stats) and reports them to a progress callback as they start.
 #pragma once
 
-#include <chrono>
 #include <functional>
 #include <string>
 #include <utility>
 #include <vector>
 
-namespace vkray::bvh {
+#include "core/timing.h"
+
+namespace vkray {
+
+// Progress of a long build, for a progress line: what is being done and the fraction of the whole
+// build done (0..1). Called from one thread at a time.
+using BuildProgress = std::function<void(const std::string& phase, double fraction)>;
 
 class PhaseLog {
 public:
-    // progress(phase, fraction of the whole build done when the phase starts); may be empty.
-    using Progress = std::function<void(const std::string&, double)>;
-
-    explicit PhaseLog(Progress progress = {}) : progress_(std::move(progress)) {}
+    explicit PhaseLog(BuildProgress progress = {}) : progress_(std::move(progress)) {}
 
     // Runs f as phase `name` (a stats key stem such as "sort"); `endFraction` is the share of the
     // whole build done once it returns, an estimate for the progress line only.
     template <class F>
     decltype(auto) run(const std::string& name, double endFraction, F&& f) {
         if (progress_) progress_(name, fraction_);
-        const auto start = std::chrono::steady_clock::now();
         struct Record {  // records the phase however f returns
             PhaseLog& log;
             const std::string& name;
-            std::chrono::steady_clock::time_point start;
+            Clock::time_point start;
             double endFraction;
             ~Record() {
-                const std::chrono::duration<double, std::milli> ms = std::chrono::steady_clock::now() - start;
-                log.phases_.emplace_back(name, ms.count());
+                log.phases_.emplace_back(name, msSince(start));
                 log.fraction_ = endFraction;
             }
-        } record{*this, name, start, endFraction};
+        } record{*this, name, Clock::now(), endFraction};
         return f();
     }
 
@@ -44,9 +44,9 @@ public:
     const std::vector<std::pair<std::string, double>>& phases() const { return phases_; }
 
 private:
-    Progress progress_;
+    BuildProgress progress_;
     double fraction_ = 0.0;
     std::vector<std::pair<std::string, double>> phases_;
 };
 
-}  // namespace vkray::bvh
+}  // namespace vkray

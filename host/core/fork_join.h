@@ -4,7 +4,7 @@
 
 #include <tbb/parallel_invoke.h>
 
-namespace vkray::bvh {
+namespace vkray {
 
 // Recursions over a finished tree fork down to this depth (2^10 tasks at most).
 inline constexpr int kParallelDepth = 10;
@@ -19,4 +19,4 @@ void forkJoin(bool parallel, const First& first, const Second& second) {
     }
 }
 
-}  // namespace vkray::bvh
+}  // namespace vkray

@@ -1,0 +1,136 @@
+#include "accel/accel_spec.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/error.h"
+#include "core/format.h"
+
+namespace vkray::accel {
+namespace {
+
+// ---- The accelerators ---------------------------------------------------------------------------
+
+struct AccelEntry {
+    std::string_view name;
+    Family family;
+    bvh::Config bvh;  // Family::Bvh: the preset
+    kd::Traversal kdTraversal = kd::Traversal::Restart;
+};
+
+// Plain `bvh` is AAC-HQ: on the meshes of docs/bvh.md its trees cost a few percent less under the
+// SAH than AAC-Fast's, at well under 2x the build time, and a render traces far more rays than the
+// build touches primitives. bvh-fast and bvh-hq are the two presets of Gu, He, Fatahalian and
+// Blelloch, "Efficient BVH Construction via Approximate Agglomerative Clustering", HPG 2013.
+const AccelEntry kAccels[] = {
+    {"bvh", Family::Bvh, bvh::Config::aacHq()},
+    {"bvh-fast", Family::Bvh, bvh::Config::aacFast()},
+    {"bvh-hq", Family::Bvh, bvh::Config::aacHq()},
+    {"bvh-sah", Family::Bvh, bvh::Config::binnedSah()},
+    {"kd-restart", Family::Kd, {}, kd::Traversal::Restart},
+    {"kd-backtrack", Family::Kd, {}, kd::Traversal::Backtrack},
+    {"kd-stack", Family::Kd, {}, kd::Traversal::Stack},
+    {"brute", Family::Brute, {}},
+};
+
+// ---- The tuning options -------------------------------------------------------------------------
+
+bool isAac(const AccelSpec& s) { return s.family == Family::Bvh && s.bvh.builder == bvh::Config::Builder::Aac; }
+bool isKd(const AccelSpec& s) { return s.family == Family::Kd; }
+
+// A leaf range is clustered by an all-pairs search, O(delta^2) per merge: the bound keeps a typo from
+// turning a build into hours. The kd costs' bound keeps their products finite.
+const TuningOption kTuning[] = {
+    {"--aac-delta", "AAC: leaf-range size delta (overrides the preset)", isAac, 1, bvh::Config::kMaxDelta,
+     false, true, "", [](AccelSpec& s, double v) { s.bvh.delta = int(v); }},
+    {"--aac-epsilon", "AAC: reduction exponent epsilon, alpha = 1/2 - epsilon (overrides the preset)", isAac,
+     0.0, 0.5, true, false, "--aac-epsilon must be in [0, 0.5) (alpha = 1/2 - epsilon must stay positive)",
+     [](AccelSpec& s, double v) { s.bvh.epsilon = v; }},
+    {"--kd-traversal-cost", "kd-tree SAH: cost of a traversal step (overrides the default)", isKd, 0.0, 1e9,
+     true, false, "--kd-traversal-cost and --kd-intersection-cost must be finite and not negative",
+     [](AccelSpec& s, double v) { s.kd.traversalCost = v; }},
+    {"--kd-intersection-cost", "kd-tree SAH: cost of a triangle test (overrides the default)", isKd, 0.0,
+     1e9, true, false, "--kd-traversal-cost and --kd-intersection-cost must be finite and not negative",
+     [](AccelSpec& s, double v) { s.kd.intersectionCost = v; }},
+    {"--kd-empty-bonus", "kd-tree SAH: bonus for cutting off empty space, 0..1 (overrides the default)",
+     isKd, 0.0, 1.0, false, false, "--kd-empty-bonus must be in [0, 1]", [](AccelSpec& s, double v) { s.kd.emptyBonus = v; }},
+    {"--kd-max-depth", "kd-tree: maximum depth (default 8 + 1.3 log2 N)", isKd, 1, kd::KdConfig::kMaxDepthLimit,
+     false, true, "",
+     [](AccelSpec& s, double v) { s.kd.maxDepth = int(v); }},
+};
+
+bool accepts(const TuningOption& o, double v) {
+    const bool below = o.hiOpen ? v < o.hi : v <= o.hi;
+    return v >= o.lo && below && (!o.integer || v == std::floor(v));  // NaN fails every comparison
+}
+
+std::string joined(const std::vector<std::string>& names) {
+    std::string s;
+    for (const std::string& n : names) s += (s.empty() ? "" : ", ") + n;
+    return s;
+}
+
+// "--kd-max-depth applies to kd-restart, kd-backtrack, kd-stack only (--accel bvh)".
+Error notApplicable(const TuningOption& o, const AccelSpec& spec) {
+    std::vector<std::string> names;
+    for (const AccelEntry& e : kAccels) {
+        AccelSpec s;
+        s.family = e.family;
+        s.bvh = e.bvh;
+        if (o.appliesTo(s)) names.push_back(std::string(e.name));
+    }
+    return Error(std::string(o.flag) + " applies to " + joined(names) + " only (--accel " + spec.name + ")");
+}
+
+}  // namespace
+
+const std::vector<std::string>& accelNames() {
+    static const std::vector<std::string> names = [] {
+        std::vector<std::string> n;
+        for (const AccelEntry& e : kAccels) n.push_back(std::string(e.name));
+        return n;
+    }();
+    return names;
+}
+
+std::span<const TuningOption> tuningOptions() { return kTuning; }
+
+AccelSpec resolveAccel(std::string_view name, const Tuning& tuning) {
+    const auto entry = std::find_if(std::begin(kAccels), std::end(kAccels),
+                                    [&](const AccelEntry& e) { return e.name == name; });
+    if (entry == std::end(kAccels))
+        throw Error("--accel " + std::string(name) + ": unknown accelerator '" + std::string(name) +
+                    "' (known: " + joined(accelNames()) + ")");
+    AccelSpec spec;
+    spec.name = std::string(name);
+    spec.family = entry->family;
+    spec.bvh = entry->bvh;
+    spec.kdTraversal = entry->kdTraversal;
+
+    for (const auto& [flag, value] : tuning) {
+        if (!value) continue;
+        const auto option = std::find_if(std::begin(kTuning), std::end(kTuning),
+                                         [&](const TuningOption& o) { return o.flag == flag; });
+        if (option == std::end(kTuning)) throw Error("internal: no tuning option " + flag);
+        if (!accepts(*option, *value)) {
+            const std::string rule = option->rule.empty()
+                                         ? flag + " must be " + shortNumber(option->lo) + ".." + shortNumber(option->hi)
+                                         : std::string(option->rule);
+            throw Error(rule + " (got " + shortNumber(*value) + ")");
+        }
+        if (!option->appliesTo(spec)) throw notApplicable(*option, spec);
+        option->apply(spec, *value);
+    }
+    return spec;
+}
+
+std::string structureKey(const AccelSpec& spec) {
+    switch (spec.family) {
+    case Family::Brute: return "brute";
+    case Family::Bvh: return "bvh " + spec.bvh.describe();
+    case Family::Kd: return "kd " + spec.kd.describe();
+    }
+    return spec.name;
+}
+
+}  // namespace vkray::accel

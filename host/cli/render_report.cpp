@@ -1,0 +1,104 @@
+#include "cli/render_report.h"
+
+#include <algorithm>
+#include <cstdio>
+#include <utility>
+
+#include <nlohmann/json.hpp>
+
+namespace vkray::cli {
+namespace {
+
+// The structure's own build time where it reports one (the builder's clock, phases summed), else
+// the time the render command measured around the build (`brute` builds nothing).
+double builtMs(const RenderReport& r) {
+    for (const accel::AccelStat& st : r.accelStats)
+        if (st.key == "build_ms") return st.value;
+    return r.buildMs;
+}
+
+// Compiled-in and left-out kernel features, each sorted by name.
+std::pair<std::string, std::string> featureLists(const gpu::ShaderFeatures& features) {
+    std::vector<std::pair<std::string, bool>> list = features.list();
+    std::sort(list.begin(), list.end());
+    std::string on, off;
+    for (const auto& [name, enabled] : list) {
+        std::string& text = enabled ? on : off;
+        text += (text.empty() ? "" : ", ") + name;
+    }
+    return {on.empty() ? "none" : on, off.empty() ? "none" : off};
+}
+
+nlohmann::json gpuJson(const gpu::GpuRenderReport& g) {
+    nlohmann::json features = nlohmann::json::object();
+    for (const auto& [name, on] : g.features.list()) features[name] = on;
+    nlohmann::json j = {{"kernel", g.kernel}, {"tiles", g.tiles}, {"submissions", g.submissions},
+                        {"bytes_uploaded", g.bytesUploaded}, {"accel_bytes", g.accelBytes},
+                        {"upload_ms", g.uploadMs}, {"pipeline_ms", g.pipelineMs}, {"gpu_ms", g.gpuMs},
+                        {"dispatch_ms", g.renderMs}, {"rays", g.raysTraced}, {"shadow_rays", g.shadowRays},
+                        {"capped_rays", g.cappedRays}, {"features", features}};
+    if (g.features.countTraversal)
+        j["traversal"] = {{"nodes", g.nodesVisited}, {"leaves", g.leavesVisited},
+                          {"triangles", g.trianglesTested}, {"restarts", g.restarts}};
+    return j;
+}
+
+void printGpuStats(const gpu::GpuRenderReport& g) {
+    const auto [on, off] = featureLists(g.features);
+    std::printf("kernel:      compiled in: %s; left out: %s\n", on.c_str(), off.c_str());
+    std::printf("gpu:         kernel render_%s, %u tiles in %u submissions, %.2f MiB uploaded "
+                "(%.2f MiB structure)\n",
+                g.kernel.c_str(), g.tiles, g.submissions, double(g.bytesUploaded) / (1 << 20),
+                double(g.accelBytes) / (1 << 20));
+    std::printf("rays:        %llu camera and secondary, %llu shadow, %llu capped\n",
+                (unsigned long long)g.raysTraced, (unsigned long long)g.shadowRays,
+                (unsigned long long)g.cappedRays);
+    if (g.features.countTraversal) {
+        const double all = double(std::max<uint64_t>(g.raysTraced + g.shadowRays, 1));
+        std::printf("traversal:   per ray %.2f nodes, %.2f leaves, %.2f triangle tests, %.3f restarts\n",
+                    double(g.nodesVisited) / all, double(g.leavesVisited) / all, double(g.trianglesTested) / all,
+                    double(g.restarts) / all);
+    }
+    std::printf("timing:      upload %.1f ms, pipeline %.1f ms, gpu %.1f ms (timestamps), dispatch+readback %.1f ms\n",
+                g.uploadMs, g.pipelineMs, g.gpuMs, g.renderMs);
+}
+
+}  // namespace
+
+std::string reportJson(const RenderReport& r) {
+    nlohmann::json j;
+    j["accel"] = {{"name", r.accel}, {"build_ms", r.buildMs}};
+    for (const accel::AccelStat& st : r.accelStats) j["accel"][st.key] = st.value;
+    if (r.gpu) j["gpu"] = gpuJson(*r.gpu);
+    j["scene"] = r.scene;
+    j["device"] = r.device;
+    j["width"] = r.options.width;
+    j["height"] = r.options.height;
+    j["maxdepth"] = r.options.maxDepth;
+    j["triangles"] = r.triangles;
+    j["materials"] = r.materials;
+    j["lights"] = r.lights;
+    j["load_ms"] = r.loadMs;
+    j["render_ms"] = r.renderMs;
+    j["output"] = r.output;
+    for (const auto& [name, file] : r.aovs) j["aov"][name] = file;
+    return j.dump(2);
+}
+
+void printReport(const RenderReport& r, bool stats) {
+    std::printf("device:      %s\n", r.device.c_str());
+    std::printf("resolution:  %dx%d, maxdepth %d, accel %s\n", r.options.width, r.options.height,
+                r.options.maxDepth, r.accel.c_str());
+    std::printf("render time: %.1f ms\n", r.renderMs);
+    std::printf("output:      %s\n", r.output.c_str());
+    for (const auto& [name, file] : r.aovs) std::printf("aov %-7s  %s\n", name.c_str(), file.c_str());
+    if (!stats) return;
+    std::printf("scene:       %zu triangles, %zu materials, %zu lights (loaded in %.1f ms)\n", r.triangles,
+                r.materials, r.lights, r.loadMs);
+    std::printf("accel:       %s, built in %.1f ms\n", r.accel.c_str(), builtMs(r));
+    for (const accel::AccelStat& st : r.accelStats)
+        std::printf("  %-24s %.6g %s\n", st.key.c_str(), st.value, st.unit.c_str());
+    if (r.gpu) printGpuStats(*r.gpu);
+}
+
+}  // namespace vkray::cli

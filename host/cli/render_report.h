@@ -1,0 +1,36 @@
+// What `vkray render` did: filled as the render goes, then printed for people (a few lines, more with
+// --stats) or as JSON for scripts (--json; the keys are stable).
+#pragma once
+
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "accel/accel.h"
+#include "gpu/gpu_renderer.h"
+#include "render/render_options.h"
+
+namespace vkray::cli {
+
+struct RenderReport {
+    std::string scene;   // the scene file as given
+    std::string device;  // "llvmpipe (...) (Mesa ...)" or the CPU reference
+    std::string output;  // the colour image written
+    std::map<std::string, std::string> aovs;  // AOV name -> file written
+    RenderOptions options;
+    std::string accel;   // the accelerator's name
+    double buildMs = 0.0;
+    std::vector<accel::AccelStat> accelStats;
+    size_t triangles = 0, materials = 0, lights = 0;
+    double loadMs = 0.0, renderMs = 0.0;
+    std::optional<gpu::GpuRenderReport> gpu;  // GPU renders only
+};
+
+// The whole report as one JSON object (--json).
+std::string reportJson(const RenderReport& report);
+
+// The summary on stdout; with `stats`, the scene, the build, the kernel and the timings too.
+void printReport(const RenderReport& report, bool stats);
+
+}  // namespace vkray::cli
