@@ -1,6 +1,6 @@
-// The accelerator registry: every DESIGN.md name parses to the family and traversal it names, an
-// unknown name is an error that lists the known ones, and every accelerator built over the same
-// scene answers like brute force through the common BuiltAccel interface.
+// The accelerator registry: every `--accel` name (README.md, "Accelerators") parses to the family and
+// traversal it names, an unknown name is an error that lists the known ones, and every accelerator built
+// over the same scene answers like brute force through the common BuiltAccel interface.
 #include <algorithm>
 #include <random>
 #include <string>

@@ -140,7 +140,7 @@ TEST(Generators, SpheresAreClosedSurfacesOfOneRadiusEach) {
 }
 
 TEST(Generators, MillionsOfTrianglesInWellUnderAFewSeconds) {
-    // Not a timing assertion (DESIGN.md: tests never assert on a time): a size check that the
+    // Not a timing assertion (docs/benchmarks.md: tests never assert on a time): a size check that the
     // reservation is right, which is what keeps generation fast.
     const Scene s = generated(GeneratorKind::Soup, 2000000, 1);
     EXPECT_EQ(s.triangles.size(), 2000000u);
