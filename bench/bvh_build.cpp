@@ -1,4 +1,4 @@
-// Build benchmark of the BVH family (issue 4): for each scene file given, builds bvh-fast (AAC-Fast),
+// Build benchmark of the BVH family: for each scene file given, builds bvh-fast (AAC-Fast),
 // bvh-hq (AAC-HQ) and bvh-sah (binned-SAH reference) with 1 and 2 worker threads, and prints the
 // median build time with its min-max over the runs (after one warm-up), the speed-up of 2 threads
 // over 1, the SAH cost of each tree and its size. A benchmark prints figures; it asserts nothing.

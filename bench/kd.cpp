@@ -1,4 +1,4 @@
-// Benchmark of the kd-tree family (issue 5). For each scene file given:
+// Benchmark of the kd-tree family. For each scene file given:
 //  - SAH kd-tree build time with each thread count (one warm-up, then the median of --runs, with
 //    min-max), and the tree's shape;
 //  - per traversal (kd-stack, kd-restart, kd-backtrack) on the CPU, for the camera rays of a
@@ -7,7 +7,7 @@
 //  - with --gpu: GPU time per traversal (Vulkan timestamps, median of --runs after a warm-up) of the
 //    whole Whitted render at --size, through the GPU renderer.
 // --ci 10,20,80 repeats everything for several intersection costs (the tuning of docs/kdtree.md).
-// A benchmark prints figures; it asserts nothing (DESIGN.md, "Performance measurements").
+// A benchmark prints figures; it asserts nothing (docs/benchmarks.md, "Performance measurements").
 //
 //   vkray_bench_kd [--runs N] [--threads 1,2] [--size WxH] [--ci LIST] [--gpu] SCENE...
 #include <algorithm>

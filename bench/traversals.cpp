@@ -1,4 +1,4 @@
-// Traversal benchmark across accelerators (issues 4 and 5; `vkray bench` will grow out of it): for
+// Traversal benchmark across accelerators (the forerunner of `vkray bench`): for
 // each scene and accelerator, the build time, the GPU trace time (Vulkan timestamps, median of
 // --runs after a warm-up, with min-max), and from one extra render with the statistics variant of
 // the kernel (--counters) the mean nodes visited, leaves visited, triangle tests and restarts per

@@ -1,4 +1,4 @@
-// Everything `vkray bench` measures (issue 6), as plain data: the runner (bench_runner.h) fills it,
+// Everything `vkray bench` measures, as plain data: the runner (bench_runner.h) fills it,
 // the writers (report.h) turn it into bench.json, bench.md and report.html. Figures that could not
 // be measured are empty optionals (JSON null) with a note, never a made-up number.
 #pragma once
@@ -80,13 +80,14 @@ struct ErrorPoint {
     bool pareto = false;       // on the front: no other point is both faster and more accurate
 };
 
-// Seed 001, Tables 5.5 and 5.6: the AAC BVH against its delta.
+// The AAC BVH against its delta, after Tables 5.5 and 5.6 of A. F. Mahmuda, "Bounding Volume
+// Hierarchy Construction Using Agglomerative Clustering for Faster Ray Tracing", thesis, ITS 2017.
 struct DeltaResult {
     int delta = 0;
     double epsilon = 0.0;
     Spread buildMs;            // all threads
     Spread traceMs;            // full render, GPU
-    double nodesPerRay = 0.0, trianglesPerRay = 0.0;  // seed 001 counts both as intersection tests
+    double nodesPerRay = 0.0, trianglesPerRay = 0.0;  // Mahmuda 2017 counts both as intersection tests
     double sahCost = 0.0;
 };
 

@@ -344,7 +344,8 @@ private:
         return c;
     }
 
-    // One point of seed 001's threshold sweep: AAC-HQ's epsilon with another delta.
+    // One point of the threshold sweep of A. F. Mahmuda, "Bounding Volume Hierarchy Construction Using
+    // Agglomerative Clustering for Faster Ray Tracing", 2017: AAC-HQ's epsilon with another delta.
     void runDelta(const Scene& scene, const RenderOptions& render, int delta, const Frame& reference,
                   SceneResult& result) {
         accel::AccelSpec spec = accel::resolveAccel("bvh");

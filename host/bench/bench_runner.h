@@ -1,4 +1,4 @@
-// `vkray bench` (issue 6): every accelerator on every scene, measured the same way (DESIGN.md,
+// `vkray bench`: every accelerator on every scene, measured the same way (docs/benchmarks.md,
 // "Performance measurements"): CPU build time over thread counts, GPU trace time from timestamp
 // queries split by ray kind, traversal work per ray from the statistics variant of the kernels,
 // and the image error of each configuration against a double-precision CPU reference, so time can
@@ -21,8 +21,9 @@ struct BenchOptions {
     int width = 0, height = 0;   // 0: the scene's own size
     int repeat = 3;              // timed runs after one warm-up; medians with min-max
     std::vector<int> threads;    // build-scaling thread counts; empty: 1, 2, 4, ... up to all cores
-    // AAC deltas of the sweep after seed 001 (Tables 5.5, 5.6), built as `bvh` (AAC-HQ's epsilon)
-    // with --aac-delta; empty: no sweep.
+    // AAC deltas of the sweep after A. F. Mahmuda, "Bounding Volume Hierarchy Construction Using
+    // Agglomerative Clustering for Faster Ray Tracing", 2017 (Tables 5.5, 5.6), built as `bvh` (AAC-HQ's
+    // epsilon) with --aac-delta; empty: no sweep.
     std::vector<int> deltas = {4, 8, 12, 20, 30, 50};
     // Depths of the maxdepth sweep; empty: 1 .. scene maxdepth - 1. Depths at or above the scene's
     // are left out (the reference is rendered at the scene's maxdepth).

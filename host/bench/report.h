@@ -1,4 +1,4 @@
-// Writers of `vkray bench`'s output folder (issue 6): bench.json (every figure, machine-readable),
+// Writers of `vkray bench`'s output folder: bench.json (every figure, machine-readable),
 // bench.md (the tables), report.html (self-contained: images as data URIs, plots as inline SVG, no
 // network access, no external assets) and images/ (the same pictures as PNG files).
 #pragma once

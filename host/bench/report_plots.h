@@ -18,7 +18,8 @@ std::string errorPlotSvg(const SceneResult& scene);
 // Empty when fewer than two thread counts were measured.
 std::string scalingPlotSvg(const SceneResult& scene);
 
-// Build and trace ms against the AAC delta (seed 001, Figure 5.1). Empty without a sweep.
+// Build and trace ms against the AAC delta (as in Figure 5.1 of A. F. Mahmuda, "Bounding Volume Hierarchy
+// Construction Using Agglomerative Clustering for Faster Ray Tracing", 2017). Empty without a sweep.
 std::string deltaPlotSvg(const SceneResult& scene);
 
 // The heatmap's colour bar with its numbers, 0 to scale.max.

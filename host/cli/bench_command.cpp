@@ -1,4 +1,4 @@
-// `vkray bench SCENE...`: the accelerators against each other on one Vulkan device (issue 6):
+// `vkray bench SCENE...`: the accelerators against each other on one Vulkan device:
 // build and trace time, work per ray, error against run time; writes bench.json, bench.md,
 // report.html and images/ into --out.
 #include <unistd.h>
@@ -120,7 +120,7 @@ void registerBenchCommand(CLI::App& app, int& exitCode, int argc, const char* co
     cmd->add_option("--out", args->out, "Output folder for bench.json, bench.md, report.html, images/")
         ->default_str(args->out);
     cmd->add_option("--threads", args->threads, "Build-scaling thread counts, e.g. 1,2 (default 1, 2, 4, ... all cores)");
-    cmd->add_option("--deltas", args->deltas, "AAC delta sweep (seed 001 Table 5.5), e.g. 4,6,8,...,50, or none (default 4,8,12,20,30,50)");
+    cmd->add_option("--deltas", args->deltas, "AAC delta sweep (as in Table 5.5 of A. F. Mahmuda's 2017 AAC thesis), e.g. 4,6,8,...,50, or none (default 4,8,12,20,30,50)");
     cmd->add_option("--maxdepths", args->maxDepths, "maxdepth sweep below the scene's, e.g. 1,2, or none (default: every depth below the scene's)");
     cmd->add_flag("--quiet", args->quiet, "No progress line");
     const std::string commandLine = joinCommandLine(argc, argv);

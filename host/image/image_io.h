@@ -1,4 +1,4 @@
-// Image files: colour output (PNG, BMP, PFM), the AOV files of ../shared/DESIGN.md ("AOV files"),
+// Image files: colour output (PNG, BMP, PFM), the AOV files of docs/outputs.md ("AOV files"),
 // and reading any of them back for `vkray compare` and the tests. Every failure (a file that cannot
 // be written, an unsupported extension, a truncated or garbage file) is a vkray::Error naming the path.
 #pragma once

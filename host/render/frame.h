@@ -1,5 +1,5 @@
 // What a renderer (GPU or CPU reference) returns: the colour image and the primary-hit AOVs of
-// ../shared/DESIGN.md ("AOV files"), all stored top row first (row j = 0 is the top of the image).
+// docs/outputs.md ("AOV files"), all stored top row first (row j = 0 is the top of the image).
 #pragma once
 
 #include <cstdint>

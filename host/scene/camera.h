@@ -1,4 +1,4 @@
-// Camera rays by the convention of ../shared/DESIGN.md ("Camera rays"), in double precision for the
+// Camera rays by the convention of docs/scene-format.md ("Camera rays"), in double precision for the
 // CPU reference renderer and the tests. The GPU kernel computes the same formula in float
 // (shaders/include/camera.glsl) from the basis this header builds.
 #pragma once

@@ -19,7 +19,8 @@ enum class GeneratorKind {
     Soup,     // random triangles scattered through the volume (many overlaps: worst case for a BVH)
     Terrain,  // a heightfield by diamond-square (midpoint displacement), two triangles per cell
     // N random triangles that all share one centroid, exactly (in float), so every Morton code of
-    // an AAC build is equal and every triangle overlaps every other: a stress case (issue 7).
+    // an AAC build is equal and every triangle overlaps every other: a stress case for the
+    // builders (docs/stability.md).
     Burst,
 };
 

@@ -27,10 +27,10 @@ Material materialFromMtl(const tinyobj::material_t& mtl, const FileLoc& where, c
 
     const bool mirror = mtl.illum == 3 || mtl.illum == 5;
     const bool glass = mtl.illum == 4 || mtl.illum == 6 || mtl.illum == 7;
-    // d is the opacity; Tf only tints what passes. Many exporters (3ds Max, the McGuire archive
-    // scenes the seeds measure on) write "Tf 1 1 1" for every opaque material, so Tf alone must not
-    // make a material transparent. tinyobjloader leaves Tf at 0 0 0 when absent, which therefore
-    // reads as "no filter". A hand-written glass (illum 4/6/7) rarely lowers d: it transmits fully.
+    // d is the opacity; Tf only tints what passes. Many exporters (3ds Max, the scenes of McGuire's
+    // Computer Graphics Archive) write "Tf 1 1 1" for every opaque material, so Tf alone must not make
+    // a material transparent. tinyobjloader leaves Tf at 0 0 0 when absent, which therefore reads as
+    // "no filter". A hand-written glass (illum 4/6/7) rarely lowers d: it transmits fully.
     const float weight = (glass && mtl.dissolve == 1.0f) ? 1.0f : 1.0f - mtl.dissolve;
     const glm::vec3 tf = rgb(mtl.transmittance);
     const glm::vec3 filter = tf == glm::vec3(0.0f) ? glm::vec3(1.0f) : tf;

@@ -1,6 +1,6 @@
-// MTL material -> vkray Material, after DESIGN.md ("geo"): Ka ambient, Kd diffuse, Ks specular,
-// Ns shininess, Ke emission, Ni index of refraction, d dissolve, Tf transmission filter,
-// illum 3/5 mirror, illum 4/6/7 glass.
+// MTL material -> vkray Material, after docs/scene-format.md ("OBJ/MTL materials"): Ka ambient,
+// Kd diffuse, Ks specular, Ns shininess, Ke emission, Ni index of refraction, d dissolve,
+// Tf transmission filter, illum 3/5 mirror, illum 4/6/7 glass.
 #pragma once
 
 #include <string>

@@ -1,7 +1,8 @@
 // Checks of OBJ and MTL text before tinyobjloader reads it. tinyobjloader turns what it cannot
 // parse into 0 without a word ("v nan 0 0", "Kd 1e999 0 0") and reports bad face indices, if at
 // all, without a useful line number; these checks name file:line:col instead. They cover only what
-// vkray uses: positions, normals, face indices, and the MTL numbers of DESIGN.md's mapping.
+// vkray uses: positions, normals, face indices, and the MTL numbers of the mapping in
+// docs/scene-format.md ("OBJ/MTL materials").
 #pragma once
 
 #include <cstdint>

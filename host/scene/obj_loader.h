@@ -6,7 +6,7 @@
 namespace vkray {
 
 // Appends the OBJ's faces in file order (polygons triangulated by tinyobjloader, triangulate=true:
-// DESIGN.md "Triangle identity"), transformed by request.toWorld. Faces with a material of the MTL
+// docs/scene-format.md, "Triangle identity"), transformed by request.toWorld. Faces with a material of the MTL
 // get its mapping (mtl_material.h); faces without one get request.defaultMaterial. A face whose
 // three corners all name a normal (vn) is smooth-shaded with them; a zero vn leaves it flat.
 // The MTL files are looked up next to the OBJ. Throws vkray::Error for an unreadable OBJ or MTL,

@@ -1,6 +1,6 @@
-// In-memory scene: what the .scene parser (and the OBJ/MTL loader) produce, in world space,
-// and what every renderer and acceleration structure consumes. See ../shared/DESIGN.md for the
-// file format; triangle order here *is* the triangle identity of DESIGN.md ("Triangle identity").
+// In-memory scene: what the .scene parser (and the OBJ/MTL loader) produce, in world space, and what every
+// renderer and acceleration structure consumes. See docs/scene-format.md for the file format; triangle
+// order here *is* its triangle identity (docs/scene-format.md, "Triangle identity").
 #pragma once
 
 #include <cstdint>
@@ -33,7 +33,7 @@ inline std::optional<std::string> imageSizeProblem(long long w, long long h) {
            " and the total at most " + std::to_string(kMaxImagePixels) + " pixels (2^26)";
 }
 
-// Material state of the .scene format (CSE167 conventions, seed 001), resolved at the time a
+// Material state of the .scene format (CSE167 conventions), resolved at the time a
 // primitive is created: `reflect` already holds the specular colour when the scene never set it.
 struct Material {
     glm::vec3 ambient{0.2f};

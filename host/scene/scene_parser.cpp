@@ -21,7 +21,7 @@ namespace vkray {
 namespace {
 
 // The material commands' state. `reflect` is kept apart because, until a `reflect` line sets it,
-// it follows the specular colour (the CSE167 convention of DESIGN.md).
+// it follows the specular colour (the CSE167 convention; docs/scene-format.md).
 struct MaterialState {
     Material base;
     std::optional<glm::vec3> reflect;

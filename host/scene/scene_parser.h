@@ -1,8 +1,8 @@
-// The .scene format of DESIGN.md ("Scene file"): seed 001's format, itself the UCSD CSE167 ray
-// tracer format (whose *.test files load unchanged), plus `refract`, `reflect`, `spheresteps`,
-// `geo`/`obj` for Wavefront OBJ and OFF meshes and `generate` for procedural ones (generators.h).
-// The result is world space: transforms, spheres and meshes are resolved here, materials are
-// deduplicated, and triangle order is load order (the triangle identity of DESIGN.md).
+// The .scene format of docs/scene-format.md: the UCSD CSE167 ray tracer format (whose *.test files load
+// unchanged), plus `refract`, `reflect`, `spheresteps`, `geo`/`obj` for Wavefront OBJ and OFF meshes and
+// `generate` for procedural ones (generators.h). The result is world space: transforms, spheres and meshes
+// are resolved here, materials are deduplicated, and triangle order is load order (docs/scene-format.md,
+// "Triangle identity").
 //
 // Conventions where the format leaves room:
 //  - Transforms apply to geometry only (tri, trinormal, sphere, geo); `camera`, `point` and

@@ -1,5 +1,5 @@
-// Spheres of the .scene format become triangles on load (DESIGN.md: "sphere x y z r ... tessellated
-// under the current transform"), so every accelerator and renderer sees only triangles.
+// Spheres of the .scene format become triangles on load (docs/scene-format.md: `sphere x y z r`
+// is tessellated under the current transform), so every accelerator and renderer sees only triangles.
 #pragma once
 
 #include <cstdint>

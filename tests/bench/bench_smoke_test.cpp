@@ -1,4 +1,4 @@
-// The bench smoke test of issue 6: the whole `vkray bench` pipeline on lavapipe at a small size,
+// The bench smoke test: the whole `vkray bench` pipeline on lavapipe at a small size,
 // then a check that the report is complete — every figure present, finite and positive where it
 // must be, every image in report.html and images/. Times are never compared with anything.
 #include <cmath>

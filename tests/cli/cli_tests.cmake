@@ -60,7 +60,7 @@ add_test(NAME cli.compare_primid_gpu_cpu
 # 96x96); tests/gpu/gpu_vs_cpu_test.cpp tells ties from disagreements and asks 99.9%.
 set_tests_properties(cli.compare_primid_gpu_cpu PROPERTIES FIXTURES_REQUIRED default_renders)
 
-# OFF meshes and procedural scenes (issue 3): the OFF reader's errors name the OFF file, its line and
+# OFF meshes and procedural scenes: the OFF reader's errors name the OFF file, its line and
 # column, and the scene line that loaded it; `vkray gen` refuses bad requests before writing.
 vkray_expect_error(off_bad_index "off_bad_index\\.off:8:7: vertex index 4 out of range.*off_bad_index\\.scene:3" render ${CLI_DATA}/off_bad_index.scene)
 vkray_expect_error(off_truncated "off_truncated\\.off:5: file ends early: 3 of the 4 vertices" render ${CLI_DATA}/off_truncated.scene)
@@ -122,7 +122,7 @@ vkray_expect_error(kd_empty_bonus "--kd-empty-bonus must be in \\[0, 1\\]" rende
 vkray_expect_error(kd_cost_nan "--kd-traversal-cost and --kd-intersection-cost must be finite and not negative" render ${CLI_DATA}/one_triangle.scene --accel kd-stack --kd-intersection-cost nan -o ${CLI_OUT}/x.png)
 vkray_expect_error(aac_delta_absurd "--aac-delta must be 1..1024" render ${CLI_DATA}/one_triangle.scene --aac-delta 1000000 -o ${CLI_OUT}/x.png)
 
-# Hardened input (issue 7): every case is one "error: " line naming the cause (and file:line where
+# Hardened input: every case is one "error: " line naming the cause (and file:line where
 # there is one) and a non-zero exit, never a crash, a hang or a silently wrong image. Inputs too
 # large or too binary to commit (UTF-16, 10 MB lines, garbage) are written at test time.
 set(BAD_IN ${CLI_OUT}/bad-inputs)

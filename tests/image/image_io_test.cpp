@@ -1,4 +1,4 @@
-// Image files: PNG/BMP/PFM round trips (values and orientation), the PFM bytes DESIGN.md fixes,
+// Image files: PNG/BMP/PFM round trips (values and orientation), the PFM bytes docs/outputs.md fixes,
 // the AOV writers, and errors (never crashes) for unwritable paths and bad or truncated files.
 #include <cmath>
 #include <cstdint>
@@ -122,8 +122,8 @@ TEST(ImageIo, PfmColourRoundTripIsExactAndUnclamped) {
             for (int c = 0; c < 3; ++c) EXPECT_EQ(img.at(i, j, c), rgb[size_t(j * 2 + i)][c]);
 }
 
-// DESIGN.md: "PF"/"Pf", scale -1.0 (little-endian), rows bottom to top: the top row of the image is
-// the last row in the file.
+// docs/outputs.md, "AOV files": "PF"/"Pf", scale -1.0 (little-endian), rows bottom to top: the top row of
+// the image is the last row in the file.
 TEST(ImageIo, PfmBytesAreLittleEndianBottomRowFirst) {
     const int w = 3, h = 2;
     const std::vector<float> topFirst = {1, 2, 3,   // top row

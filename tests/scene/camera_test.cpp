@@ -1,4 +1,4 @@
-// Camera rays (DESIGN.md, "Camera rays") against values computed by hand.
+// Camera rays (docs/scene-format.md, "Camera rays") against values computed by hand.
 #include <cmath>
 
 #include <gtest/gtest.h>

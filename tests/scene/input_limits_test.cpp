@@ -1,4 +1,4 @@
-// Hardened input (issue 7): limits that keep a hostile or broken file from costing unbounded time
+// Hardened input: limits that keep a hostile or broken file from costing unbounded time
 // or memory, files that are not text files, and meshes served from memory (the fuzzer's way in).
 #include <sys/stat.h>
 

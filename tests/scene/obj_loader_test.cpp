@@ -1,4 +1,4 @@
-// OBJ + MTL through `geo`: triangle order, DESIGN.md's MTL mapping, normals, paths, errors.
+// OBJ + MTL through `geo`: triangle order, the MTL mapping of docs/scene-format.md, normals, paths, errors.
 #include <fstream>
 
 #include <gtest/gtest.h>

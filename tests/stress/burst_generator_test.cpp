@@ -1,4 +1,4 @@
-// `generate burst N` (scene/generators.h), the stress case of issue 7 for the BVH builders: every
+// `generate burst N` (scene/generators.h), the stress case for the BVH builders: every
 // triangle has exactly the same centroid as the builders compute it, so every Morton code is equal,
 // and no triangle is degenerate. The AAC builder must still make a valid tree that traces like
 // brute force (stress_cases_test.cpp renders burst-100k.scene with every accelerator).

@@ -1,4 +1,4 @@
-// No ray may hang the GPU (issue 7; lavapipe has no watchdog): every traversal loop has an iteration
+// No ray may hang the GPU (lavapipe has no watchdog): every traversal loop has an iteration
 // cap, and a ray that reaches it is reported (GpuRenderReport::cappedRays), not hidden and not
 // looping forever. The trees here are malformed on purpose, so that every ray that enters them
 // loops: a BVH whose root names itself as its right child, and a kd-tree whose root is its own

@@ -1,4 +1,4 @@
-// Huge and tiny coordinates (issue 7): scenes/stress/magnitude.scene moved by p -> s p + o, for
+// Huge and tiny coordinates (docs/stability.md): scenes/stress/magnitude.scene moved by p -> s p + o, for
 // translations o up to 1e6 and scales s down to 1e-6, rendered on the GPU (bvh, the default; every
 // kernel gives the brute-force kernel's hits, stress_cases_test.cpp) and by the CPU reference.
 // Three figures per magnitude, printed as `| magnitude | ... |` rows (docs/stability.md):

@@ -1,4 +1,4 @@
-// The stress scenes of scenes/stress/ (issue 7, numerical stability) through every accelerator, on
+// The stress scenes of scenes/stress/ (numerical stability, docs/stability.md) through every accelerator, on
 // the GPU (lavapipe here) and on the CPU:
 //  - the CPU reference renderer (brute force, double) is the ground truth;
 //  - every CPU accelerator must give exactly its primary hits and image (same double test, same

@@ -1,4 +1,4 @@
-// What the stress tests (issue 7, numerical stability) measure for one rendering against another:
+// What the stress tests (numerical stability, docs/stability.md) measure for one rendering against another:
 // primary-hit agreement (primid AOV), image error, and the direction of the error (acne: the GPU
 // darker than the reference, as when a shadow ray hits its own surface; leaks: brighter, as when a
 // shadow ray starts beyond a thin occluder), plus the watertightness checks of closed meshes.

@@ -1,5 +1,7 @@
-// Approximate Agglomerative Clustering (Gu, He, Fatahalian and Blelloch, HPG 2013; seed 001,
-// sections 2.6 and 3.3.2, Kode Sumber 3.1-3.3 and 4.8-4.11).
+// Approximate Agglomerative Clustering (Gu, He, Fatahalian and Blelloch, "Efficient BVH Construction
+// via Approximate Agglomerative Clustering", HPG 2013; as implemented in A. F. Mahmuda, "Bounding
+// Volume Hierarchy Construction Using Agglomerative Clustering for Faster Ray Tracing", thesis,
+// ITS 2017: sections 2.6 and 3.3.2, listings 3.1-3.3 and 4.8-4.11).
 //
 // 1. Morton codes of the centroids, radix-sorted (morton.h).
 // 2. Downward phase (the paper's BuildTree): a range of more than delta primitives is split at the

@@ -60,13 +60,14 @@ struct SahConstants {
 
 // How a BVH is built. AAC fields after Gu, He, Fatahalian and Blelloch, "Efficient BVH Construction
 // via Approximate Agglomerative Clustering", HPG 2013 (the paper's delta, epsilon and its cluster
-// count reduction function f; seed 001, Kode Sumber 3.2 and 4.11).
+// count reduction function f; also A. F. Mahmuda, "Bounding Volume Hierarchy Construction Using
+// Agglomerative Clustering for Faster Ray Tracing", thesis, ITS 2017, listings 3.2 and 4.11).
 struct Config {
     enum class Builder { Aac, BinnedSah };
     Builder builder = Builder::Aac;
 
-    // AAC: the downward phase stops at ranges of at most `delta` primitives (paper's delta, seed 001's
-    // "threshold"); each level keeps f(n) = c * n^alpha clusters of its n primitives, with
+    // AAC: the downward phase stops at ranges of at most `delta` primitives (paper's delta, Mahmuda
+    // 2017's "threshold"); each level keeps f(n) = c * n^alpha clusters of its n primitives, with
     // alpha = 1/2 - epsilon and c = delta^(1/2 + epsilon) / 2, so that f(delta) = delta / 2.
     int delta = 4;
     double epsilon = 0.2;
@@ -83,7 +84,7 @@ struct Config {
     int maxLeafSize = VKRAY_BVH_MAX_LEAF_SIZE;
     SahConstants sah;
 
-    // The paper's two presets, AAC-Fast and AAC-HQ (seed 001 instead settled on delta 6 and 12).
+    // The paper's two presets, AAC-Fast and AAC-HQ (Mahmuda 2017 instead settled on delta 6 and 12).
     static Config aacFast() { return withAac(4, 0.2); }
     static Config aacHq() { return withAac(20, 0.1); }
     static Config binnedSah() {

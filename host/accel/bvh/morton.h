@@ -1,5 +1,6 @@
-// Morton codes of triangle centroids and their parallel radix sort: the first step of AAC (Gu et
-// al. 2013; seed 001, Kode Sumber 2.1 and 4.6), which orders the primitives along a Z-order curve so
+// Morton codes of triangle centroids and their parallel radix sort: the first step of AAC (Gu et al. 2013;
+// A. F. Mahmuda, "Bounding Volume Hierarchy Construction Using Agglomerative Clustering for Faster Ray
+// Tracing", thesis, ITS 2017, listings 2.1 and 4.6), which orders the primitives along a Z-order curve so
 // that the downward phase can split ranges by the codes' bits.
 #pragma once
 
@@ -13,9 +14,9 @@
 
 namespace vkray::bvh {
 
-// 10 bits per axis, 30 bits in all (the seed's layout: x in the highest bit of each triple, then
-// y, then z). At 1024 cells per axis a 1M-triangle mesh has about one centroid per occupied cell;
-// ranges of equal codes are split in the middle by the builder.
+// 10 bits per axis, 30 bits in all (Mahmuda 2017's layout, listing 4.6: x in the highest bit of each
+// triple, then y, then z). At 1024 cells per axis a 1M-triangle mesh has about one centroid per
+// occupied cell; ranges of equal codes are split in the middle by the builder.
 inline constexpr int kMortonBitsPerAxis = 10;
 inline constexpr int kMortonBits = 3 * kMortonBitsPerAxis;
 
@@ -34,7 +35,7 @@ inline uint32_t keyCode(MortonKey k) { return uint32_t(k >> 32); }
 inline uint32_t keyPrimitive(MortonKey k) { return uint32_t(k); }
 
 // Sorts by code, stably (equal codes keep their primitive order), with a least-significant-digit
-// radix sort of 10-bit digits (three passes for 30-bit codes; seed 001, section 2.8). Each pass
+// radix sort of 10-bit digits (three passes for 30-bit codes; Mahmuda 2017, section 2.8). Each pass
 // histograms and scatters fixed blocks in parallel (oneTBB); the blocks do not depend on the thread
 // count, and a stable sort has one answer anyway.
 void radixSortByCode(std::vector<MortonKey>& keys);

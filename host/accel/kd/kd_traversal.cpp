@@ -25,8 +25,8 @@ struct SplitStep {
     int axis;
 };
 
-// One inner node of seed 000's search-split(): which children the segment [tmin, tmax] reaches.
-// A ray lying in the plane takes the side the pass's mask names and records the axis; plane hits
+// One inner node of Foley and Sugerman's search-split() (2005): which children the segment [tmin, tmax]
+// reaches. A ray lying in the plane takes the side the pass's mask names and records the axis; plane hits
 // equal to an end of the segment are ordered by the pass's ranks (PassState::compare).
 SplitStep stepInner(const geometry::Ray& ray, const gpu::KdNode& node, uint32_t index, const Segment& seg,
                     PassState& pass) {
@@ -225,7 +225,8 @@ bool KdTracer::occluded(const geometry::Ray& ray, double tmax, geometry::Travers
     return visitor.occluded;
 }
 
-// Seed 000, figure 9, as a loop: one iteration per node; the stack holds the far children with
+// Foley and Sugerman's standard traversal (2005; figure 9 of S. A. Mulia, "Penggunaan k-d Tree dalam
+// Ray Tracing", 2018), as a loop: one iteration per node; the stack holds the far children with
 // their segments, nearest on top.
 bool KdStackTracer::walkPass(const geometry::Ray& ray, Segment seg, PassState& pass, LeafVisitor& visitor,
                              geometry::TraversalCounters& c, int& steps) const {

@@ -1,13 +1,14 @@
 // The three kd-tree traversals of Foley and Sugerman, "KD-Tree Acceleration Structures for a GPU
-// Raytracer", Graphics Hardware 2005 (seed 000 gives their pseudocode), in double precision on the
-// CPU over the very arrays the GPU kernels read (kd_layout.h), so the unit tests check the algorithms
-// and the layout off the GPU. shaders/include/kd_{stack,restart,backtrack}.glsl are the float twins.
+// Raytracer", Graphics Hardware 2005 (their pseudocode as reproduced in S. A. Mulia, "Penggunaan k-d Tree
+// dalam Ray Tracing", ITB 2018), in double precision on the CPU over the very arrays the GPU kernels read
+// (kd_layout.h), so the unit tests check the algorithms and the layout off the GPU.
+// shaders/include/kd_{stack,restart,backtrack}.glsl are the float twins.
 //
 // All three share (docs/kdtree.md, "Floating point"):
-//  - Children in ray order by the sign of the direction (seed: order(ray.direction[a], ...)); the
-//    ray's segment [tmin, tmax] goes to the first child only when the plane's hit thit >= tmax, to
-//    the second only when thit <= tmin, else to both. A negative thit means the plane lies behind:
-//    the segment is then on the second side, which `thit <= tmin` covers (tmin >= 0). Foley and
+//  - Children in ray order by the sign of the direction (the pseudocode's order(ray.direction[a],
+//    ...)); the ray's segment [tmin, tmax] goes to the first child only when the plane's hit thit >=
+//    tmax, to the second only when thit <= tmin, else to both. A negative thit means the plane lies
+//    behind: the segment is then on the second side, which `thit <= tmin` covers (tmin >= 0). Foley and
 //    Sugerman's `thit < 0 -> first` assumes origin-side ordering; with direction order it is wrong.
 //  - A direction component of +-0 never divides: the segment stays on the origin's side.
 //  - In-plane rays: a ray lying in a node's split plane (dir[axis] == +-0 and origin[axis] == split,
@@ -110,7 +111,7 @@ protected:
     int maxSteps_;
 };
 
-// The standard traversal with a per-ray stack (seed 000, figure 9): the baseline.
+// The standard traversal with a per-ray stack (Foley and Sugerman; Mulia 2018, figure 9): the baseline.
 class KdStackTracer final : public KdTracer {
 public:
     using KdTracer::KdTracer;
