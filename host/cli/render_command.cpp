@@ -192,7 +192,8 @@ void registerRenderCommand(CLI::App& app, int& exitCode) {
     for (const std::string& n : accel::accelNames()) accelList += (accelList.empty() ? "" : ", ") + n;
     cmd->add_option("--accel", args->accel, "Acceleration structure: " + accelList)->default_str(args->accel);
     for (const accel::TuningOption& o : accel::tuningOptions())
-        cmd->add_option(std::string(o.flag), args->tuning[std::string(o.flag)], std::string(o.help));
+        cmd->add_option(std::string(o.flag), args->tuning[std::string(o.flag)], std::string(o.help))
+            ->type_name(o.integer ? "INT" : "FLOAT");
     cmd->add_flag("--counters", args->counters, "GPU: compile traversal counters in and report nodes, leaves and triangle tests per ray (slower)");
     cmd->add_flag("--cpu", args->cpu, "Render with the CPU reference renderer (double precision)");
     cmd->add_option("--device", args->device, "Vulkan device: index or name substring (see `vkray devices`)");

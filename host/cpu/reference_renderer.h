@@ -18,7 +18,7 @@ using RenderProgress = std::function<void(int rowsDone, int rows)>;
 // Renders options.width x options.height pixels with maxdepth options.maxDepth (the caller resolves
 // the scene's values and command-line overrides into `options`) on options.threads worker threads
 // (0 = all cores). The result is bit-identical whatever the thread count. Uses the brute-force
-// tracer; options.accel names GPU accelerators and is not read here.
+// tracer.
 // Throws vkray::Error when the scene has no camera, the camera or size is unusable, maxDepth < 1,
 // or the scene is inconsistent (a material index out of range, a normals list of the wrong size).
 Frame renderReference(const Scene& scene, const RenderOptions& options,

@@ -12,15 +12,16 @@
 namespace vkray::geometry {
 
 struct Hit {
-    int32_t triangle = -1;  // original triangle index (DESIGN.md, "Triangle identity"); -1 = miss
+    int32_t triangle = -1;  // original triangle index (docs/scene-format.md, "Triangle identity"); -1 = miss
     double t = std::numeric_limits<double>::infinity();
     double b0 = 0.0, b1 = 0.0, b2 = 0.0;  // barycentrics of p0, p1, p2
 
     bool found() const { return triangle >= 0; }
 };
 
-// Work done by a traversal, for the statistics of the BVH and kd-tree comparisons (issue text:
-// "mean nodes visited, leaves visited and triangles tested per ray"). Counted only when asked for.
+// Work done by a traversal, for the statistics of the BVH and kd-tree comparisons: mean nodes
+// visited, leaves visited and triangles tested per ray (docs/benchmarks.md). Counted only when
+// asked for.
 struct TraversalCounters {
     uint64_t nodes = 0;      // nodes visited (inner and leaf)
     uint64_t leaves = 0;     // leaves visited

@@ -1,7 +1,7 @@
-// The accelerator registry: every `--accel` name (README.md, "Accelerators") resolves to the family and traversal it names, with its preset
-// and the tuning options checked; an unknown name is an error that lists the known ones; and every
-// accelerator built over the same scene answers like brute force through the common BuiltAccel
-// interface.
+// The accelerator registry: every `--accel` name (README.md, "Accelerators") resolves to the family
+// and traversal it names, with its preset and the tuning options checked; an unknown name is an
+// error that lists the known ones; and every accelerator built over the same scene answers like
+// brute force through the common BuiltAccel interface.
 #include <algorithm>
 #include <cmath>
 #include <random>

@@ -1,5 +1,5 @@
 // The watertight ray-triangle test: exact values where the arithmetic is exact, and the edge-case
-// rules of cpu/ray_triangle.h.
+// rules of geometry/ray_triangle.h.
 #include <cmath>
 #include <limits>
 #include <random>

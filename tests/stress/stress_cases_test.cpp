@@ -2,7 +2,7 @@
 // the GPU (lavapipe here) and on the CPU:
 //  - the CPU reference renderer (brute force, double) is the ground truth;
 //  - every CPU accelerator must give exactly its primary hits and image (same double test, same
-//    tie rule: cpu/tracer.h);
+//    tie rule: geometry/tracer.h);
 //  - every GPU kernel must give exactly the GPU brute-force kernel's primary hits: they all run the
 //    same float watertight test and keep, among equal float t, the lowest original triangle index,
 //    so the traversal order cannot show;

@@ -1,6 +1,6 @@
 // The CPU traversal of the flattened BVH, so the reference renderer stays usable on big scenes. It
 // walks the same nodes as the GPU kernel (near child first, a stack of far children) but in double
-// precision with the watertight test of cpu/ray_triangle.h, and answers exactly what
+// precision with the watertight test of geometry/ray_triangle.h, and answers exactly what
 // BruteForceTracer answers, ties included:
 // - closest(): the hit with the smallest t, and among equal t the lowest original triangle index.
 //   A triangle is tested with tmax just above the best t so far, and a node is skipped only when
