@@ -35,7 +35,9 @@ const AccelEntry kAccels[] = {
 
 // ---- The tuning options -------------------------------------------------------------------------
 
-bool isAac(const AccelSpec& s) { return s.family == Family::Bvh && s.bvh.builder == bvh::Config::Builder::Aac; }
+bool isAac(const AccelSpec& s) {
+    return s.family == Family::Bvh && s.bvh.builder == bvh::Config::Builder::Aac;
+}
 bool isKd(const AccelSpec& s) { return s.family == Family::Kd; }
 
 // A leaf range is clustered by an all-pairs search, O(delta^2) per merge: the bound keeps a typo from
@@ -53,10 +55,10 @@ const TuningOption kTuning[] = {
      1e9, true, false, "--kd-traversal-cost and --kd-intersection-cost must be finite and not negative",
      [](AccelSpec& s, double v) { s.kd.intersectionCost = v; }},
     {"--kd-empty-bonus", "kd-tree SAH: bonus for cutting off empty space, 0..1 (overrides the default)",
-     isKd, 0.0, 1.0, false, false, "--kd-empty-bonus must be in [0, 1]", [](AccelSpec& s, double v) { s.kd.emptyBonus = v; }},
+     isKd, 0.0, 1.0, false, false, "--kd-empty-bonus must be in [0, 1]",
+     [](AccelSpec& s, double v) { s.kd.emptyBonus = v; }},
     {"--kd-max-depth", "kd-tree: maximum depth (default 8 + 1.3 log2 N)", isKd, 1, kd::KdConfig::kMaxDepthLimit,
-     false, true, "",
-     [](AccelSpec& s, double v) { s.kd.maxDepth = int(v); }},
+     false, true, "", [](AccelSpec& s, double v) { s.kd.maxDepth = int(v); }},
 };
 
 bool accepts(const TuningOption& o, double v) {
@@ -113,9 +115,9 @@ AccelSpec resolveAccel(std::string_view name, const Tuning& tuning) {
                                          [&](const TuningOption& o) { return o.flag == flag; });
         if (option == std::end(kTuning)) throw Error("internal: no tuning option " + flag);
         if (!accepts(*option, *value)) {
-            const std::string rule = option->rule.empty()
-                                         ? flag + " must be " + shortNumber(option->lo) + ".." + shortNumber(option->hi)
-                                         : std::string(option->rule);
+            const std::string rule =
+                option->rule.empty() ? flag + " must be " + shortNumber(option->lo) + ".." + shortNumber(option->hi)
+                                     : std::string(option->rule);
             throw Error(rule + " (got " + shortNumber(*value) + ")");
         }
         if (!option->appliesTo(spec)) throw notApplicable(*option, spec);
@@ -128,7 +130,8 @@ std::string structureKey(const AccelSpec& spec) {
     switch (spec.family) {
     case Family::Brute: return "brute";
     case Family::Bvh: return "bvh " + spec.bvh.describe();
-    case Family::Kd: return "kd " + spec.kd.describe();
+    case Family::Kd:
+        return "kd " + spec.kd.describe() + " depth " + (spec.kd.maxDepth ? std::to_string(*spec.kd.maxDepth) : "auto");
     }
     return spec.name;
 }

@@ -123,7 +123,8 @@ Frame renderFrame(const Scene& scene, const RenderOptions& options, const accel:
     t0 = Clock::now();
     if (!ctx) {
         const auto tracer = built->makeTracer(scene);
-        frame = renderReference(scene, options, *tracer, showProgress ? RenderProgress(printRowProgress) : RenderProgress());
+        frame = renderReference(scene, options, *tracer,
+                                showProgress ? RenderProgress(printRowProgress) : RenderProgress());
         report.renderMs = msSince(t0);
         return frame;
     }

@@ -106,8 +106,9 @@ public:
     // Milliseconds between the two stamps of the batch just waited for (0 when unavailable).
     double batchMs() const {
         if (!enabled()) return 0.0;
-        auto [result, stamps] = queries_.getResults<uint64_t>(
-            0, 2, 2 * sizeof(uint64_t), sizeof(uint64_t), vk::QueryResultFlagBits::e64 | vk::QueryResultFlagBits::eWait);
+        auto [result, stamps] = queries_.getResults<uint64_t>(0, 2, 2 * sizeof(uint64_t), sizeof(uint64_t),
+                                                              vk::QueryResultFlagBits::e64 |
+                                                                  vk::QueryResultFlagBits::eWait);
         if (result != vk::Result::eSuccess) return 0.0;
         const uint64_t ticks = ((stamps[1] & mask_) - (stamps[0] & mask_)) & mask_;
         return double(ticks) * double(ctx_.info().timestampPeriodNs) * 1e-6;

@@ -95,6 +95,7 @@ TEST(AccelSpec, StructureKeysTellWhichBuildsAreShared) {
     EXPECT_EQ(structureKey(resolveAccel("kd-stack")), structureKey(resolveAccel("kd-backtrack")));
     EXPECT_NE(structureKey(resolveAccel("kd-stack")),
               structureKey(resolveAccel("kd-stack", {{"--kd-intersection-cost", 5}})));
+    EXPECT_NE(structureKey(resolveAccel("kd-stack")), structureKey(resolveAccel("kd-stack", {{"--kd-max-depth", 9}})));
 }
 
 // A random soup of small triangles in the unit cube, one material.
