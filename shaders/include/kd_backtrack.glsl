@@ -1,8 +1,9 @@
-// kd-backtrack (Foley and Sugerman 2005, section 4.2; seed 000): stackless, with a parent link and
-// a box per node in a separate array (VKRAY_BINDING_ACCEL_EXTRA) that only this kernel reads. After
-// a leaf without an accepted hit, tmin becomes the leaf's exit and the search climbs the parent
-// links to the nearest ancestor whose box the remaining segment still crosses for a positive length
-// (exit > tmin), then descends from there. Climbing and descending steps share one loop and its cap.
+// kd-backtrack (Foley and Sugerman, "KD-Tree Acceleration Structures for a GPU Raytracer", Graphics
+// Hardware 2005, section 4.2): stackless, with a parent link and a box per node in a separate array
+// (VKRAY_BINDING_ACCEL_EXTRA) that only this kernel reads. After a leaf without an accepted hit,
+// tmin becomes the leaf's exit and the search climbs the parent links to the nearest ancestor whose
+// box the remaining segment still crosses for a positive length (exit > tmin), then descends from
+// there. Climbing and descending steps share one loop and its cap.
 #ifndef VKRAY_KD_BACKTRACK_GLSL
 #define VKRAY_KD_BACKTRACK_GLSL
 
@@ -31,7 +32,7 @@ Hit kdBacktrackTrace(vec3 origin, vec3 dir, float tmax, const bool anyHit) {
         bool climbing = false;
         for (; !passDone && steps < VKRAY_KD_MAX_STEPS; ++steps) {
             countNode();
-            if (climbing) {  // backtrack(): does this ancestor's box still hold part of the segment?
+            if (climbing) {  // does this ancestor's box still hold part of the segment?
                 if (node == VKRAY_KD_NO_PARENT) {
                     passDone = true;
                     continue;
@@ -61,7 +62,7 @@ Hit kdBacktrackTrace(vec3 origin, vec3 dir, float tmax, const bool anyHit) {
             kdVisitLeaf(n, w, anyHit, best);
             if (kdFinished(best, anyHit, segMax) || kdCompare(pass, segMax, maxAxis, globalMax, globalMaxAxis) >= 0) {
                 passDone = true;
-            } else {  // continue-search(): climb from this leaf's parent
+            } else {  // climb from this leaf's parent
                 segMin = segMax;
                 minAxis = maxAxis;
                 node = kdExtra[node].parent;

@@ -1,5 +1,5 @@
 // What the three kd-tree traversals share (Foley and Sugerman, "KD-Tree Acceleration Structures
-// for a GPU Raytracer", Graphics Hardware 2005; seed 000): the buffers of shared/kd_layout.h, node
+// for a GPU Raytracer", Graphics Hardware 2005): the buffers of shared/kd_layout.h, node
 // accessors, the ray-box clip, one inner-node step, and the leaf test. The float twins of
 // host/accel/kd/kd_traversal.cpp, whose header explains the robustness rules; in short:
 //  - children in ray order by the direction's sign; [tmin, tmax] goes first only if thit >= tmax,
@@ -162,7 +162,7 @@ bool kdClipBox(KdRay r, vec3 lo, vec3 hi, inout float tmin, inout uint tminAxis,
 
 const int kKdFirst = 0, kKdSecond = 1, kKdBoth = 2;
 
-// Seed 000's search-split(): which children of inner node `index` the segment [tmin, tmax] reaches.
+// One inner-node step: which children of inner node `index` the segment [tmin, tmax] reaches.
 int kdStepInner(KdRay r, uvec2 n, uint index, float tmin, uint tminAxis, float tmax, uint tmaxAxis,
                 inout KdPass p, out uint first, out uint second, out float thit) {
     const uint axis = kdAxis(n);

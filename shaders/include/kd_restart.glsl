@@ -1,8 +1,9 @@
-// kd-restart (Foley and Sugerman 2005, section 4.1; seed 000): stackless. The descent drops the
-// stack traversal's push and only shortens tmax; after a leaf without an accepted hit, tmin becomes
-// the leaf's exit and the search restarts at the root, until the exit reaches the global tmax.
-// Strict advance: a child is entered first only if its plane lies strictly beyond tmin
-// (kdStepInner: thit <= tmin goes second), so the leaf just left is never entered again.
+// kd-restart (Foley and Sugerman, "KD-Tree Acceleration Structures for a GPU Raytracer", Graphics
+// Hardware 2005, section 4.1): stackless. The descent drops the stack traversal's push and only
+// shortens tmax; after a leaf without an accepted hit, tmin becomes the leaf's exit and the search
+// restarts at the root, until the exit reaches the global tmax. Strict advance: a child is entered
+// first only if its plane lies strictly beyond tmin (kdStepInner: thit <= tmin goes second), so
+// the leaf just left is never entered again.
 #ifndef VKRAY_KD_RESTART_GLSL
 #define VKRAY_KD_RESTART_GLSL
 
@@ -38,7 +39,7 @@ Hit kdRestartTrace(vec3 origin, vec3 dir, float tmax, const bool anyHit) {
             kdVisitLeaf(n, w, anyHit, best);
             if (kdFinished(best, anyHit, segMax) || kdCompare(pass, segMax, maxAxis, globalMax, globalMaxAxis) >= 0) {
                 passDone = true;
-            } else {  // continue-search(): restart at the root past this leaf
+            } else {  // restart at the root past this leaf
                 segMin = segMax;
                 minAxis = maxAxis;
                 segMax = globalMax;

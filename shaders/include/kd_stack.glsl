@@ -1,6 +1,7 @@
-// The standard kd-tree traversal with a per-ray stack (seed 000, figure 9; Foley and Sugerman
-// 2005, section 3): the baseline kd-restart and kd-backtrack are measured against. The far child is
-// pushed with its segment; after a leaf without an accepted hit, the nearest pending one is popped.
+// The standard kd-tree traversal with a per-ray stack (Foley and Sugerman, "KD-Tree Acceleration
+// Structures for a GPU Raytracer", Graphics Hardware 2005, section 3): the baseline kd-restart and
+// kd-backtrack are measured against. The far child is pushed with its segment; after a leaf without
+// an accepted hit, the nearest pending one is popped.
 #ifndef VKRAY_KD_STACK_GLSL
 #define VKRAY_KD_STACK_GLSL
 
@@ -49,7 +50,7 @@ Hit kdStackTrace(vec3 origin, vec3 dir, float tmax, const bool anyHit) {
             kdVisitLeaf(n, w, anyHit, best);
             if (kdFinished(best, anyHit, segMax) || top == 0) {
                 passDone = true;
-            } else {  // continue-search(): pop the nearest pending node
+            } else {  // pop the nearest pending node
                 --top;
                 node = stackNode[top];
                 minAxis = stackAxes[top] >> 2;

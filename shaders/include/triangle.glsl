@@ -109,12 +109,13 @@ bool intersectTriangle(WatertightRay r, GpuTriangle tri, float tmax, out float t
 
 // Whether a hit at t on a triangle of identity `original` beats `best` in the closest-hit order that
 // every kernel and the CPU share (docs/shading.md): smaller t, and on exactly equal t the lower
-// original triangle index (DESIGN.md, "Triangle identity"). The BVH reorders the triangle buffer and
-// the kd-tree lists a triangle in several leaves, so the order a traversal meets triangles must not
-// decide ties: brute force, walking slots in index order with a strict `<`, would agree with itself
-// but not with them. (Measured before this rule: the kernels named another triangle than the
-// brute-force kernel on up to 5% of the camera rays of scenes/stress/, docs/stability.md.) With no
-// hit yet, best.original is 0, which no index is below: a hit at exactly the ray's tmax never wins.
+// original triangle index (triangle identity, the load order: docs/scene-format.md). The BVH
+// reorders the triangle buffer and the kd-tree lists a triangle in several leaves, so the order a
+// traversal meets triangles must not decide ties: brute force, walking slots in index order with a
+// strict `<`, would agree with itself but not with them. (Measured before this rule: the kernels
+// named another triangle than the brute-force kernel on up to 5% of the camera rays of
+// scenes/stress/, docs/stability.md.) With no hit yet, best.original is 0, which no index is below:
+// a hit at exactly the ray's tmax never wins.
 bool beats(float t, uint original, Hit best) {
     return t < best.t || (t == best.t && original < best.original);
 }
