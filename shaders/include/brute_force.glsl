@@ -6,6 +6,8 @@
 #ifndef VKRAY_BRUTE_FORCE_GLSL
 #define VKRAY_BRUTE_FORCE_GLSL
 
+#include "accelerator.glsl"
+#include "bindings.glsl"
 #include "trace_status.glsl"
 #include "triangle.glsl"
 

@@ -10,6 +10,9 @@
 #ifndef VKRAY_BVH_TRAVERSAL_GLSL
 #define VKRAY_BVH_TRAVERSAL_GLSL
 
+#include "accelerator.glsl"
+#include "bindings.glsl"
+#include "constants.glsl"
 #include "shared/bvh_layout.h"
 #include "trace_status.glsl"
 #include "triangle.glsl"
@@ -18,10 +21,6 @@ layout(std430, set = 0, binding = VKRAY_BINDING_ACCEL_NODES) readonly buffer Bvh
     GpuBvhNode bvhNodes[];
 };
 
-#define kBvhInf uintBitsToFloat(0x7F800000u)
-// Float rounding of the slab distances: the far distance is widened by about 2 gamma(3) (Ize,
-// "Robust BVH Ray Traversal", JCGT 2(2), 2013), so a box never rejects a ray that touches it.
-const float kSlabWiden = 1.0 + 4.0e-7;
 // Below this magnitude a direction component counts as zero: its inverse would overflow.
 const float kFlatDirection = 1.0e-30;
 
@@ -50,11 +49,12 @@ bool hitsBox(GpuBvhNode node, BoxRay r, float tLimit, out float tEnter) {
     vec3 tNear = min(t0, t1), tFar = max(t0, t1);
     if (r.anyFlat) {  // rare: only rays with a zero direction component pay for it
         const bvec3 inside = bvec3(uvec3(lessThanEqual(node.lo, r.origin)) * uvec3(lessThanEqual(r.origin, node.hi)));
-        tNear = mix(tNear, mix(vec3(kBvhInf), vec3(-kBvhInf), inside), r.flat_);
-        tFar = mix(tFar, mix(vec3(-kBvhInf), vec3(kBvhInf), inside), r.flat_);
+        tNear = mix(tNear, mix(vec3(kInfinity), vec3(-kInfinity), inside), r.flat_);
+        tFar = mix(tFar, mix(vec3(-kInfinity), vec3(kInfinity), inside), r.flat_);
     }
     tEnter = max(max(tNear.x, tNear.y), max(tNear.z, 0.0));
-    const float tExit = min(min(tFar.x, tFar.y), min(tFar.z, tLimit)) * kSlabWiden;
+    // The far distance widened for float rounding, so a box never rejects a ray that touches it.
+    const float tExit = min(min(tFar.x, tFar.y), min(tFar.z, tLimit)) * kRoundingSlack;
     return tEnter <= tExit;
 }
 
@@ -130,7 +130,7 @@ Hit traceClosest(vec3 origin, vec3 dir, float tmax) {
             if (!done) {
                 --top;
                 node = stackNode[top];
-                skip = stackEnter[top] > best.t * kSlabWiden;
+                skip = stackEnter[top] > best.t * kRoundingSlack;
             }
         }
     }

@@ -5,6 +5,8 @@
 #ifndef VKRAY_CAMERA_GLSL
 #define VKRAY_CAMERA_GLSL
 
+#include "bindings.glsl"
+
 vec3 primaryDirection(uvec2 pixel, uvec2 imageSize) {
     const vec2 half_ = vec2(imageSize) * 0.5;
     const float a = params.u.w * ((float(pixel.x) + 0.5) - half_.x) / half_.x;

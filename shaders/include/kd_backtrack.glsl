@@ -8,6 +8,9 @@
 #define VKRAY_KD_BACKTRACK_GLSL
 
 #include "kd_common.glsl"
+#include "shared/kd_layout.h"
+#include "trace_status.glsl"
+#include "triangle.glsl"
 
 layout(std430, set = 0, binding = VKRAY_BINDING_ACCEL_EXTRA) readonly buffer KdExtra {
     KdNodeExtra kdExtra[];

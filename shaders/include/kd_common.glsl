@@ -19,7 +19,9 @@
 #ifndef VKRAY_KD_COMMON_GLSL
 #define VKRAY_KD_COMMON_GLSL
 
+#include "accelerator.glsl"
 #include "bindings.glsl"
+#include "constants.glsl"
 #include "shared/kd_layout.h"
 #include "trace_status.glsl"
 #include "triangle.glsl"
@@ -40,7 +42,6 @@ uint kdFirstIndex(uvec2 n) { return n.x; }
 uint kdTriangleCount(uvec2 n) { return n.y >> 2; }
 
 const float kKdSmallestNormal = 1.17549435e-38;
-#define kKdInfinity uintBitsToFloat(0x7F800000u)
 
 struct KdRay {
     vec3 origin;
@@ -168,7 +169,7 @@ int kdStepInner(KdRay r, uvec2 n, uint index, float tmin, uint tminAxis, float t
     const uint axis = kdAxis(n);
     const float split = kdSplit(n);
     const uint below = index + 1u, above = kdAboveChild(n);
-    thit = kKdInfinity;
+    thit = kInfinity;
     if (r.parallel[axis]) {
         first = r.origin[axis] < split ? below : above;
         if (r.origin[axis] == split) {  // in the plane: the mask's side; other passes take the other
@@ -218,17 +219,14 @@ void kdVisitLeaf(uvec2 n, WatertightRay w, bool anyHit, inout Hit best) {
     countTriangles(tested);
 }
 
-// Slack of the stop rule below: about 3 ulps, as the BVH's kSlabWiden.
-const float kKdStopSlack = 1.0 + 4.0e-7;
-
 // Whether the search may stop after a leaf whose segment ends at `exit`: a hit before it, with a
-// few ulps to spare. A hit at the exit may tie with a triangle of the next leaf (a face lying in
+// few ulps to spare (kRoundingSlack). A hit at the exit may tie with a triangle of the next leaf (a face lying in
 // the split plane, an edge on it) whose index is lower and wins (beats()); and the triangle test
 // and the plane hit round differently: a triangle of the next leaf can be hit an ulp before the
 // plane's computed t (measured on scenes/stress/split-planes.scene: a ray through the edge where
 // two faces lying in split planes x = 0 and y = 2 meet). That leaf is visited too.
 bool kdFinished(Hit best, bool anyHit, float exit) {
-    return best.triangle >= 0 && (anyHit || best.t * kKdStopSlack < exit);
+    return best.triangle >= 0 && (anyHit || best.t * kRoundingSlack < exit);
 }
 
 // After a pass: whether another follows. Not when the pass was cut short (its node loop ran out:

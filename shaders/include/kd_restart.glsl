@@ -8,6 +8,8 @@
 #define VKRAY_KD_RESTART_GLSL
 
 #include "kd_common.glsl"
+#include "trace_status.glsl"
+#include "triangle.glsl"
 
 // Passes (KdPass) are an outer loop: llvmpipe runs every statement of a loop body for all lanes,
 // masked, so pass switching inside the node loop slowed every step (measured 1.5x).

@@ -6,6 +6,9 @@
 #define VKRAY_KD_STACK_GLSL
 
 #include "kd_common.glsl"
+#include "shared/kd_layout.h"
+#include "trace_status.glsl"
+#include "triangle.glsl"
 
 // Passes (KdPass) are an outer loop, as in kd_restart.glsl.
 Hit kdStackTrace(vec3 origin, vec3 dir, float tmax, const bool anyHit) {

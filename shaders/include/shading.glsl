@@ -3,10 +3,12 @@
 #ifndef VKRAY_SHADING_GLSL
 #define VKRAY_SHADING_GLSL
 
+#include "accelerator.glsl"
+#include "bindings.glsl"
+#include "constants.glsl"
 #include "ray_offset.glsl"
 #include "trace_status.glsl"
-
-#define kInfinity uintBitsToFloat(0x7F800000u)
+#include "triangle.glsl"
 
 struct SurfacePoint {
     vec3 position;  // from barycentrics: more accurate than origin + t * dir far from the origin
