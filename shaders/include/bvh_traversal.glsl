@@ -3,16 +3,16 @@
 //
 // Closest hit: one loop iteration per node. At an inner node both children's boxes are tested;
 // the nearer one is visited next and the farther one pushed, with its entry distance, on a short
-// stack in local memory; a popped node entered beyond the best hit so far is skipped. Leaves test
-// their triangles four per iteration of an inner loop, so a ray's iterations stay far below
-// lavapipe's budget of 65535 for all the loops of a pixel (trace_status.glsl). Any hit (shadow rays)
-// walks the same way without ordering and stops at the first triangle hit.
+// stack in local memory; a popped node entered beyond the best hit so far is skipped. Any hit
+// (shadow rays) walks the same way without ordering and stops at the first triangle hit. Leaves
+// test their triangles in the loop of leaf_triangles.glsl.
 #ifndef VKRAY_BVH_TRAVERSAL_GLSL
 #define VKRAY_BVH_TRAVERSAL_GLSL
 
 #include "accelerator.glsl"
 #include "bindings.glsl"
 #include "constants.glsl"
+#include "leaf_triangles.glsl"
 #include "shared/bvh_layout.h"
 #include "trace_status.glsl"
 #include "triangle.glsl"
@@ -58,19 +58,8 @@ bool hitsBox(GpuBvhNode node, BoxRay r, float tLimit, out float tEnter) {
     return tEnter <= tExit;
 }
 
-// Tests a leaf's triangles, four per iteration; false if the driver cut the loop short.
-bool closestInLeaf(GpuBvhNode leaf, WatertightRay ray, inout Hit best) {
-    const uint end = leaf.rightOrFirst + leaf.count;
-    uint i = leaf.rightOrFirst;
-    for (; i < end; i += 4) {
-        closestInSlot(i, end, ray, best);
-        closestInSlot(i + 1, end, ray, best);
-        closestInSlot(i + 2, end, ray, best);
-        closestInSlot(i + 3, end, ray, best);
-    }
-    countTriangles(leaf.count);
-    return i >= end;
-}
+// Leaves are runs of the triangle buffer in leaf order: Hit.triangle is a slot of it.
+uint slotTriangle(uint slot) { return slot; }
 
 // Closest hit in (0, tmax); Hit.triangle is a slot of the triangle buffer (leaf order).
 Hit traceClosest(vec3 origin, vec3 dir, float tmax) {
@@ -99,10 +88,8 @@ Hit traceClosest(vec3 origin, vec3 dir, float tmax) {
             countNode();
             if (n.count > 0u) {
                 countLeaf();
-                if (!closestInLeaf(n, ray, best)) {
-                    gLoopCutShort = true;
-                    return best;
-                }
+                // Cut short by the driver (flagged there): the walk ends.
+                if (!testSlots(n.rightOrFirst, n.rightOrFirst + n.count, ray, false, best)) return best;
             } else {
                 const uint left = node + 1u, right = n.rightOrFirst;
                 float tl, tr;
@@ -147,11 +134,12 @@ bool traceAny(vec3 origin, vec3 dir, float tmax) {
     const BoxRay boxRay = makeBoxRay(origin, dir);
     if (params.counts.x == 0u || !hitsBox(bvhNodes[0], boxRay, tmax, tRoot)) return false;
     const WatertightRay ray = makeWatertightRay(origin, dir);
+    Hit hit = noHit(tmax);  // stays empty until the occluder that ends the walk
 
     uint stackNode[VKRAY_BVH_STACK_SIZE];
     int top = 0;
     uint node = 0;
-    bool done = false, occluded = false;
+    bool done = false;
     int iteration = 0;
     for (; iteration < VKRAY_BVH_MAX_ITERATIONS && !done; ++iteration) {
         const GpuBvhNode n = bvhNodes[node];
@@ -159,17 +147,8 @@ bool traceAny(vec3 origin, vec3 dir, float tmax) {
         bool descend = false;
         if (n.count > 0u) {
             countLeaf();
-            const uint end = n.rightOrFirst + n.count;
-            uint i = n.rightOrFirst;
-            for (; i < end && !occluded; i += 4)
-                occluded = occludesInSlot(i, end, ray, tmax) || occludesInSlot(i + 1, end, ray, tmax) ||
-                           occludesInSlot(i + 2, end, ray, tmax) || occludesInSlot(i + 3, end, ray, tmax);
-            countTriangles(min(i, end) - n.rightOrFirst);
-            if (!occluded && i < end) {
-                gLoopCutShort = true;
-                return false;
-            }
-            if (occluded) return true;
+            if (!testSlots(n.rightOrFirst, n.rightOrFirst + n.count, ray, true, hit)) return false;
+            if (hit.triangle >= 0) return true;
         } else {
             const uint left = node + 1u, right = n.rightOrFirst;
             float tl, tr;

@@ -14,14 +14,15 @@
 //  - a leaf's triangles are tested on the whole ray (0, best.t]; the search ends once the best hit
 //    lies strictly before the current leaf's exit (a hit beyond the leaf does not end it; one at
 //    the exit may still lose a tie to the next leaf); exact ties in t go to the lowest index.
-// Loops: one iteration per node step, leaf triangles 4 per iteration, because llvmpipe ends all
-// loops of an invocation after 65535 iterations in total (trace_status.glsl).
+// Loops: one iteration per node step, leaf triangles 4 per iteration (leaf_triangles.glsl), because
+// llvmpipe ends all loops of an invocation after 65535 iterations in total (trace_status.glsl).
 #ifndef VKRAY_KD_COMMON_GLSL
 #define VKRAY_KD_COMMON_GLSL
 
 #include "accelerator.glsl"
 #include "bindings.glsl"
 #include "constants.glsl"
+#include "leaf_triangles.glsl"
 #include "shared/kd_layout.h"
 #include "trace_status.glsl"
 #include "triangle.glsl"
@@ -198,25 +199,13 @@ uint kdDescend(int visit, uvec2 n, uint first, uint second, float thit, inout fl
     return visit == kKdSecond ? second : first;
 }
 
-void kdTestSlot(uint slot, uint end, WatertightRay w, inout Hit best) {
-    if (slot < end) closestTriangle(kdIndices[slot], w, best);
-}
+// A leaf lists its triangles in kdIndices: a triangle may lie in several leaves.
+uint slotTriangle(uint slot) { return kdIndices[slot]; }
 
-// The leaf's triangles against (0, best.t), 4 per iteration; with anyHit, stops at the first hit.
-void kdVisitLeaf(uvec2 n, WatertightRay w, bool anyHit, inout Hit best) {
+// The leaf's triangles against (0, best.t); with anyHit, stops at the first hit.
+void kdVisitLeaf(uvec2 n, WatertightRay w, const bool anyHit, inout Hit best) {
     countLeaf();
-    uint i = kdFirstIndex(n);
-    const uint end = i + kdTriangleCount(n);
-    uint tested = 0u;
-    for (; i < end && !(anyHit && best.triangle >= 0); i += 4u) {
-        kdTestSlot(i, end, w, best);
-        kdTestSlot(i + 1u, end, w, best);
-        kdTestSlot(i + 2u, end, w, best);
-        kdTestSlot(i + 3u, end, w, best);
-        tested += min(4u, end - i);
-    }
-    if (i < end && !(anyHit && best.triangle >= 0)) gLoopCutShort = true;
-    countTriangles(tested);
+    testSlots(kdFirstIndex(n), kdFirstIndex(n) + kdTriangleCount(n), w, anyHit, best);
 }
 
 // Whether the search may stop after a leaf whose segment ends at `exit`: a hit before it, with a

@@ -102,11 +102,6 @@ bool hitTriangle(WatertightRay r, GpuTriangle tri, out float t, out vec2 uv) {
     return tHit > kTNoise * max(abs(za), max(abs(zb), abs(zc)));
 }
 
-// Hit with t in (0, tmax)?
-bool intersectTriangle(WatertightRay r, GpuTriangle tri, float tmax, out float t, out vec2 uv) {
-    return hitTriangle(r, tri, t, uv) && t < tmax;
-}
-
 // Whether a hit at t on a triangle of identity `original` beats `best` in the closest-hit order that
 // every kernel and the CPU share (docs/shading.md): smaller t, and on exactly equal t the lower
 // original triangle index (triangle identity, the load order: docs/scene-format.md). The BVH
@@ -120,7 +115,7 @@ bool beats(float t, uint original, Hit best) {
     return t < best.t || (t == best.t && original < best.original);
 }
 
-// Tests the triangle in `slot` and keeps its hit if it beats `best`.
+// Tests the triangle in `slot` of the triangle buffer and keeps its hit if it beats `best`.
 void closestTriangle(uint slot, WatertightRay ray, inout Hit best) {
     const GpuTriangle tri = triangles[slot];
     float t;
@@ -131,18 +126,6 @@ void closestTriangle(uint slot, WatertightRay ray, inout Hit best) {
         best.triangle = int(slot);
         best.original = tri.original;
     }
-}
-
-// Slot i of the triangle buffer, when below `end` (loops test several slots per iteration, the
-// last batch partly past the end): the closest-hit update, and the any-hit test.
-void closestInSlot(uint i, uint end, WatertightRay ray, inout Hit best) {
-    if (i < end) closestTriangle(i, ray, best);
-}
-
-bool occludesInSlot(uint i, uint end, WatertightRay ray, float tmax) {
-    float t;
-    vec2 uv;
-    return i < end && intersectTriangle(ray, triangles[i], tmax, t, uv);
 }
 
 #endif
