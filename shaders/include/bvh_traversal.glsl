@@ -1,11 +1,11 @@
 // The `bvh` accelerator (accel/bvh: AAC after Gu et al. 2013, or the binned-SAH reference): a
 // depth-first array of 32-byte nodes (shared/bvh_layout.h) over the triangle buffer in leaf order.
 //
-// Closest hit: one loop iteration per node. At an inner node both children's boxes are tested;
-// the nearer one is visited next and the farther one pushed, with its entry distance, on a short
-// stack in local memory; a popped node entered beyond the best hit so far is skipped. Any hit
-// (shadow rays) walks the same way without ordering and stops at the first triangle hit. Leaves
-// test their triangles in the loop of leaf_triangles.glsl.
+// One loop for both queries, one iteration per node. Closest hit: at an inner node both children's
+// boxes are tested; the nearer one is visited next and the farther one pushed, with its entry
+// distance, on a short stack in local memory; a popped node entered beyond the best hit so far is
+// skipped. Any hit (shadow rays) walks the same way without ordering and stops at the first
+// triangle hit. Leaves test their triangles in the loop of leaf_triangles.glsl.
 #ifndef VKRAY_BVH_TRAVERSAL_GLSL
 #define VKRAY_BVH_TRAVERSAL_GLSL
 
@@ -61,8 +61,9 @@ bool hitsBox(GpuBvhNode node, BoxRay r, float tLimit, out float tEnter) {
 // Leaves are runs of the triangle buffer in leaf order: Hit.triangle is a slot of it.
 uint slotTriangle(uint slot) { return slot; }
 
-// Closest hit in (0, tmax); Hit.triangle is a slot of the triangle buffer (leaf order).
-Hit traceClosest(vec3 origin, vec3 dir, float tmax) {
+// Closest hit in (0, tmax), or with anyHit (a constant at both calls below, so the compiler folds
+// every test of it) the first hit found. For any hit best.t stays tmax until the walk ends.
+Hit bvhTrace(vec3 origin, vec3 dir, float tmax, const bool anyHit) {
     Hit best = noHit(tmax);
     float tRoot;
     const BoxRay boxRay = makeBoxRay(origin, dir);
@@ -70,7 +71,7 @@ Hit traceClosest(vec3 origin, vec3 dir, float tmax) {
     const WatertightRay ray = makeWatertightRay(origin, dir);
 
     uint stackNode[VKRAY_BVH_STACK_SIZE];
-    float stackEnter[VKRAY_BVH_STACK_SIZE];
+    float stackEnter[VKRAY_BVH_STACK_SIZE];  // closest hit only
     int top = 0;
     uint node = 0;
     // A popped node entered beyond the best hit found since it was pushed is skipped: that costs
@@ -79,6 +80,7 @@ Hit traceClosest(vec3 origin, vec3 dir, float tmax) {
     // aligned geometry) was measured to hit one ulp before the box's computed entry; compared
     // unwidened, that node was skipped and a closer hit, or an equal-t one of lower index
     // (beats(), triangle.glsl), lost (scenes/stress/split-planes.scene, 3 of 3969 camera rays).
+    // Any hit never skips: it ends at its first hit.
     bool skip = false, done = false;
     int iteration = 0;
     for (; iteration < VKRAY_BVH_MAX_ITERATIONS && !done; ++iteration) {
@@ -88,8 +90,10 @@ Hit traceClosest(vec3 origin, vec3 dir, float tmax) {
             countNode();
             if (n.count > 0u) {
                 countLeaf();
-                // Cut short by the driver (flagged there): the walk ends.
-                if (!testSlots(n.rightOrFirst, n.rightOrFirst + n.count, ray, false, best)) return best;
+                const uint first = n.rightOrFirst;
+                // Cut short by the driver (flagged there), or an occluder found: the walk ends.
+                if (!testSlots(first, first + n.count, ray, anyHit, best) || (anyHit && best.triangle >= 0))
+                    return best;
             } else {
                 const uint left = node + 1u, right = n.rightOrFirst;
                 float tl, tr;
@@ -100,9 +104,10 @@ Hit traceClosest(vec3 origin, vec3 dir, float tmax) {
                         gLoopCutShort = true;
                         return best;
                     }
-                    const bool leftFirst = tl <= tr;  // near child first, the far one waits
+                    // Closest hit: near child first, the far one waits. Any hit: left first.
+                    const bool leftFirst = anyHit || tl <= tr;
                     stackNode[top] = leftFirst ? right : left;
-                    stackEnter[top] = leftFirst ? tr : tl;
+                    if (!anyHit) stackEnter[top] = leftFirst ? tr : tl;
                     ++top;
                     node = leftFirst ? left : right;
                     descend = true;
@@ -117,7 +122,7 @@ Hit traceClosest(vec3 origin, vec3 dir, float tmax) {
             if (!done) {
                 --top;
                 node = stackNode[top];
-                skip = stackEnter[top] > best.t * kRoundingSlack;
+                if (!anyHit) skip = stackEnter[top] > best.t * kRoundingSlack;
             }
         }
     }
@@ -128,55 +133,7 @@ Hit traceClosest(vec3 origin, vec3 dir, float tmax) {
     return best;
 }
 
-// Any hit in (0, tmax): shadow rays stop at the first occluder.
-bool traceAny(vec3 origin, vec3 dir, float tmax) {
-    float tRoot;
-    const BoxRay boxRay = makeBoxRay(origin, dir);
-    if (params.counts.x == 0u || !hitsBox(bvhNodes[0], boxRay, tmax, tRoot)) return false;
-    const WatertightRay ray = makeWatertightRay(origin, dir);
-    Hit hit = noHit(tmax);  // stays empty until the occluder that ends the walk
-
-    uint stackNode[VKRAY_BVH_STACK_SIZE];
-    int top = 0;
-    uint node = 0;
-    bool done = false;
-    int iteration = 0;
-    for (; iteration < VKRAY_BVH_MAX_ITERATIONS && !done; ++iteration) {
-        const GpuBvhNode n = bvhNodes[node];
-        countNode();
-        bool descend = false;
-        if (n.count > 0u) {
-            countLeaf();
-            if (!testSlots(n.rightOrFirst, n.rightOrFirst + n.count, ray, true, hit)) return false;
-            if (hit.triangle >= 0) return true;
-        } else {
-            const uint left = node + 1u, right = n.rightOrFirst;
-            float tl, tr;
-            const bool hitLeft = hitsBox(bvhNodes[left], boxRay, tmax, tl);
-            const bool hitRight = hitsBox(bvhNodes[right], boxRay, tmax, tr);
-            if (hitLeft && hitRight) {
-                if (top == VKRAY_BVH_STACK_SIZE) {
-                    gLoopCutShort = true;
-                    return false;
-                }
-                stackNode[top++] = right;
-                node = left;
-                descend = true;
-            } else if (hitLeft || hitRight) {
-                node = hitLeft ? left : right;
-                descend = true;
-            }
-        }
-        if (!descend) {
-            done = top == 0;
-            if (!done) node = stackNode[--top];
-        }
-    }
-    if (!done) {
-        if (iteration >= VKRAY_BVH_MAX_ITERATIONS) ++gCappedRays;
-        else gLoopCutShort = true;
-    }
-    return false;
-}
+Hit traceClosest(vec3 origin, vec3 dir, float tmax) { return bvhTrace(origin, dir, tmax, false); }
+bool traceAny(vec3 origin, vec3 dir, float tmax) { return bvhTrace(origin, dir, tmax, true).triangle >= 0; }
 
 #endif
