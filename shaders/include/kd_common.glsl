@@ -1,7 +1,9 @@
 // What the three kd-tree traversals share (Foley and Sugerman, "KD-Tree Acceleration Structures
-// for a GPU Raytracer", Graphics Hardware 2005): the buffers of shared/kd_layout.h, node
-// accessors, the ray-box clip, one inner-node step, and the leaf test. The float twins of
-// host/accel/kd/kd_traversal.cpp, whose header explains the robustness rules; in short:
+// for a GPU Raytracer", Graphics Hardware 2005): the buffers of shared/kd_layout.h, node accessors,
+// the ray-box clip, one inner-node step, the leaf test, and the walk over passes with the two
+// queries built on it; each traversal include defines only kdWalkPass(), its walk of one pass.
+// The float twins of host/accel/kd/kd_traversal.cpp (KdTracer::walk and the walkPass of each
+// tracer), whose header explains the robustness rules; in short:
 //  - children in ray order by the direction's sign; [tmin, tmax] goes first only if thit >= tmax,
 //    second only if thit <= tmin (a plane behind the origin has thit < 0 <= tmin), else both;
 //  - direction components of +-0 (or denormal: lavapipe flushes them) never divide: such a ray
@@ -231,5 +233,40 @@ void kdEndLoop(bool done, int steps) {
     if (steps >= VKRAY_KD_MAX_STEPS) ++gCappedRays;
     else gLoopCutShort = true;
 }
+
+// One pass of the walk, defined by each traversal include: from the root, over the segment
+// [segMin, segMax] of the ray already clipped to the root box, visiting leaves (kdVisitLeaf) until
+// kdFinished or nothing is left. Each node step counts in `steps`; the loop stops at
+// VKRAY_KD_MAX_STEPS. Returns whether the pass ended by its own rule (false: the cap, or the driver).
+bool kdWalkPass(KdRay r, WatertightRay w, const bool anyHit, float segMin, uint minAxis, float segMax,
+                uint maxAxis, inout KdPass pass, inout int steps, inout Hit best);
+
+// The walk (KdTracer::walk): passes over the tree until every pass the ray needs is walked. Passes
+// are an outer loop: llvmpipe runs every statement of a loop body for all lanes, masked, so pass
+// switching inside the node loop slowed every step (measured 1.5x). With anyHit (a constant at
+// both calls below, so the compiler folds it) the first hit found ends the walk.
+Hit kdTrace(vec3 origin, vec3 dir, float tmax, const bool anyHit) {
+    Hit best = noHit(tmax);
+    const KdRay r = makeKdRay(origin, dir);
+    const WatertightRay w = makeWatertightRay(origin, dir);
+    KdPass pass = kdFirstPass();
+    uvec2 walked = uvec2(0u);
+    int steps = 0;
+    bool passDone = true;
+    for (uint passes = 0u; passes < 8u; ++passes) {
+        // The root box clip in the pass too: its faces may tie with each other.
+        float segMin = 0.0, segMax = tmax;
+        uint minAxis = kKdHardBound, maxAxis = kKdHardBound;
+        passDone = !kdClipBox(r, kdTree.lo, kdTree.hi, segMin, minAxis, segMax, maxAxis, pass) ||
+                   kdWalkPass(r, w, anyHit, segMin, minAxis, segMax, maxAxis, pass, steps, best);
+        // Another pass for an in-plane node or a tie met, or the end.
+        if (!kdAnotherPass(passDone, anyHit, best, pass, walked)) break;
+    }
+    kdEndLoop(passDone, steps);
+    return best;
+}
+
+Hit traceClosest(vec3 origin, vec3 dir, float tmax) { return kdTrace(origin, dir, tmax, false); }
+bool traceAny(vec3 origin, vec3 dir, float tmax) { return kdTrace(origin, dir, tmax, true).triangle >= 0; }
 
 #endif
