@@ -15,22 +15,33 @@
 // index list).
 uint slotTriangle(uint slot);
 
+// Any hit asks only whether: it records the triangle in `best` and keeps best.t, the ray's tmax, so
+// it neither loads the triangle's identity nor computes uv as the closest-hit update does.
+void anyTriangle(uint triangle, WatertightRay ray, inout Hit best) {
+    float t;
+    vec2 uv;
+    if (hitTriangle(ray, triangles[triangle], t, uv) && t < best.t) best.triangle = int(triangle);
+}
+
 // Slot `slot` when below `end`: the last iteration's four slots may run past the end.
-void testSlot(uint slot, uint end, WatertightRay ray, inout Hit best) {
-    if (slot < end) closestTriangle(slotTriangle(slot), ray, best);
+void testSlot(uint slot, uint end, WatertightRay ray, const bool anyHit, inout Hit best) {
+    if (slot < end) {
+        if (anyHit) anyTriangle(slotTriangle(slot), ray, best);
+        else closestTriangle(slotTriangle(slot), ray, best);
+    }
 }
 
 // Tests slots [begin, end) on (0, best.t) and keeps every hit that beats `best` (beats(),
 // triangle.glsl). With anyHit (a constant at every call, so the compiler folds it) the loop ends at
-// the first hit: best.triangle >= 0. Returns false, with the pixel flagged, if the driver ended the
-// loop before either; the triangles counted are those the loop reached.
+// the first hit: best.triangle >= 0, best.t unchanged. Returns false, with the pixel flagged, if the
+// driver ended the loop before either; the triangles counted are those the loop reached.
 bool testSlots(uint begin, uint end, WatertightRay ray, const bool anyHit, inout Hit best) {
     uint i = begin;
     for (; i < end && !(anyHit && best.triangle >= 0); i += 4u) {  // 4 slots per iteration
-        testSlot(i, end, ray, best);
-        testSlot(i + 1u, end, ray, best);
-        testSlot(i + 2u, end, ray, best);
-        testSlot(i + 3u, end, ray, best);
+        testSlot(i, end, ray, anyHit, best);
+        testSlot(i + 1u, end, ray, anyHit, best);
+        testSlot(i + 2u, end, ray, anyHit, best);
+        testSlot(i + 3u, end, ray, anyHit, best);
     }
     countTriangles(min(i, end) - begin);
     const bool complete = i >= end || (anyHit && best.triangle >= 0);
