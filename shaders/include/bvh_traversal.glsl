@@ -1,15 +1,18 @@
 // The `bvh` accelerator (accel/bvh: AAC after Gu et al. 2013, or the binned-SAH reference): a
 // depth-first array of 32-byte nodes (shared/bvh_layout.h) over the triangle buffer in leaf order.
 //
-// Closest hit: one loop iteration per node. At an inner node both children's boxes are tested;
-// the nearer one is visited next and the farther one pushed, with its entry distance, on a short
-// stack in local memory; a popped node entered beyond the best hit so far is skipped. Leaves test
-// their triangles four per iteration of an inner loop, so a ray's iterations stay far below
-// lavapipe's budget of 65535 for all the loops of a pixel (trace_status.glsl). Any hit (shadow rays)
-// walks the same way without ordering and stops at the first triangle hit.
+// One loop for both queries, one iteration per node. Closest hit: at an inner node both children's
+// boxes are tested; the nearer one is visited next and the farther one pushed, with its entry
+// distance, on a short stack in local memory; a popped node entered beyond the best hit so far is
+// skipped. Any hit (shadow rays) walks the same way without ordering and stops at the first
+// triangle hit. Leaves test their triangles in the loop of leaf_triangles.glsl.
 #ifndef VKRAY_BVH_TRAVERSAL_GLSL
 #define VKRAY_BVH_TRAVERSAL_GLSL
 
+#include "accelerator.glsl"
+#include "bindings.glsl"
+#include "constants.glsl"
+#include "leaf_triangles.glsl"
 #include "shared/bvh_layout.h"
 #include "trace_status.glsl"
 #include "triangle.glsl"
@@ -18,10 +21,6 @@ layout(std430, set = 0, binding = VKRAY_BINDING_ACCEL_NODES) readonly buffer Bvh
     GpuBvhNode bvhNodes[];
 };
 
-#define kBvhInf uintBitsToFloat(0x7F800000u)
-// Float rounding of the slab distances: the far distance is widened by about 2 gamma(3) (Ize,
-// "Robust BVH Ray Traversal", JCGT 2(2), 2013), so a box never rejects a ray that touches it.
-const float kSlabWiden = 1.0 + 4.0e-7;
 // Below this magnitude a direction component counts as zero: its inverse would overflow.
 const float kFlatDirection = 1.0e-30;
 
@@ -50,30 +49,21 @@ bool hitsBox(GpuBvhNode node, BoxRay r, float tLimit, out float tEnter) {
     vec3 tNear = min(t0, t1), tFar = max(t0, t1);
     if (r.anyFlat) {  // rare: only rays with a zero direction component pay for it
         const bvec3 inside = bvec3(uvec3(lessThanEqual(node.lo, r.origin)) * uvec3(lessThanEqual(r.origin, node.hi)));
-        tNear = mix(tNear, mix(vec3(kBvhInf), vec3(-kBvhInf), inside), r.flat_);
-        tFar = mix(tFar, mix(vec3(-kBvhInf), vec3(kBvhInf), inside), r.flat_);
+        tNear = mix(tNear, mix(vec3(kInfinity), vec3(-kInfinity), inside), r.flat_);
+        tFar = mix(tFar, mix(vec3(-kInfinity), vec3(kInfinity), inside), r.flat_);
     }
     tEnter = max(max(tNear.x, tNear.y), max(tNear.z, 0.0));
-    const float tExit = min(min(tFar.x, tFar.y), min(tFar.z, tLimit)) * kSlabWiden;
+    // The far distance widened for float rounding, so a box never rejects a ray that touches it.
+    const float tExit = min(min(tFar.x, tFar.y), min(tFar.z, tLimit)) * kRoundingSlack;
     return tEnter <= tExit;
 }
 
-// Tests a leaf's triangles, four per iteration; false if the driver cut the loop short.
-bool closestInLeaf(GpuBvhNode leaf, WatertightRay ray, inout Hit best) {
-    const uint end = leaf.rightOrFirst + leaf.count;
-    uint i = leaf.rightOrFirst;
-    for (; i < end; i += 4) {
-        closestInSlot(i, end, ray, best);
-        closestInSlot(i + 1, end, ray, best);
-        closestInSlot(i + 2, end, ray, best);
-        closestInSlot(i + 3, end, ray, best);
-    }
-    countTriangles(leaf.count);
-    return i >= end;
-}
+// Leaves are runs of the triangle buffer in leaf order: Hit.triangle is a slot of it.
+uint slotTriangle(uint slot) { return slot; }
 
-// Closest hit in (0, tmax); Hit.triangle is a slot of the triangle buffer (leaf order).
-Hit traceClosest(vec3 origin, vec3 dir, float tmax) {
+// Closest hit in (0, tmax), or with anyHit (a constant at both calls below, so the compiler folds
+// every test of it) the first hit found. For any hit best.t stays tmax until the walk ends.
+Hit bvhTrace(vec3 origin, vec3 dir, float tmax, const bool anyHit) {
     Hit best = noHit(tmax);
     float tRoot;
     const BoxRay boxRay = makeBoxRay(origin, dir);
@@ -81,7 +71,7 @@ Hit traceClosest(vec3 origin, vec3 dir, float tmax) {
     const WatertightRay ray = makeWatertightRay(origin, dir);
 
     uint stackNode[VKRAY_BVH_STACK_SIZE];
-    float stackEnter[VKRAY_BVH_STACK_SIZE];
+    float stackEnter[VKRAY_BVH_STACK_SIZE];  // closest hit only
     int top = 0;
     uint node = 0;
     // A popped node entered beyond the best hit found since it was pushed is skipped: that costs
@@ -90,6 +80,7 @@ Hit traceClosest(vec3 origin, vec3 dir, float tmax) {
     // aligned geometry) was measured to hit one ulp before the box's computed entry; compared
     // unwidened, that node was skipped and a closer hit, or an equal-t one of lower index
     // (beats(), triangle.glsl), lost (scenes/stress/split-planes.scene, 3 of 3969 camera rays).
+    // Any hit never skips: it ends at its first hit.
     bool skip = false, done = false;
     int iteration = 0;
     for (; iteration < VKRAY_BVH_MAX_ITERATIONS && !done; ++iteration) {
@@ -99,10 +90,10 @@ Hit traceClosest(vec3 origin, vec3 dir, float tmax) {
             countNode();
             if (n.count > 0u) {
                 countLeaf();
-                if (!closestInLeaf(n, ray, best)) {
-                    gLoopCutShort = true;
+                const uint first = n.rightOrFirst;
+                // Cut short by the driver (flagged there), or an occluder found: the walk ends.
+                if (!testSlots(first, first + n.count, ray, anyHit, best) || (anyHit && best.triangle >= 0))
                     return best;
-                }
             } else {
                 const uint left = node + 1u, right = n.rightOrFirst;
                 float tl, tr;
@@ -113,9 +104,10 @@ Hit traceClosest(vec3 origin, vec3 dir, float tmax) {
                         gLoopCutShort = true;
                         return best;
                     }
-                    const bool leftFirst = tl <= tr;  // near child first, the far one waits
+                    // Closest hit: near child first, the far one waits. Any hit: left first.
+                    const bool leftFirst = anyHit || tl <= tr;
                     stackNode[top] = leftFirst ? right : left;
-                    stackEnter[top] = leftFirst ? tr : tl;
+                    if (!anyHit) stackEnter[top] = leftFirst ? tr : tl;
                     ++top;
                     node = leftFirst ? left : right;
                     descend = true;
@@ -130,7 +122,7 @@ Hit traceClosest(vec3 origin, vec3 dir, float tmax) {
             if (!done) {
                 --top;
                 node = stackNode[top];
-                skip = stackEnter[top] > best.t * kSlabWiden;
+                if (!anyHit) skip = stackEnter[top] > best.t * kRoundingSlack;
             }
         }
     }
@@ -141,63 +133,7 @@ Hit traceClosest(vec3 origin, vec3 dir, float tmax) {
     return best;
 }
 
-// Any hit in (0, tmax): shadow rays stop at the first occluder.
-bool traceAny(vec3 origin, vec3 dir, float tmax) {
-    float tRoot;
-    const BoxRay boxRay = makeBoxRay(origin, dir);
-    if (params.counts.x == 0u || !hitsBox(bvhNodes[0], boxRay, tmax, tRoot)) return false;
-    const WatertightRay ray = makeWatertightRay(origin, dir);
-
-    uint stackNode[VKRAY_BVH_STACK_SIZE];
-    int top = 0;
-    uint node = 0;
-    bool done = false, occluded = false;
-    int iteration = 0;
-    for (; iteration < VKRAY_BVH_MAX_ITERATIONS && !done; ++iteration) {
-        const GpuBvhNode n = bvhNodes[node];
-        countNode();
-        bool descend = false;
-        if (n.count > 0u) {
-            countLeaf();
-            const uint end = n.rightOrFirst + n.count;
-            uint i = n.rightOrFirst;
-            for (; i < end && !occluded; i += 4)
-                occluded = occludesInSlot(i, end, ray, tmax) || occludesInSlot(i + 1, end, ray, tmax) ||
-                           occludesInSlot(i + 2, end, ray, tmax) || occludesInSlot(i + 3, end, ray, tmax);
-            countTriangles(min(i, end) - n.rightOrFirst);
-            if (!occluded && i < end) {
-                gLoopCutShort = true;
-                return false;
-            }
-            if (occluded) return true;
-        } else {
-            const uint left = node + 1u, right = n.rightOrFirst;
-            float tl, tr;
-            const bool hitLeft = hitsBox(bvhNodes[left], boxRay, tmax, tl);
-            const bool hitRight = hitsBox(bvhNodes[right], boxRay, tmax, tr);
-            if (hitLeft && hitRight) {
-                if (top == VKRAY_BVH_STACK_SIZE) {
-                    gLoopCutShort = true;
-                    return false;
-                }
-                stackNode[top++] = right;
-                node = left;
-                descend = true;
-            } else if (hitLeft || hitRight) {
-                node = hitLeft ? left : right;
-                descend = true;
-            }
-        }
-        if (!descend) {
-            done = top == 0;
-            if (!done) node = stackNode[--top];
-        }
-    }
-    if (!done) {
-        if (iteration >= VKRAY_BVH_MAX_ITERATIONS) ++gCappedRays;
-        else gLoopCutShort = true;
-    }
-    return false;
-}
+Hit traceClosest(vec3 origin, vec3 dir, float tmax) { return bvhTrace(origin, dir, tmax, false); }
+bool traceAny(vec3 origin, vec3 dir, float tmax) { return bvhTrace(origin, dir, tmax, true).triangle >= 0; }
 
 #endif

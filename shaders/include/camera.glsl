@@ -1,6 +1,11 @@
-// Primary rays by the convention of DESIGN.md ("Camera rays"); the basis comes from the host.
+// Primary rays of the `camera` line of a scene (docs/scene-format.md): through pixel centres, x
+// to the right and y down the image, the vertical field of view spanning the image height. The host
+// supplies the orthonormal basis u, v, w (w points from the look-at centre back to the eye) and the
+// tangents of the half fields of view in u.w and v.w.
 #ifndef VKRAY_CAMERA_GLSL
 #define VKRAY_CAMERA_GLSL
+
+#include "bindings.glsl"
 
 vec3 primaryDirection(uvec2 pixel, uvec2 imageSize) {
     const vec2 half_ = vec2(imageSize) * 0.5;

@@ -1,81 +1,70 @@
-// kd-backtrack (Foley and Sugerman 2005, section 4.2; seed 000): stackless, with a parent link and
-// a box per node in a separate array (VKRAY_BINDING_ACCEL_EXTRA) that only this kernel reads. After
-// a leaf without an accepted hit, tmin becomes the leaf's exit and the search climbs the parent
-// links to the nearest ancestor whose box the remaining segment still crosses for a positive length
-// (exit > tmin), then descends from there. Climbing and descending steps share one loop and its cap.
+// kd-backtrack (Foley and Sugerman, "KD-Tree Acceleration Structures for a GPU Raytracer", Graphics
+// Hardware 2005, section 4.2): stackless, with a parent link and a box per node in a separate array
+// (VKRAY_BINDING_ACCEL_EXTRA) that only this kernel reads. After a leaf without an accepted hit,
+// tmin becomes the leaf's exit and the search climbs the parent links to the nearest ancestor whose
+// box the remaining segment still crosses for a positive length (exit > tmin), then descends from
+// there. Climbing and descending steps share one loop and its cap. The passes around this walk are
+// kdTrace's (kd_common.glsl).
 #ifndef VKRAY_KD_BACKTRACK_GLSL
 #define VKRAY_KD_BACKTRACK_GLSL
 
 #include "kd_common.glsl"
+#include "shared/kd_layout.h"
+#include "trace_status.glsl"
+#include "triangle.glsl"
 
 layout(std430, set = 0, binding = VKRAY_BINDING_ACCEL_EXTRA) readonly buffer KdExtra {
     KdNodeExtra kdExtra[];
 };
 
-// Passes (KdPass) are an outer loop, as in kd_restart.glsl.
-Hit kdBacktrackTrace(vec3 origin, vec3 dir, float tmax, const bool anyHit) {
-    Hit best = noHit(tmax);
-    const KdRay r = makeKdRay(origin, dir);
-    const WatertightRay w = makeWatertightRay(origin, dir);
-    KdPass pass = kdFirstPass();
-    uvec2 walked = uvec2(0u);
-    int steps = 0;
-    bool passDone = true;
-    for (uint passes = 0u; passes < 8u; ++passes) {
-        float segMin = 0.0, segMax = tmax;
-        uint minAxis = kKdHardBound, maxAxis = kKdHardBound;
-        passDone = !kdClipBox(r, kdTree.lo, kdTree.hi, segMin, minAxis, segMax, maxAxis, pass);
-        const float globalMax = segMax;
-        const uint globalMaxAxis = maxAxis;
-        uint node = 0u;
-        bool climbing = false;
-        for (; !passDone && steps < VKRAY_KD_MAX_STEPS; ++steps) {
-            countNode();
-            if (climbing) {  // backtrack(): does this ancestor's box still hold part of the segment?
-                if (node == VKRAY_KD_NO_PARENT) {
-                    passDone = true;
-                    continue;
-                }
-                float t0 = segMin, t1 = globalMax;
-                uint a0 = minAxis, a1 = globalMaxAxis;
-                if (kdClipBox(r, kdExtra[node].lo, kdExtra[node].hi, t0, a0, t1, a1, pass) &&
-                    kdCompare(pass, t1, a1, segMin, minAxis) > 0) {
-                    segMin = t0;  // at least segMin: the clip started from it
-                    minAxis = a0;
-                    segMax = t1;
-                    maxAxis = a1;
-                    climbing = false;
-                } else {
-                    node = kdExtra[node].parent;
-                }
-                continue;
-            }
-            const uvec2 n = kdNodes[node];
-            if (!kdIsLeaf(n)) {
-                uint first, second;
-                float thit;
-                const int visit = kdStepInner(r, n, node, segMin, minAxis, segMax, maxAxis, pass, first, second, thit);
-                node = kdDescend(visit, n, first, second, thit, segMax, maxAxis);
-                continue;
-            }
-            kdVisitLeaf(n, w, anyHit, best);
-            if (kdFinished(best, anyHit, segMax) || kdCompare(pass, segMax, maxAxis, globalMax, globalMaxAxis) >= 0) {
+bool kdWalkPass(KdRay r, WatertightRay w, const bool anyHit, float segMin, uint minAxis, float segMax,
+                uint maxAxis, inout KdPass pass, inout int steps, inout Hit best) {
+    const float globalMax = segMax;
+    const uint globalMaxAxis = maxAxis;
+    uint node = 0u;
+    bool climbing = false;
+    bool passDone = false;
+    for (; !passDone && steps < VKRAY_KD_MAX_STEPS; ++steps) {
+        countNode();
+        if (climbing) {  // does this ancestor's box still hold part of the segment?
+            if (node == VKRAY_KD_NO_PARENT) {
                 passDone = true;
-            } else {  // continue-search(): climb from this leaf's parent
-                segMin = segMax;
-                minAxis = maxAxis;
-                node = kdExtra[node].parent;
-                climbing = true;
-                countRestart();
+                continue;
             }
+            float t0 = segMin, t1 = globalMax;
+            uint a0 = minAxis, a1 = globalMaxAxis;
+            if (kdClipBox(r, kdExtra[node].lo, kdExtra[node].hi, t0, a0, t1, a1, pass) &&
+                kdCompare(pass, t1, a1, segMin, minAxis) > 0) {
+                segMin = t0;  // at least segMin: the clip started from it
+                minAxis = a0;
+                segMax = t1;
+                maxAxis = a1;
+                climbing = false;
+            } else {
+                node = kdExtra[node].parent;
+            }
+            continue;
         }
-        if (!kdAnotherPass(passDone, anyHit, best, pass, walked)) break;
+        const uvec2 n = kdNodes[node];
+        if (!kdIsLeaf(n)) {
+            uint first, second;
+            float thit;
+            const int visit = kdStepInner(r, n, node, segMin, minAxis, segMax, maxAxis, pass, first, second, thit);
+            node = kdDescend(visit, n, first, second, thit, segMax, maxAxis);
+            continue;
+        }
+        kdVisitLeaf(n, w, anyHit, best);
+        if (kdFinished(best, anyHit, segMax) || kdCompare(pass, segMax, maxAxis, globalMax, globalMaxAxis) >= 0) {
+            passDone = true;
+        } else {  // climb from this leaf's parent
+            segMin = segMax;
+            minAxis = maxAxis;
+            node = kdExtra[node].parent;
+            climbing = true;
+            countRestart();
+        }
     }
-    kdEndLoop(passDone, steps);
-    return best;
+    return passDone;
 }
-
-Hit traceClosest(vec3 origin, vec3 dir, float tmax) { return kdBacktrackTrace(origin, dir, tmax, false); }
-bool traceAny(vec3 origin, vec3 dir, float tmax) { return kdBacktrackTrace(origin, dir, tmax, true).triangle >= 0; }
 
 #endif

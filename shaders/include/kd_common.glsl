@@ -1,7 +1,9 @@
 // What the three kd-tree traversals share (Foley and Sugerman, "KD-Tree Acceleration Structures
-// for a GPU Raytracer", Graphics Hardware 2005; seed 000): the buffers of shared/kd_layout.h, node
-// accessors, the ray-box clip, one inner-node step, and the leaf test. The float twins of
-// host/accel/kd/kd_traversal.cpp, whose header explains the robustness rules; in short:
+// for a GPU Raytracer", Graphics Hardware 2005): the buffers of shared/kd_layout.h, node accessors,
+// the ray-box clip, one inner-node step, the leaf test, and the walk over passes with the two
+// queries built on it; each traversal include defines only kdWalkPass(), its walk of one pass.
+// The float twins of host/accel/kd/kd_traversal.cpp (KdTracer::walk and the walkPass of each
+// tracer), whose header explains the robustness rules; in short:
 //  - children in ray order by the direction's sign; [tmin, tmax] goes first only if thit >= tmax,
 //    second only if thit <= tmin (a plane behind the origin has thit < 0 <= tmin), else both;
 //  - direction components of +-0 (or denormal: lavapipe flushes them) never divide: such a ray
@@ -14,12 +16,15 @@
 //  - a leaf's triangles are tested on the whole ray (0, best.t]; the search ends once the best hit
 //    lies strictly before the current leaf's exit (a hit beyond the leaf does not end it; one at
 //    the exit may still lose a tie to the next leaf); exact ties in t go to the lowest index.
-// Loops: one iteration per node step, leaf triangles 4 per iteration, because llvmpipe ends all
-// loops of an invocation after 65535 iterations in total (trace_status.glsl).
+// Loops: one iteration per node step, leaf triangles 4 per iteration (leaf_triangles.glsl), because
+// llvmpipe ends all loops of an invocation after 65535 iterations in total (trace_status.glsl).
 #ifndef VKRAY_KD_COMMON_GLSL
 #define VKRAY_KD_COMMON_GLSL
 
+#include "accelerator.glsl"
 #include "bindings.glsl"
+#include "constants.glsl"
+#include "leaf_triangles.glsl"
 #include "shared/kd_layout.h"
 #include "trace_status.glsl"
 #include "triangle.glsl"
@@ -40,7 +45,6 @@ uint kdFirstIndex(uvec2 n) { return n.x; }
 uint kdTriangleCount(uvec2 n) { return n.y >> 2; }
 
 const float kKdSmallestNormal = 1.17549435e-38;
-#define kKdInfinity uintBitsToFloat(0x7F800000u)
 
 struct KdRay {
     vec3 origin;
@@ -162,13 +166,13 @@ bool kdClipBox(KdRay r, vec3 lo, vec3 hi, inout float tmin, inout uint tminAxis,
 
 const int kKdFirst = 0, kKdSecond = 1, kKdBoth = 2;
 
-// Seed 000's search-split(): which children of inner node `index` the segment [tmin, tmax] reaches.
+// One inner-node step: which children of inner node `index` the segment [tmin, tmax] reaches.
 int kdStepInner(KdRay r, uvec2 n, uint index, float tmin, uint tminAxis, float tmax, uint tmaxAxis,
                 inout KdPass p, out uint first, out uint second, out float thit) {
     const uint axis = kdAxis(n);
     const float split = kdSplit(n);
     const uint below = index + 1u, above = kdAboveChild(n);
-    thit = kKdInfinity;
+    thit = kInfinity;
     if (r.parallel[axis]) {
         first = r.origin[axis] < split ? below : above;
         if (r.origin[axis] == split) {  // in the plane: the mask's side; other passes take the other
@@ -197,38 +201,23 @@ uint kdDescend(int visit, uvec2 n, uint first, uint second, float thit, inout fl
     return visit == kKdSecond ? second : first;
 }
 
-void kdTestSlot(uint slot, uint end, WatertightRay w, inout Hit best) {
-    if (slot < end) closestTriangle(kdIndices[slot], w, best);
-}
+// A leaf lists its triangles in kdIndices: a triangle may lie in several leaves.
+uint slotTriangle(uint slot) { return kdIndices[slot]; }
 
-// The leaf's triangles against (0, best.t), 4 per iteration; with anyHit, stops at the first hit.
-void kdVisitLeaf(uvec2 n, WatertightRay w, bool anyHit, inout Hit best) {
+// The leaf's triangles against (0, best.t); with anyHit, stops at the first hit.
+void kdVisitLeaf(uvec2 n, WatertightRay w, const bool anyHit, inout Hit best) {
     countLeaf();
-    uint i = kdFirstIndex(n);
-    const uint end = i + kdTriangleCount(n);
-    uint tested = 0u;
-    for (; i < end && !(anyHit && best.triangle >= 0); i += 4u) {
-        kdTestSlot(i, end, w, best);
-        kdTestSlot(i + 1u, end, w, best);
-        kdTestSlot(i + 2u, end, w, best);
-        kdTestSlot(i + 3u, end, w, best);
-        tested += min(4u, end - i);
-    }
-    if (i < end && !(anyHit && best.triangle >= 0)) gLoopCutShort = true;
-    countTriangles(tested);
+    testSlots(kdFirstIndex(n), kdFirstIndex(n) + kdTriangleCount(n), w, anyHit, best);
 }
-
-// Slack of the stop rule below: about 3 ulps, as the BVH's kSlabWiden.
-const float kKdStopSlack = 1.0 + 4.0e-7;
 
 // Whether the search may stop after a leaf whose segment ends at `exit`: a hit before it, with a
-// few ulps to spare. A hit at the exit may tie with a triangle of the next leaf (a face lying in
+// few ulps to spare (kRoundingSlack). A hit at the exit may tie with a triangle of the next leaf (a face lying in
 // the split plane, an edge on it) whose index is lower and wins (beats()); and the triangle test
 // and the plane hit round differently: a triangle of the next leaf can be hit an ulp before the
 // plane's computed t (measured on scenes/stress/split-planes.scene: a ray through the edge where
 // two faces lying in split planes x = 0 and y = 2 meet). That leaf is visited too.
 bool kdFinished(Hit best, bool anyHit, float exit) {
-    return best.triangle >= 0 && (anyHit || best.t * kKdStopSlack < exit);
+    return best.triangle >= 0 && (anyHit || best.t * kRoundingSlack < exit);
 }
 
 // After a pass: whether another follows. Not when the pass was cut short (its node loop ran out:
@@ -244,5 +233,40 @@ void kdEndLoop(bool done, int steps) {
     if (steps >= VKRAY_KD_MAX_STEPS) ++gCappedRays;
     else gLoopCutShort = true;
 }
+
+// One pass of the walk, defined by each traversal include: from the root, over the segment
+// [segMin, segMax] of the ray already clipped to the root box, visiting leaves (kdVisitLeaf) until
+// kdFinished or nothing is left. Each node step counts in `steps`; the loop stops at
+// VKRAY_KD_MAX_STEPS. Returns whether the pass ended by its own rule (false: the cap, or the driver).
+bool kdWalkPass(KdRay r, WatertightRay w, const bool anyHit, float segMin, uint minAxis, float segMax,
+                uint maxAxis, inout KdPass pass, inout int steps, inout Hit best);
+
+// The walk (KdTracer::walk): passes over the tree until every pass the ray needs is walked. Passes
+// are an outer loop: llvmpipe runs every statement of a loop body for all lanes, masked, so pass
+// switching inside the node loop slowed every step (measured 1.5x). With anyHit (a constant at
+// both calls below, so the compiler folds it) the first hit found ends the walk.
+Hit kdTrace(vec3 origin, vec3 dir, float tmax, const bool anyHit) {
+    Hit best = noHit(tmax);
+    const KdRay r = makeKdRay(origin, dir);
+    const WatertightRay w = makeWatertightRay(origin, dir);
+    KdPass pass = kdFirstPass();
+    uvec2 walked = uvec2(0u);
+    int steps = 0;
+    bool passDone = true;
+    for (uint passes = 0u; passes < 8u; ++passes) {
+        // The root box clip in the pass too: its faces may tie with each other.
+        float segMin = 0.0, segMax = tmax;
+        uint minAxis = kKdHardBound, maxAxis = kKdHardBound;
+        passDone = !kdClipBox(r, kdTree.lo, kdTree.hi, segMin, minAxis, segMax, maxAxis, pass) ||
+                   kdWalkPass(r, w, anyHit, segMin, minAxis, segMax, maxAxis, pass, steps, best);
+        // Another pass for an in-plane node or a tie met, or the end.
+        if (!kdAnotherPass(passDone, anyHit, best, pass, walked)) break;
+    }
+    kdEndLoop(passDone, steps);
+    return best;
+}
+
+Hit traceClosest(vec3 origin, vec3 dir, float tmax) { return kdTrace(origin, dir, tmax, false); }
+bool traceAny(vec3 origin, vec3 dir, float tmax) { return kdTrace(origin, dir, tmax, true).triangle >= 0; }
 
 #endif

@@ -1,60 +1,46 @@
-// kd-restart (Foley and Sugerman 2005, section 4.1; seed 000): stackless. The descent drops the
-// stack traversal's push and only shortens tmax; after a leaf without an accepted hit, tmin becomes
-// the leaf's exit and the search restarts at the root, until the exit reaches the global tmax.
-// Strict advance: a child is entered first only if its plane lies strictly beyond tmin
-// (kdStepInner: thit <= tmin goes second), so the leaf just left is never entered again.
+// kd-restart (Foley and Sugerman, "KD-Tree Acceleration Structures for a GPU Raytracer", Graphics
+// Hardware 2005, section 4.1): stackless. The descent drops the stack traversal's push and only
+// shortens tmax; after a leaf without an accepted hit, tmin becomes the leaf's exit and the search
+// restarts at the root, until the exit reaches the global tmax. Strict advance: a child is entered
+// first only if its plane lies strictly beyond tmin (kdStepInner: thit <= tmin goes second), so
+// the leaf just left is never entered again. The passes around this walk are kdTrace's
+// (kd_common.glsl).
 #ifndef VKRAY_KD_RESTART_GLSL
 #define VKRAY_KD_RESTART_GLSL
 
 #include "kd_common.glsl"
+#include "trace_status.glsl"
+#include "triangle.glsl"
 
-// Passes (KdPass) are an outer loop: llvmpipe runs every statement of a loop body for all lanes,
-// masked, so pass switching inside the node loop slowed every step (measured 1.5x).
-Hit kdRestartTrace(vec3 origin, vec3 dir, float tmax, const bool anyHit) {
-    Hit best = noHit(tmax);
-    const KdRay r = makeKdRay(origin, dir);
-    const WatertightRay w = makeWatertightRay(origin, dir);
-    KdPass pass = kdFirstPass();
-    uvec2 walked = uvec2(0u);
-    int steps = 0;
-    bool passDone = true;
-    for (uint passes = 0u; passes < 8u; ++passes) {
-        float segMin = 0.0, segMax = tmax;
-        uint minAxis = kKdHardBound, maxAxis = kKdHardBound;
-        passDone = !kdClipBox(r, kdTree.lo, kdTree.hi, segMin, minAxis, segMax, maxAxis, pass);
-        const float globalMax = segMax;
-        const uint globalMaxAxis = maxAxis;
-        uint node = 0u;
-        for (; !passDone && steps < VKRAY_KD_MAX_STEPS; ++steps) {
-            countNode();
-            const uvec2 n = kdNodes[node];
-            if (!kdIsLeaf(n)) {
-                uint first, second;
-                float thit;
-                const int visit = kdStepInner(r, n, node, segMin, minAxis, segMax, maxAxis, pass, first, second, thit);
-                node = kdDescend(visit, n, first, second, thit, segMax, maxAxis);
-                continue;
-            }
-            kdVisitLeaf(n, w, anyHit, best);
-            if (kdFinished(best, anyHit, segMax) || kdCompare(pass, segMax, maxAxis, globalMax, globalMaxAxis) >= 0) {
-                passDone = true;
-            } else {  // continue-search(): restart at the root past this leaf
-                segMin = segMax;
-                minAxis = maxAxis;
-                segMax = globalMax;
-                maxAxis = globalMaxAxis;
-                node = 0u;
-                countRestart();
-            }
+bool kdWalkPass(KdRay r, WatertightRay w, const bool anyHit, float segMin, uint minAxis, float segMax,
+                uint maxAxis, inout KdPass pass, inout int steps, inout Hit best) {
+    const float globalMax = segMax;
+    const uint globalMaxAxis = maxAxis;
+    uint node = 0u;
+    bool passDone = false;
+    for (; !passDone && steps < VKRAY_KD_MAX_STEPS; ++steps) {
+        countNode();
+        const uvec2 n = kdNodes[node];
+        if (!kdIsLeaf(n)) {
+            uint first, second;
+            float thit;
+            const int visit = kdStepInner(r, n, node, segMin, minAxis, segMax, maxAxis, pass, first, second, thit);
+            node = kdDescend(visit, n, first, second, thit, segMax, maxAxis);
+            continue;
         }
-        // Another pass for an in-plane node or a tie met, or the end.
-        if (!kdAnotherPass(passDone, anyHit, best, pass, walked)) break;
+        kdVisitLeaf(n, w, anyHit, best);
+        if (kdFinished(best, anyHit, segMax) || kdCompare(pass, segMax, maxAxis, globalMax, globalMaxAxis) >= 0) {
+            passDone = true;
+        } else {  // restart at the root past this leaf
+            segMin = segMax;
+            minAxis = maxAxis;
+            segMax = globalMax;
+            maxAxis = globalMaxAxis;
+            node = 0u;
+            countRestart();
+        }
     }
-    kdEndLoop(passDone, steps);
-    return best;
+    return passDone;
 }
-
-Hit traceClosest(vec3 origin, vec3 dir, float tmax) { return kdRestartTrace(origin, dir, tmax, false); }
-bool traceAny(vec3 origin, vec3 dir, float tmax) { return kdRestartTrace(origin, dir, tmax, true).triangle >= 0; }
 
 #endif

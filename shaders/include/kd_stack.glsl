@@ -1,70 +1,59 @@
-// The standard kd-tree traversal with a per-ray stack (seed 000, figure 9; Foley and Sugerman
-// 2005, section 3): the baseline kd-restart and kd-backtrack are measured against. The far child is
-// pushed with its segment; after a leaf without an accepted hit, the nearest pending one is popped.
+// The standard kd-tree traversal with a per-ray stack (Foley and Sugerman, "KD-Tree Acceleration
+// Structures for a GPU Raytracer", Graphics Hardware 2005, section 3): the baseline kd-restart and
+// kd-backtrack are measured against. The far child is pushed with its segment; after a leaf without
+// an accepted hit, the nearest pending one is popped. The passes around this walk are kdTrace's
+// (kd_common.glsl).
 #ifndef VKRAY_KD_STACK_GLSL
 #define VKRAY_KD_STACK_GLSL
 
 #include "kd_common.glsl"
+#include "shared/kd_layout.h"
+#include "trace_status.glsl"
+#include "triangle.glsl"
 
-// Passes (KdPass) are an outer loop, as in kd_restart.glsl.
-Hit kdStackTrace(vec3 origin, vec3 dir, float tmax, const bool anyHit) {
-    Hit best = noHit(tmax);
-    const KdRay r = makeKdRay(origin, dir);
-    const WatertightRay w = makeWatertightRay(origin, dir);
-    KdPass pass = kdFirstPass();
-    uvec2 walked = uvec2(0u);
+bool kdWalkPass(KdRay r, WatertightRay w, const bool anyHit, float segMin, uint minAxis, float segMax,
+                uint maxAxis, inout KdPass pass, inout int steps, inout Hit best) {
     // At most one push per level: VKRAY_KD_STACK_SIZE >= the builder's depth limit. stackAxes holds
     // the axes of the entry's segment ends (minAxis << 2 | maxAxis).
     uint stackNode[VKRAY_KD_STACK_SIZE], stackAxes[VKRAY_KD_STACK_SIZE];
     float stackMin[VKRAY_KD_STACK_SIZE], stackMax[VKRAY_KD_STACK_SIZE];
-    int steps = 0;
-    bool passDone = true;
-    for (uint passes = 0u; passes < 8u; ++passes) {
-        float segMin = 0.0, segMax = tmax;
-        uint minAxis = kKdHardBound, maxAxis = kKdHardBound;
-        passDone = !kdClipBox(r, kdTree.lo, kdTree.hi, segMin, minAxis, segMax, maxAxis, pass);
-        int top = 0;
-        uint node = 0u;
-        for (; !passDone && steps < VKRAY_KD_MAX_STEPS; ++steps) {
-            countNode();
-            const uvec2 n = kdNodes[node];
-            if (!kdIsLeaf(n)) {
-                uint first, second;
-                float thit;
-                const int visit = kdStepInner(r, n, node, segMin, minAxis, segMax, maxAxis, pass, first, second, thit);
-                if (visit == kKdBoth) {
-                    if (top == VKRAY_KD_STACK_SIZE) {  // deeper than the builder goes: a malformed tree
-                        steps = VKRAY_KD_MAX_STEPS;
-                        break;
-                    }
-                    stackNode[top] = second;
-                    stackAxes[top] = kdAxis(n) << 2 | maxAxis;
-                    stackMin[top] = thit;
-                    stackMax[top] = segMax;
-                    ++top;
+    int top = 0;
+    uint node = 0u;
+    bool passDone = false;
+    for (; !passDone && steps < VKRAY_KD_MAX_STEPS; ++steps) {
+        countNode();
+        const uvec2 n = kdNodes[node];
+        if (!kdIsLeaf(n)) {
+            uint first, second;
+            float thit;
+            const int visit = kdStepInner(r, n, node, segMin, minAxis, segMax, maxAxis, pass, first, second, thit);
+            if (visit == kKdBoth) {
+                if (top == VKRAY_KD_STACK_SIZE) {  // deeper than the builder goes: a malformed tree
+                    steps = VKRAY_KD_MAX_STEPS;
+                    break;
                 }
-                node = kdDescend(visit, n, first, second, thit, segMax, maxAxis);
-                continue;
+                stackNode[top] = second;
+                stackAxes[top] = kdAxis(n) << 2 | maxAxis;
+                stackMin[top] = thit;
+                stackMax[top] = segMax;
+                ++top;
             }
-            kdVisitLeaf(n, w, anyHit, best);
-            if (kdFinished(best, anyHit, segMax) || top == 0) {
-                passDone = true;
-            } else {  // continue-search(): pop the nearest pending node
-                --top;
-                node = stackNode[top];
-                minAxis = stackAxes[top] >> 2;
-                maxAxis = stackAxes[top] & 3u;
-                segMin = stackMin[top];
-                segMax = stackMax[top];
-            }
+            node = kdDescend(visit, n, first, second, thit, segMax, maxAxis);
+            continue;
         }
-        if (!kdAnotherPass(passDone, anyHit, best, pass, walked)) break;
+        kdVisitLeaf(n, w, anyHit, best);
+        if (kdFinished(best, anyHit, segMax) || top == 0) {
+            passDone = true;
+        } else {  // pop the nearest pending node
+            --top;
+            node = stackNode[top];
+            minAxis = stackAxes[top] >> 2;
+            maxAxis = stackAxes[top] & 3u;
+            segMin = stackMin[top];
+            segMax = stackMax[top];
+        }
     }
-    kdEndLoop(passDone, steps);
-    return best;
+    return passDone;
 }
-
-Hit traceClosest(vec3 origin, vec3 dir, float tmax) { return kdStackTrace(origin, dir, tmax, false); }
-bool traceAny(vec3 origin, vec3 dir, float tmax) { return kdStackTrace(origin, dir, tmax, true).triangle >= 0; }
 
 #endif

@@ -1,15 +1,18 @@
 // The body of every render kernel (shaders/render_<accel>.comp): one invocation per pixel of one
 // tile. Camera ray, closest hit, iterative Whitted shading over a small stack of pending rays (GLSL
-// has no recursion), primary-hit AOVs. The kernel file includes its accelerator first, which
-// defines `Hit traceClosest(vec3 origin, vec3 dir, float tmax)` and
-// `bool traceAny(vec3 origin, vec3 dir, float tmax)` (t in (0, tmax) for both).
+// has no recursion), primary-hit AOVs. The kernel file also includes one accelerator, which
+// defines traceClosest and traceAny (accelerator.glsl), before or after this file.
 #ifndef VKRAY_RENDER_MAIN_GLSL
 #define VKRAY_RENDER_MAIN_GLSL
 
+#include "accelerator.glsl"
 #include "bindings.glsl"
 #include "camera.glsl"
+#include "constants.glsl"
+#include "ray_offset.glsl"
 #include "shading.glsl"
 #include "trace_status.glsl"
+#include "triangle.glsl"
 
 layout(local_size_x = VKRAY_WORKGROUP_X, local_size_y = VKRAY_WORKGROUP_Y) in;
 

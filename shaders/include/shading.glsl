@@ -3,10 +3,12 @@
 #ifndef VKRAY_SHADING_GLSL
 #define VKRAY_SHADING_GLSL
 
+#include "accelerator.glsl"
+#include "bindings.glsl"
+#include "constants.glsl"
 #include "ray_offset.glsl"
 #include "trace_status.glsl"
-
-#define kInfinity uintBitsToFloat(0x7F800000u)
+#include "triangle.glsl"
 
 struct SurfacePoint {
     vec3 position;  // from barycentrics: more accurate than origin + t * dir far from the origin
@@ -14,7 +16,7 @@ struct SurfacePoint {
     vec3 normal;    // N: shading normal, dot(N, Nf) >= 0
     bool front;     // the ray hit the side the geometric normal points to
     uint material;
-    int original;   // triangle identity (DESIGN.md) for the primid AOV
+    int original;   // triangle identity (docs/scene-format.md) for the primid AOV
     float offset;   // how far secondary rays start off the surface (ray_offset.glsl)
 };
 
@@ -88,7 +90,7 @@ bool traceShadowRay(vec3 origin, vec3 dir, float tmax) {
     return traceAny(origin, dir, tmax);
 }
 
-// Emission, ambient and every light with its shadow ray (docs/shading.md, "Local shading").
+// Emitted light, ambient and every light with its shadow ray (docs/shading.md, "Local shading").
 vec3 localShading(SurfacePoint s, GpuMaterial m, vec3 V) {
     const vec3 transmit = m.transmit.rgb;
     vec3 color = m.emission.rgb + (1.0 - transmit) * m.ambient;

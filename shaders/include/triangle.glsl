@@ -102,24 +102,20 @@ bool hitTriangle(WatertightRay r, GpuTriangle tri, out float t, out vec2 uv) {
     return tHit > kTNoise * max(abs(za), max(abs(zb), abs(zc)));
 }
 
-// Hit with t in (0, tmax)?
-bool intersectTriangle(WatertightRay r, GpuTriangle tri, float tmax, out float t, out vec2 uv) {
-    return hitTriangle(r, tri, t, uv) && t < tmax;
-}
-
 // Whether a hit at t on a triangle of identity `original` beats `best` in the closest-hit order that
 // every kernel and the CPU share (docs/shading.md): smaller t, and on exactly equal t the lower
-// original triangle index (DESIGN.md, "Triangle identity"). The BVH reorders the triangle buffer and
-// the kd-tree lists a triangle in several leaves, so the order a traversal meets triangles must not
-// decide ties: brute force, walking slots in index order with a strict `<`, would agree with itself
-// but not with them. (Measured before this rule: the kernels named another triangle than the
-// brute-force kernel on up to 5% of the camera rays of scenes/stress/, docs/stability.md.) With no
-// hit yet, best.original is 0, which no index is below: a hit at exactly the ray's tmax never wins.
+// original triangle index (triangle identity, the load order: docs/scene-format.md). The BVH
+// reorders the triangle buffer and the kd-tree lists a triangle in several leaves, so the order a
+// traversal meets triangles must not decide ties: brute force, walking slots in index order with a
+// strict `<`, would agree with itself but not with them. (Measured before this rule: the kernels
+// named another triangle than the brute-force kernel on up to 5% of the camera rays of
+// scenes/stress/, docs/stability.md.) With no hit yet, best.original is 0, which no index is below:
+// a hit at exactly the ray's tmax never wins.
 bool beats(float t, uint original, Hit best) {
     return t < best.t || (t == best.t && original < best.original);
 }
 
-// Tests the triangle in `slot` and keeps its hit if it beats `best`.
+// Tests the triangle in `slot` of the triangle buffer and keeps its hit if it beats `best`.
 void closestTriangle(uint slot, WatertightRay ray, inout Hit best) {
     const GpuTriangle tri = triangles[slot];
     float t;
@@ -130,18 +126,6 @@ void closestTriangle(uint slot, WatertightRay ray, inout Hit best) {
         best.triangle = int(slot);
         best.original = tri.original;
     }
-}
-
-// Slot i of the triangle buffer, when below `end` (loops test several slots per iteration, the
-// last batch partly past the end): the closest-hit update, and the any-hit test.
-void closestInSlot(uint i, uint end, WatertightRay ray, inout Hit best) {
-    if (i < end) closestTriangle(i, ray, best);
-}
-
-bool occludesInSlot(uint i, uint end, WatertightRay ray, float tmax) {
-    float t;
-    vec2 uv;
-    return i < end && intersectTriangle(ray, triangles[i], tmax, t, uv);
 }
 
 #endif

@@ -76,7 +76,7 @@ VKRAY_STRUCT(GpuTriangle) {  // 48 bytes
     vec3 p0;
     uint material;  // index into the materials buffer
     vec3 p1;
-    uint original;  // triangle identity (DESIGN.md) for AOVs and statistics
+    uint original;  // triangle identity (docs/scene-format.md) for AOVs and statistics
     vec3 p2;
     uint pad0;
 };
@@ -95,7 +95,7 @@ VKRAY_STRUCT(GpuMaterial) {  // 96 bytes
     vec4 specular;    // rgb, w unused
     vec4 emission;    // rgb, w unused
     vec4 reflect;     // rgb mirror weight, w unused
-    vec4 transmit;    // rgb transmission weight, w unused
+    vec4 transmit;    // rgb transmitted weight, w unused
 };
 
 VKRAY_STRUCT(GpuLight) {  // 32 bytes

@@ -1,0 +1,16 @@
+// The two queries every accelerator include (brute_force.glsl, bvh_traversal.glsl, kd_stack.glsl,
+// kd_restart.glsl, kd_backtrack.glsl) defines, declared here so that the kernel body and the
+// shading can call them whatever the order of the includes. A kernel includes exactly one
+// accelerator; both queries take t in (0, tmax).
+#ifndef VKRAY_ACCELERATOR_GLSL
+#define VKRAY_ACCELERATOR_GLSL
+
+#include "triangle.glsl"
+
+// Closest hit in (0, tmax); ties in t go to the lowest triangle identity (beats(), triangle.glsl).
+Hit traceClosest(vec3 origin, vec3 dir, float tmax);
+
+// Whether anything lies on the ray in (0, tmax): shadow rays.
+bool traceAny(vec3 origin, vec3 dir, float tmax);
+
+#endif
