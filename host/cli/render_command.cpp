@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <map>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -106,8 +107,8 @@ void printRowProgress(int done, int total) {
     if (done == total) std::fprintf(stderr, "\r%*s\r", 40, "");
 }
 
-// Builds the structure `spec` names and renders with it: on the CPU reference (its tracer made only
-// here) or on the GPU of `ctx`. Fills the build and render parts of `report`.
+// Builds the structure `spec` names and renders with it: on the GPU of `ctx`, or on the CPU reference
+// when there is none. Fills the build and render parts of `report`.
 Frame renderFrame(const Scene& scene, const RenderOptions& options, const accel::AccelSpec& spec,
                   const gpu::VulkanContext* ctx, bool showProgress, RenderReport& report) {
     Clock::time_point t0 = Clock::now();
@@ -115,14 +116,15 @@ Frame renderFrame(const Scene& scene, const RenderOptions& options, const accel:
         scene, spec,
         accel::BuildOptions{.threads = options.threads,
                             .progress = showProgress ? BuildProgress(printBuildProgress) : BuildProgress()});
+    // The CPU's tracer is part of its build; a GPU render needs none.
+    const std::unique_ptr<geometry::Tracer> tracer = ctx ? nullptr : built->makeTracer(scene);
     report.buildMs = msSince(t0);
     if (showProgress && spec.family != accel::Family::Brute) clearProgressLine();
     report.accelStats = built->stats();
 
     Frame frame;
     t0 = Clock::now();
-    if (!ctx) {
-        const auto tracer = built->makeTracer(scene);
+    if (tracer) {
         frame = renderReference(scene, options, *tracer,
                                 showProgress ? RenderProgress(printRowProgress) : RenderProgress());
         report.renderMs = msSince(t0);
