@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <iterator>
 #include <optional>
 
 #include "core/error.h"
@@ -69,17 +70,19 @@ void readTile(const GpuPixel* src, const Tile& tile, Frame& frame, GpuRenderRepo
         }
 }
 
-// The SPIR-V of a kernel, found at compile time: every accel::Kernel must have its
-// shaders/render_<name>.comp, or the build fails here.
-constexpr const generated::RenderKernelSpirv* findKernel(accel::Kernel kernel) {
-    for (const auto& k : generated::kRenderKernels)
-        if (k.name == accel::kernelName(kernel)) return &k;
-    return nullptr;
+// The position of a kernel's SPIR-V in the generated registry, -1 when it has none. An index rather
+// than a pointer: comparing the address of a global with null is not a constant expression under
+// AddressSanitizer.
+constexpr int kernelIndex(accel::Kernel kernel) {
+    for (size_t i = 0; i < std::size(generated::kRenderKernels); ++i)
+        if (generated::kRenderKernels[i].name == accel::kernelName(kernel)) return int(i);
+    return -1;
 }
 
+// Every accel::Kernel must have its shaders/render_<name>.comp, or the build fails here.
 constexpr bool everyKernelHasSpirv() {
     for (accel::Kernel k : accel::kKernels)
-        if (!findKernel(k)) return false;
+        if (kernelIndex(k) < 0) return false;
     return true;
 }
 static_assert(everyKernelHasSpirv(), "an accel::Kernel has no shaders/render_<kernel>.comp");
@@ -240,8 +243,8 @@ Frame renderOnGpu(const VulkanContext& ctx, const Scene& scene, const RenderOpti
     rep.features.countTraversal = options.countTraversal;
     std::optional<KernelCache> ownKernels;
     if (!kernels) kernels = &ownKernels.emplace(ctx);
-    ComputeKernel& kernel =
-        kernels->kernel(rep.kernel, findKernel(accel.kernel)->code, rep.features.specialization());
+    const std::span<const uint32_t> spirv = generated::kRenderKernels[kernelIndex(accel.kernel)].code;
+    ComputeKernel& kernel = kernels->kernel(rep.kernel, spirv, rep.features.specialization());
     rep.pipelineMs = msSince(start);
 
     const std::vector<Tile> tiles = splitIntoTiles(uint32_t(options.width), uint32_t(options.height));
