@@ -11,6 +11,7 @@ packages=(
   libvulkan-dev mesa-vulkan-drivers vulkan-validationlayers glslang-tools
   libglm-dev libtinyobjloader-dev libstb-dev
   libtbb-dev libcli11-dev nlohmann-json3-dev libgtest-dev
+  libembree-dev
 )
 for extra in "$@"; do
   case "$extra" in

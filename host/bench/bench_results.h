@@ -50,6 +50,9 @@ struct AccelResult {
     Spread traceMs;                     // full Whitted render, GPU timestamps
     Spread primaryOnlyMs;               // camera rays only (maxdepth 1, no lights)
     Spread depthOneMs;                  // camera rays and their shadow rays (maxdepth 1)
+    // Embree on the same camera rays, timed in the same repeats as primaryOnlyMs (interleaved), so
+    // the ratio below is measured under the same machine load; empty without Embree.
+    std::optional<Spread> embreeSingleMs, embreePacketMs;  // rtcIntersect1, rtcIntersect16
     std::vector<RayKindFigures> rayKinds;  // primary, shadow, secondary
     double mraysPerSecond = 0.0;        // all rays of the full render / its median time
 
@@ -57,6 +60,11 @@ struct AccelResult {
     double nodesPerRay = 0.0, leavesPerRay = 0.0, trianglesPerRay = 0.0, restartsPerRay = 0.0;
     // The same for camera rays alone (from the primary-only statistics render).
     double primaryNodesPerRay = 0.0, primaryTrianglesPerRay = 0.0;
+    // Primary-ray rate over Embree rtcIntersect1's on the same rays: embreeSingleMs / primaryOnlyMs.
+    std::optional<double> primaryVsEmbree() const {
+        if (!embreeSingleMs || !(primaryOnlyMs.median > 0.0)) return std::nullopt;
+        return embreeSingleMs->median / primaryOnlyMs.median;
+    }
     uint64_t cappedRays = 0;            // rays a traversal ended at its iteration cap
 
     ImageError error;                   // the full render against the reference
@@ -98,9 +106,22 @@ struct ConcurrentBuild {
     Spread concurrentMs;       // both at once, wall clock
 };
 
+// The CPU baseline of the scene (bench/embree_baseline.h): Embree on the camera rays, all threads.
+struct EmbreeResult {
+    std::string version;               // "Embree 3.13.5"; empty when there is no baseline
+    std::string note;                  // why there is none
+    int threads = 0;
+    Spread singleMs, packetMs;         // over every repeat of every accelerator
+    std::optional<double> singleMrays, packetMrays;
+    // Camera rays on which Embree names the reference's triangle (primary hit), as a check that the
+    // baseline traces the same rays; below 1 only through ties and float rounding at edges.
+    double agreement = 0.0;
+};
+
 struct SceneResult {
     std::string file;          // as given on the command line
     std::string name;          // file stem, for headings and image names
+    std::string view;          // the camera: "scene", "close" or the --camera text
     uint64_t triangles = 0;
     int width = 0, height = 0, maxDepth = 0;
 
@@ -110,6 +131,7 @@ struct SceneResult {
     double referenceBuildMs = 0.0, referenceRenderMs = 0.0;
     Image reference;
 
+    EmbreeResult embree;
     std::vector<AccelResult> accels;
     std::vector<DeltaResult> deltas;
     std::vector<ErrorPoint> errorPoints;

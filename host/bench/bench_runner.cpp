@@ -9,6 +9,7 @@
 #include <thread>
 
 #include "accel/accel.h"
+#include "bench/embree_baseline.h"
 #include "bench/report.h"
 #include "core/error.h"
 #include "core/timing.h"
@@ -16,6 +17,7 @@
 #include "gpu/gpu_renderer.h"
 #include "gpu/scene_buffers.h"
 #include "image/compare.h"
+#include "scene/camera.h"
 #include "scene/scene_parser.h"
 #include "vkray_revision.h"  // generated at build time by scripts/revision.cmake
 
@@ -74,11 +76,13 @@ public:
         sceneCount_ = count;
         sceneName_ = std::filesystem::path(file).stem().string();
         step("load");
-        const Scene scene = loadScene(file);
+        Scene scene = loadScene(file);
+        scene.camera = viewCamera(scene, options_.view);
         gpu::checkSceneFits(ctx_, scene);
         SceneResult result;
         result.file = file;
         result.name = sceneName_;
+        result.view = options_.view;
         result.triangles = scene.triangles.size();
         result.width = options_.width > 0 ? options_.width : scene.width;
         result.height = options_.height > 0 ? options_.height : scene.height;
@@ -94,9 +98,11 @@ public:
         dark.lights.clear();
 
         const Frame reference = renderReferenceImage(scene, render, result);
+        startEmbree(scene, reference, result);
         for (const std::string& name : options_.accels)
             result.accels.push_back(runAccel(scene, dark, render, accel::resolveAccel(name), reference, result));
         for (const AccelResult& a : result.accels) result.errorPoints.push_back(acceleratorPoint(a, scene.maxDepth));
+        finishEmbree(result);
         result.concurrent = runConcurrentBuild(scene);
         for (int delta : options_.deltas) runDelta(scene, render, delta, reference, result);
         if (options_.maxDepthSweep) runMaxDepthSweep(scene, render, reference, result);
@@ -134,6 +140,37 @@ private:
         result.referenceRenderMs = spreadOf(ms).median;
         result.reference = colorImage(frame);
         return frame;
+    }
+
+    // The CPU baseline (embree_baseline.h) on the camera rays: built once per scene, checked against
+    // the reference's primary hits, then timed next to every accelerator's primary-only render.
+    void startEmbree(const Scene& scene, const Frame& reference, SceneResult& result) {
+        embree_.reset();
+        embreeSingle_.clear();
+        embreePacket_.clear();
+        result.embree = {};
+        if (!embreeAvailable()) {
+            result.embree.note = embreeMissingNote();
+            return;
+        }
+        step("Embree: build");
+        embree_ = makeEmbreeBaseline(scene, reference.width, reference.height);
+        result.embree.version = embree_->version();
+        result.embree.threads = maxThreads(threads_);
+        embree_->traceMs(EmbreeQuery::Single, result.embree.threads);
+        size_t same = 0;
+        for (size_t i = 0; i < reference.primId.size(); ++i) same += embree_->hits()[i] == reference.primId[i];
+        result.embree.agreement = double(same) / double(std::max<size_t>(reference.primId.size(), 1));
+    }
+
+    void finishEmbree(SceneResult& result) {
+        if (!embree_ || embreeSingle_.empty()) return;
+        const double rays = double(result.width) * double(result.height);
+        result.embree.singleMs = spreadOf(embreeSingle_);
+        result.embree.packetMs = spreadOf(embreePacket_);
+        result.embree.singleMrays = mrays(rays, result.embree.singleMs.median);
+        result.embree.packetMrays = mrays(rays, result.embree.packetMs.median);
+        embree_.reset();
     }
 
     struct Built {
@@ -186,6 +223,7 @@ private:
     // touches them alike.
     struct Traced {
         Spread fullMs, primaryMs, depthOneMs;
+        std::optional<Spread> embreeSingleMs, embreePacketMs;
         GpuRun full, depthOne;
     };
     Traced traceTimed(const Scene& scene, const Scene& dark, const RenderOptions& render,
@@ -193,7 +231,7 @@ private:
         RenderOptions primary = render, depthOne = render;
         primary.maxDepth = depthOne.maxDepth = 1;
         Traced t;
-        std::vector<double> full, prim, one;
+        std::vector<double> full, prim, one, single, packet;
         for (int r = 0; r <= options_.repeat; ++r) {  // run 0 is the warm-up
             step("trace " + label, r, options_.repeat);
             t.full = this->render(scene, render, data);
@@ -205,6 +243,20 @@ private:
                 prim.push_back(p.report.gpuMs);
                 one.push_back(t.depthOne.report.gpuMs);
             }
+            if (!embree_) continue;
+            const int threads = maxThreads(threads_);
+            const double ms1 = embree_->traceMs(EmbreeQuery::Single, threads);
+            const double ms16 = embree_->traceMs(EmbreeQuery::Packet16, threads);
+            if (r > 0) {
+                single.push_back(ms1);
+                packet.push_back(ms16);
+            }
+        }
+        if (!single.empty()) {
+            t.embreeSingleMs = spreadOf(single);
+            t.embreePacketMs = spreadOf(packet);
+            embreeSingle_.insert(embreeSingle_.end(), single.begin(), single.end());
+            embreePacket_.insert(embreePacket_.end(), packet.begin(), packet.end());
         }
         t.fullMs = spreadOf(full);
         if (rayKinds) {
@@ -269,6 +321,8 @@ private:
         a.traceMs = t.fullMs;
         a.primaryOnlyMs = t.primaryMs;
         a.depthOneMs = t.depthOneMs;
+        a.embreeSingleMs = t.embreeSingleMs;
+        a.embreePacketMs = t.embreePacketMs;
         const uint64_t pixels = uint64_t(render.width) * uint64_t(render.height);
         a.rayKinds = rayKindFigures(t, pixels);
         const gpu::GpuRenderReport& rep = t.full.report;
@@ -438,6 +492,8 @@ private:
     // (kd-stack, kd-restart and kd-backtrack share the tree).
     std::map<std::string, std::vector<ThreadTiming>> buildTimings_;
     gpu::KernelCache kernels_{ctx_};  // pipelines are not what the bench measures
+    std::unique_ptr<EmbreeBaseline> embree_;          // of the current scene
+    std::vector<double> embreeSingle_, embreePacket_;  // its timings over every accelerator
     int sceneIndex_ = 0, sceneCount_ = 0;
     std::string sceneName_;
 

@@ -19,6 +19,9 @@ struct BenchOptions {
     // Accelerators compared at the scene's maxdepth; each is built and traced on its own.
     std::vector<std::string> accels = {"bvh-fast", "bvh-hq", "kd-stack", "kd-restart", "kd-backtrack"};
     int width = 0, height = 0;   // 0: the scene's own size
+    // The camera of every scene: "scene", "close" or "EX,EY,EZ,CX,CY,CZ[,FOVY]" (scene/camera.h,
+    // viewCamera).
+    std::string view = "scene";
     int repeat = 3;              // timed runs after one warm-up; medians with min-max
     std::vector<int> threads;    // build-scaling thread counts; empty: 1, 2, 4, ... up to all cores
     // AAC deltas of the sweep after A. F. Mahmuda, "Bounding Volume Hierarchy Construction Using

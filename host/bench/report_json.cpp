@@ -44,6 +44,10 @@ Json accelResult(const AccelResult& a) {
             {"trace_ms", spread(a.traceMs)},
             {"primary_only_ms", spread(a.primaryOnlyMs)},
             {"depth_one_ms", spread(a.depthOneMs)},
+            {"embree_interleaved", a.embreeSingleMs ? Json{{"intersect1_ms", spread(*a.embreeSingleMs)},
+                                                           {"intersect16_ms", spread(*a.embreePacketMs)},
+                                                           {"primary_vs_intersect1", number(a.primaryVsEmbree())}}
+                                                     : Json(nullptr)},
             {"mrays_per_s", number(a.mraysPerSecond)},
             {"ray_kinds", kinds},
             {"per_ray", {{"nodes", number(a.nodesPerRay)},
@@ -79,6 +83,17 @@ Json deltaResult(const DeltaResult& d) {
             {"sah_cost", number(d.sahCost)}};
 }
 
+Json embree(const EmbreeResult& e) {
+    if (e.version.empty()) return {{"note", e.note}};
+    return {{"version", e.version},
+            {"threads", e.threads},
+            {"intersect1_ms", spread(e.singleMs)},
+            {"intersect16_ms", spread(e.packetMs)},
+            {"intersect1_mrays_per_s", number(e.singleMrays)},
+            {"intersect16_mrays_per_s", number(e.packetMrays)},
+            {"agreement_with_reference", number(e.agreement)}};
+}
+
 Json sceneResult(const SceneResult& s) {
     Json accels = Json::array(), points = Json::array(), deltas = Json::array();
     for (const AccelResult& a : s.accels) accels.push_back(accelResult(a));
@@ -94,6 +109,8 @@ Json sceneResult(const SceneResult& s) {
                              {"accel", s.referenceAccel},
                              {"build_ms", number(s.referenceBuildMs)},
                              {"render_ms", number(s.referenceRenderMs)}}},
+              {"view", s.view},
+              {"embree", embree(s.embree)},
               {"accelerators", accels},
               {"aac_delta_sweep", deltas},
               {"error_vs_time", points}};

@@ -39,6 +39,7 @@ Facts sceneFacts(const SceneResult& scene);
 // The tables of one scene, in report order: accelerators, build scaling, concurrent build, AAC
 // delta sweep, error against run time.
 Table acceleratorTable(const SceneResult& scene);
+Table embreeTable(const SceneResult& scene);
 Table buildScalingTable(const SceneResult& scene);
 Table concurrentBuildTable(const SceneResult& scene);
 Table deltaSweepTable(const SceneResult& scene);

@@ -21,6 +21,7 @@
 #include "gpu/scene_buffers.h"
 #include "gpu/vulkan_context.h"
 #include "image/image_io.h"
+#include "scene/camera.h"
 #include "scene/scene.h"
 #include "scene/scene_parser.h"
 
@@ -36,6 +37,7 @@ struct RenderArgs {
     bool cpu = false;
     std::string device;
     std::string size;
+    std::string view = "scene";
     std::optional<int> maxDepth;
     int threads = 0;
     std::vector<std::string> aovs;
@@ -146,10 +148,11 @@ void runRender(const RenderArgs& args) {
     const accel::AccelSpec spec = accel::resolveAccel(args.accel, args.tuning);
 
     const Clock::time_point t0 = Clock::now();
-    const Scene scene = loadScene(args.scene);
+    Scene scene = loadScene(args.scene);
     RenderReport report;
     report.loadMs = msSince(t0);
     checkRenderable(scene, args.scene);
+    scene.camera = viewCamera(scene, args.view);
     const RenderOptions options = resolveOptions(args, scene);
     const std::filesystem::path out = outputPath(args, scene);
     checkColorImagePath(out);  // refuse a bad output before spending minutes on the render
@@ -201,6 +204,10 @@ void registerRenderCommand(CLI::App& app, int& exitCode) {
     cmd->add_flag("--cpu", args->cpu, "Render with the CPU reference renderer (double precision)");
     cmd->add_option("--device", args->device, "Vulkan device: index or name substring (see `vkray devices`)");
     cmd->add_option("--size", args->size, "Image size WIDTHxHEIGHT (overrides the scene's 'size')");
+    cmd->add_option("--view", args->view,
+                    "Camera: scene (its own), close (a close-up of the scene's triangles) or "
+                    "EX,EY,EZ,CX,CY,CZ[,FOVY] (eye, look-at centre, fovy; up from the scene)")
+        ->default_str("scene");
     cmd->add_option("--maxdepth", args->maxDepth, "Ray depth, primary rays count as 1 (overrides the scene's)");
     cmd->add_option("--threads", args->threads, "CPU threads (0 = all cores)");
     cmd->add_option("--aov", args->aovs, "Write an AOV: depth=F.pfm, primid=F.pfm, normal=F.pfm (repeatable)");

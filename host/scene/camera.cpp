@@ -1,7 +1,11 @@
 #include "scene/camera.h"
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
+#include <sstream>
 #include <string>
+#include <vector>
 
 #include "core/error.h"
 
@@ -37,6 +41,63 @@ glm::dvec3 primaryDirection(const CameraFrame& f, int i, int j) {
     const double a = f.tanX * ((i + 0.5) - halfW) / halfW;
     const double b = f.tanY * (halfH - (j + 0.5)) / halfH;
     return glm::normalize(a * f.u + b * f.v - f.w);
+}
+
+namespace {
+
+Camera closeUpCamera(const Scene& scene) {
+    if (scene.triangles.empty()) return scene.camera;
+    glm::vec3 lo(std::numeric_limits<float>::infinity()), hi(-std::numeric_limits<float>::infinity());
+    for (const Triangle& t : scene.triangles)
+        for (const glm::vec3& p : {t.p0, t.p1, t.p2}) {
+            lo = glm::min(lo, p);
+            hi = glm::max(hi, p);
+        }
+    const glm::dvec3 centre = 0.5 * (glm::dvec3(lo) + glm::dvec3(hi));
+    const double radius = 0.5 * glm::length(glm::dvec3(hi) - glm::dvec3(lo));
+    const CameraFrame f = makeCameraFrame(scene.camera, 1, 1);  // validates the scene's camera
+    const double tanY = std::tan(glm::radians(double(scene.camera.fovyDegrees)) / 2.0);
+    const double distance = std::max(0.5 * radius / tanY, radius);
+    Camera c = scene.camera;
+    c.center = glm::vec3(centre);
+    c.eye = glm::vec3(centre + f.w * std::max(distance, 1e-6));
+    return c;
+}
+
+Camera explicitCamera(const Scene& scene, const std::string& text, const std::string& option) {
+    const std::string usage = option + " '" + text + "': expected scene, close or EX,EY,EZ,CX,CY,CZ[,FOVY]";
+    std::vector<double> v;
+    std::stringstream in(text);
+    for (std::string item; std::getline(in, item, ',');) {
+        size_t used = 0;
+        double x = 0.0;
+        try {
+            x = std::stod(item, &used);
+        } catch (const std::exception&) {
+            throw Error(usage);
+        }
+        if (used != item.size() || !std::isfinite(x)) throw Error(usage);
+        v.push_back(x);
+    }
+    if (v.size() != 6 && v.size() != 7) throw Error(usage);
+    Camera c = scene.camera;
+    c.eye = glm::vec3(v[0], v[1], v[2]);
+    c.center = glm::vec3(v[3], v[4], v[5]);
+    if (v.size() == 7) c.fovyDegrees = float(v[6]);
+    try {
+        makeCameraFrame(c, 1, 1);
+    } catch (const Error& e) {
+        throw Error(option + " '" + text + "': " + e.what());
+    }
+    return c;
+}
+
+}  // namespace
+
+Camera viewCamera(const Scene& scene, const std::string& view, const std::string& option) {
+    if (view == "scene") return scene.camera;
+    if (view == "close") return closeUpCamera(scene);
+    return explicitCamera(scene, view, option);
 }
 
 }  // namespace vkray

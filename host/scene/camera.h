@@ -3,6 +3,8 @@
 // (shaders/include/camera.glsl) from the basis this header builds.
 #pragma once
 
+#include <string>
+
 #include <glm/glm.hpp>
 
 #include "scene/scene.h"
@@ -22,5 +24,16 @@ CameraFrame makeCameraFrame(const Camera& cam, int width, int height);
 
 // Unit direction through the centre of pixel (i, j); i = column from the left, j = row from the top.
 glm::dvec3 primaryDirection(const CameraFrame& f, int i, int j);
+
+// The camera of a view other than the scene's own (`vkray bench --view`), always with the scene's up
+// vector:
+//   "scene"                      the scene's camera, unchanged;
+//   "close"                      a close-up where most camera rays hit: looking at the centre of the
+//                                triangles' bounds from the scene camera's direction, near enough
+//                                that the vertical field of view spans half the bounds' diagonal
+//                                (never nearer than that diagonal's half from the centre);
+//   "EX,EY,EZ,CX,CY,CZ[,FOVY]"   eye, look-at centre and optionally fovy in degrees.
+// Throws vkray::Error naming `option` for any other text, a non-finite number or a degenerate camera.
+Camera viewCamera(const Scene& scene, const std::string& view, const std::string& option = "--view");
 
 }  // namespace vkray

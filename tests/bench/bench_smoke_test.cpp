@@ -13,6 +13,7 @@
 #include <nlohmann/json.hpp>
 
 #include "bench/bench_runner.h"
+#include "bench/embree_baseline.h"
 #include "bench/report.h"
 #include "gpu/vulkan_context.h"
 
@@ -75,7 +76,7 @@ void expectError(const Json& e, const std::string& where) {
 void expectNoStrayNulls(const Json& j, const std::string& path) {
     if (j.is_null()) {
         const bool allowed = path.ends_with(".psnr_db") || path.ends_with(".mrays_per_s") ||
-                             path.ends_with(".concurrent_build");
+                             path.ends_with(".concurrent_build") || path.ends_with(".embree_interleaved");
         EXPECT_TRUE(allowed) << "null at " << path;
         return;
     }
@@ -141,6 +142,18 @@ TEST(BenchSmoke, ReportOnLavapipeIsComplete) {
     for (const Json& a : s["accelerators"]) {
         ASSERT_EQ(a["build"].size(), 2u);
         checkAccel(a, o.width, o.height);
+    }
+    // The CPU baseline on the same camera rays, interleaved with every accelerator's.
+    if (embreeAvailable()) {
+        const Json& e = s["embree"];
+        for (const char* key : {"intersect1_mrays_per_s", "intersect16_mrays_per_s"}) expectPositive(e, key, "embree");
+        EXPECT_GE(e["agreement_with_reference"].get<double>(), 0.98);
+        for (const Json& a : s["accelerators"]) {
+            expectPositiveSpread(a["embree_interleaved"], "intersect1_ms", "embree_interleaved");
+            expectPositive(a["embree_interleaved"], "primary_vs_intersect1", a["accel"]);
+        }
+    } else {
+        EXPECT_FALSE(s["embree"]["note"].get<std::string>().empty());
     }
     ASSERT_EQ(s["aac_delta_sweep"].size(), 2u);
     for (const Json& d : s["aac_delta_sweep"]) {

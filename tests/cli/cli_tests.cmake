@@ -27,6 +27,8 @@ vkray_expect_error(no_camera "no_camera\\.scene.*camera" render ${CLI_DATA}/no_c
 vkray_expect_error(size_flag_zero "--size 0x0" render ${CLI_DATA}/one_triangle.scene --size 0x0 -o ${CLI_OUT}/x.png)
 vkray_expect_error(size_flag_absurd "--size 100000x100000" render ${CLI_DATA}/one_triangle.scene --size 100000x100000 -o ${CLI_OUT}/x.png)
 vkray_expect_error(size_flag_garbage "--size big" render ${CLI_DATA}/one_triangle.scene --size big -o ${CLI_OUT}/x.png)
+vkray_expect_error(view_flag_garbage "--view 'near': expected scene, close" render ${CLI_DATA}/one_triangle.scene --view near -o ${CLI_OUT}/x.png)
+vkray_expect_error(view_flag_degenerate "--view '1,2,3,1,2,3': camera eye and look-at centre coincide" render ${CLI_DATA}/one_triangle.scene --view 1,2,3,1,2,3 -o ${CLI_OUT}/x.png)
 vkray_expect_error(maxdepth_flag "--maxdepth 0" render ${CLI_DATA}/one_triangle.scene --maxdepth 0 -o ${CLI_OUT}/x.png)
 vkray_expect_error(unknown_accel "--accel warp" render ${CLI_DATA}/one_triangle.scene --accel warp -o ${CLI_OUT}/x.png)
 vkray_expect_error(unknown_aov "unknown AOV 'albedo'" render ${CLI_DATA}/one_triangle.scene --aov albedo=a.pfm -o ${CLI_OUT}/x.png)

@@ -1,5 +1,6 @@
 // Camera rays (docs/scene-format.md, "Camera rays") against values computed by hand.
 #include <cmath>
+#include <string>
 
 #include <gtest/gtest.h>
 
@@ -78,6 +79,56 @@ TEST(CameraRays, DegenerateCameraIsAnError) {
     EXPECT_THROW(makeCameraFrame(cameraAt({0, 0, 0}, {0, 1, 0}, {0, 1, 0}, 45.0f), 2, 2), Error);
     EXPECT_THROW(makeCameraFrame(cameraAt({0, 0, 0}, {0, 0, -1}, {0, 1, 0}, 180.0f), 2, 2), Error);
     EXPECT_THROW(makeCameraFrame(cameraAt({0, 0, 0}, {0, 0, -1}, {0, 1, 0}, 45.0f), 0, 2), Error);
+}
+
+// --view: the scene's camera, a close-up of the triangles' bounds, or an explicit eye and centre.
+Scene unitCubeCorners() {
+    Scene s;
+    s.camera = cameraAt({0, 0, 10}, {0, 0, 0}, {0, 1, 0}, 60.0f);
+    s.triangles.push_back(Triangle{{-1, -1, -1}, {1, 1, 1}, {1, -1, 1}, 0});
+    return s;
+}
+
+TEST(ViewCamera, SceneKeepsTheCamera) {
+    const Scene s = unitCubeCorners();
+    const Camera c = viewCamera(s, "scene");
+    EXPECT_EQ(c.eye, s.camera.eye);
+    EXPECT_EQ(c.center, s.camera.center);
+}
+
+TEST(ViewCamera, CloseLooksAtTheBoundsFromTheScenesDirection) {
+    const Scene s = unitCubeCorners();
+    const Camera c = viewCamera(s, "close");
+    EXPECT_EQ(c.center, glm::vec3(0, 0, 0));
+    EXPECT_EQ(c.fovyDegrees, 60.0f);
+    // Half-diagonal sqrt(3); the field of view spans half of it: d = (sqrt(3)/2) / tan(30 deg) = 1.5,
+    // below the half-diagonal, so the eye stays that far out, on the scene camera's side.
+    EXPECT_NEAR(c.eye.x, 0.0f, 1e-6f);
+    EXPECT_NEAR(c.eye.y, 0.0f, 1e-6f);
+    EXPECT_NEAR(c.eye.z, std::sqrt(3.0f), 1e-5f);
+}
+
+TEST(ViewCamera, ExplicitEyeCentreAndFovy) {
+    const Scene s = unitCubeCorners();
+    const Camera c = viewCamera(s, "1,2,3,0,0.5,-1e1,30");
+    EXPECT_EQ(c.eye, glm::vec3(1, 2, 3));
+    EXPECT_EQ(c.center, glm::vec3(0, 0.5f, -10));
+    EXPECT_EQ(c.fovyDegrees, 30.0f);
+    EXPECT_EQ(c.up, s.camera.up);
+    EXPECT_EQ(viewCamera(s, "1,2,3,0,0,0").fovyDegrees, 60.0f);
+}
+
+TEST(ViewCamera, BadTextIsAnErrorNamingTheOption) {
+    const Scene s = unitCubeCorners();
+    for (const char* bad : {"", "near", "1,2,3", "1,2,3,4,5", "1,2,3,4,5,6,7,8", "1,2,x,4,5,6", "1,2,3,4,5,6,",
+                            "1,2,3,4,5,nan", "1,2,3,1,2,3", "0,5,0,0,0,0", "1,2,3,4,5,6,180"}) {
+        try {
+            viewCamera(s, bad);
+            ADD_FAILURE() << "accepted '" << bad << "'";
+        } catch (const Error& e) {
+            EXPECT_NE(std::string(e.what()).find("--view '" + std::string(bad) + "'"), std::string::npos) << e.what();
+        }
+    }
 }
 
 }  // namespace
