@@ -66,6 +66,7 @@ Camera closeUpCamera(const Scene& scene) {
 
 Camera explicitCamera(const Scene& scene, const std::string& text, const std::string& option) {
     const std::string usage = option + " '" + text + "': expected scene, close or EX,EY,EZ,CX,CY,CZ[,FOVY]";
+    if (text.empty() || text.back() == ',') throw Error(usage);  // getline drops a last empty item
     std::vector<double> v;
     std::stringstream in(text);
     for (std::string item; std::getline(in, item, ',');) {
