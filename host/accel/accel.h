@@ -64,6 +64,12 @@ struct GpuAccelData {
     // Raw contents of the bindings VKRAY_BINDING_ACCEL_NODES, _ACCEL_INDICES, _ACCEL_EXTRA; an
     // empty one is bound to a small dummy buffer.
     std::vector<std::byte> nodes, indices, extra;
+    // Bytes per texel of the nodes' texel view (VKRAY_BINDING_NODE_TEXELS): 16 (RGBA32UI), 8 (RG32UI)
+    // or 4 (R32UI), the node size or a divisor of it, so one node is whole texels.
+    uint32_t nodeTexelBytes = 16;
+    // Most triangles a leaf holds (0 for brute force): the kernels' leaf loop is specialised on it
+    // (VKRAY_SPEC_LEAF_SLOTS).
+    uint32_t maxLeafTriangles = 0;
 
     size_t bytes() const { return nodes.size() + indices.size() + extra.size(); }
 };

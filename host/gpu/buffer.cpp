@@ -72,6 +72,18 @@ void OneShotCommands::submitAndWait() {
     }
 }
 
+TexelView::TexelView(const VulkanContext& ctx, const Buffer& buffer, vk::Format format, uint32_t texelBytes,
+                     const std::string& what) {
+    const vk::DeviceSize texels = buffer.size() / texelBytes;
+    const vk::DeviceSize limit = ctx.info().maxTexelBufferElements;
+    if (texels > limit)
+        throw Error("the scene's " + what + " need " + std::to_string(texels) + " texels, more than the " +
+                    std::to_string(limit) + " one texel buffer may hold on '" + ctx.info().name +
+                    "' (maxTexelBufferElements)");
+    view_ = vk::raii::BufferView(ctx.device(), vk::BufferViewCreateInfo{.buffer = buffer.handle(), .format = format,
+                                                                        .offset = 0, .range = texels * texelBytes});
+}
+
 void checkStorageBufferFits(const VulkanContext& ctx, size_t bytes, const std::string& what) {
     const vk::DeviceSize range = ctx.info().maxStorageBufferRange;
     if (bytes > range)
@@ -85,7 +97,8 @@ Buffer uploadStorageBuffer(const VulkanContext& ctx, const void* data, size_t by
     checkStorageBufferFits(ctx, bytes, what);
     const vk::DeviceSize size = std::max<vk::DeviceSize>(bytes, 16);
     using BU = vk::BufferUsageFlagBits;
-    Buffer target(ctx, size, BU::eStorageBuffer | BU::eTransferDst, MemoryUse::DeviceLocal, what);
+    Buffer target(ctx, size, BU::eStorageBuffer | BU::eUniformTexelBuffer | BU::eTransferDst, MemoryUse::DeviceLocal,
+                  what);
     if (bytes == 0) return target;
     if (target.hostVisible()) {
         std::memcpy(target.mapped(), data, bytes);

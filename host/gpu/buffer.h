@@ -49,6 +49,21 @@ private:
     vk::raii::CommandBuffer cmd_{nullptr};
 };
 
+// A read-only view of a buffer as a uniform texel buffer of `format` (RAII): the kernels fetch their
+// hot data through these (shared/gpu_layout.h, "Texel views").
+class TexelView {
+public:
+    TexelView() = default;
+    // Throws vkray::Error naming `what` when the buffer holds more texels than the device's
+    // maxTexelBufferElements.
+    TexelView(const VulkanContext& ctx, const Buffer& buffer, vk::Format format, uint32_t texelBytes,
+              const std::string& what);
+    vk::BufferView handle() const { return *view_; }
+
+private:
+    vk::raii::BufferView view_{nullptr};
+};
+
 // Throws vkray::Error naming `what` when `bytes` exceed the device's maxStorageBufferRange.
 void checkStorageBufferFits(const VulkanContext& ctx, size_t bytes, const std::string& what);
 

@@ -1,19 +1,23 @@
 #include "gpu/compute_kernel.h"
 
+#include <algorithm>
+
+#include "core/error.h"
+
 namespace vkray::gpu {
 
 ComputeKernel::ComputeKernel(const VulkanContext& ctx, std::span<const uint32_t> spirv,
-                             uint32_t storageBuffers, uint32_t pushConstantBytes,
+                             std::span<const vk::DescriptorType> bindingTypes, uint32_t pushConstantBytes,
                              const Specialization& spec)
-    : ctx_(ctx), pushConstantBytes_(pushConstantBytes) {
+    : ctx_(ctx), pushConstantBytes_(pushConstantBytes), bindings_(bindingTypes.begin(), bindingTypes.end()) {
     const auto& dev = ctx.device();
     module_ = vk::raii::ShaderModule(dev, vk::ShaderModuleCreateInfo{.codeSize = spirv.size_bytes(),
                                                                      .pCode = spirv.data()});
 
     std::vector<vk::DescriptorSetLayoutBinding> bindings;
-    for (uint32_t i = 0; i < storageBuffers; ++i)
+    for (uint32_t i = 0; i < bindings_.size(); ++i)
         bindings.push_back({.binding = i,
-                            .descriptorType = vk::DescriptorType::eStorageBuffer,
+                            .descriptorType = bindings_[i],
                             .descriptorCount = 1,
                             .stageFlags = vk::ShaderStageFlagBits::eCompute});
     setLayout_ = vk::raii::DescriptorSetLayout(
@@ -44,26 +48,39 @@ ComputeKernel::ComputeKernel(const VulkanContext& ctx, std::span<const uint32_t>
         .layout = *layout_};
     pipeline_ = vk::raii::Pipeline(dev, nullptr, info);
 
-    vk::DescriptorPoolSize poolSize{.type = vk::DescriptorType::eStorageBuffer,
-                                    .descriptorCount = storageBuffers};
+    std::vector<vk::DescriptorPoolSize> poolSizes;
+    for (vk::DescriptorType type : bindings_) {
+        auto it = std::find_if(poolSizes.begin(), poolSizes.end(), [&](const auto& p) { return p.type == type; });
+        if (it == poolSizes.end()) poolSizes.push_back({.type = type, .descriptorCount = 1});
+        else ++it->descriptorCount;
+    }
     pool_ = vk::raii::DescriptorPool(
         dev, vk::DescriptorPoolCreateInfo{.flags = vk::DescriptorPoolCreateFlagBits::eFreeDescriptorSet,
-                                          .maxSets = 1, .poolSizeCount = 1, .pPoolSizes = &poolSize});
+                                          .maxSets = 1, .poolSizeCount = uint32_t(poolSizes.size()),
+                                          .pPoolSizes = poolSizes.data()});
     vk::raii::DescriptorSets sets(dev, vk::DescriptorSetAllocateInfo{.descriptorPool = *pool_,
                                                                      .descriptorSetCount = 1,
                                                                      .pSetLayouts = &rawSetLayout});
     set_ = std::move(sets[0]);
 }
 
-void ComputeKernel::bindStorageBuffers(std::span<const vk::Buffer> buffers) {
+void ComputeKernel::bind(std::span<const vk::Buffer> buffers, std::span<const vk::BufferView> views) {
     std::vector<vk::DescriptorBufferInfo> infos;
     infos.reserve(buffers.size());
     for (vk::Buffer b : buffers) infos.push_back({.buffer = b, .offset = 0, .range = VK_WHOLE_SIZE});
     std::vector<vk::WriteDescriptorSet> writes;
-    for (uint32_t i = 0; i < infos.size(); ++i)
-        writes.push_back({.dstSet = *set_, .dstBinding = i, .descriptorCount = 1,
-                          .descriptorType = vk::DescriptorType::eStorageBuffer,
-                          .pBufferInfo = &infos[i]});
+    size_t nextBuffer = 0, nextView = 0;
+    for (uint32_t i = 0; i < bindings_.size(); ++i) {
+        vk::WriteDescriptorSet w{.dstSet = *set_, .dstBinding = i, .descriptorCount = 1, .descriptorType = bindings_[i]};
+        if (bindings_[i] == vk::DescriptorType::eUniformTexelBuffer) {
+            if (nextView >= views.size()) throw Error("internal: too few texel views for the kernel's bindings");
+            w.pTexelBufferView = &views[nextView++];
+        } else {
+            if (nextBuffer >= infos.size()) throw Error("internal: too few buffers for the kernel's bindings");
+            w.pBufferInfo = &infos[nextBuffer++];
+        }
+        writes.push_back(w);
+    }
     ctx_.device().updateDescriptorSets(writes, nullptr);
 }
 

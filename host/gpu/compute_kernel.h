@@ -1,5 +1,6 @@
-// One compute kernel ready to dispatch: SPIR-V module, descriptor-set layout of N storage buffers,
-// push-constant range, pipeline specialised with constants, and its one descriptor set.
+// One compute kernel ready to dispatch: SPIR-V module, descriptor-set layout of storage buffers and
+// uniform texel buffers, push-constant range, pipeline specialised with constants, and its one
+// descriptor set.
 #pragma once
 
 #include <cstdint>
@@ -22,11 +23,14 @@ struct Specialization {
 
 class ComputeKernel {
 public:
-    ComputeKernel(const VulkanContext& ctx, std::span<const uint32_t> spirv, uint32_t storageBuffers,
-                  uint32_t pushConstantBytes, const Specialization& spec);
+    // Binding i of the set has type bindings[i] (eStorageBuffer or eUniformTexelBuffer).
+    ComputeKernel(const VulkanContext& ctx, std::span<const uint32_t> spirv,
+                  std::span<const vk::DescriptorType> bindings, uint32_t pushConstantBytes,
+                  const Specialization& spec);
 
-    // Points binding i of the descriptor set at buffers[i] (whole range).
-    void bindStorageBuffers(std::span<const vk::Buffer> buffers);
+    // Points the storage-buffer bindings at their buffers (whole range) and the texel-buffer
+    // bindings at their views, in binding order; each list skips the bindings of the other type.
+    void bind(std::span<const vk::Buffer> buffers, std::span<const vk::BufferView> views);
 
     void dispatch(const vk::raii::CommandBuffer& cmd, const void* pushConstants, uint32_t groupsX,
                   uint32_t groupsY) const;
@@ -34,6 +38,7 @@ public:
 private:
     const VulkanContext& ctx_;
     uint32_t pushConstantBytes_;
+    std::vector<vk::DescriptorType> bindings_;
     vk::raii::ShaderModule module_{nullptr};
     vk::raii::DescriptorSetLayout setLayout_{nullptr};
     vk::raii::PipelineLayout layout_{nullptr};

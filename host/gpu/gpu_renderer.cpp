@@ -2,8 +2,13 @@
 
 #include <algorithm>
 #include <array>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
 #include <iterator>
 #include <optional>
+#include <vector>
 
 #include "core/error.h"
 #include "core/timing.h"
@@ -18,6 +23,15 @@ namespace vkray::gpu {
 namespace {
 
 constexpr uint32_t kTilePixels = VKRAY_TILE_SIZE * VKRAY_TILE_SIZE;
+
+// The descriptor types of the render kernels' bindings (shared/gpu_layout.h).
+constexpr auto kBindingTypes = [] {
+    std::array<vk::DescriptorType, VKRAY_BINDING_COUNT> types{};
+    for (uint32_t i = 0; i < VKRAY_BINDING_COUNT; ++i)
+        types[i] = i < VKRAY_STORAGE_BINDING_COUNT ? vk::DescriptorType::eStorageBuffer
+                                                   : vk::DescriptorType::eUniformTexelBuffer;
+    return types;
+}();
 // Few tiles per submission: progress is reported per submission, and read-back overlaps nothing
 // anyway; 4 tiles = 16 MiB of GpuPixel.
 constexpr uint32_t kMaxTilesPerSubmission = 4;
@@ -152,16 +166,21 @@ void recordBatch(const vk::raii::CommandBuffer& cmd, const ComputeKernel& kernel
 }
 
 void bindBuffers(ComputeKernel& kernel, const SceneBuffers& scene, const AccelBuffers& accel, const Buffer& pixels) {
-    std::array<vk::Buffer, VKRAY_BINDING_COUNT> bindings{};
-    bindings[VKRAY_BINDING_TRIANGLES] = scene.triangles.handle();
-    bindings[VKRAY_BINDING_NORMALS] = scene.normals.handle();
-    bindings[VKRAY_BINDING_MATERIALS] = scene.materials.handle();
-    bindings[VKRAY_BINDING_LIGHTS] = scene.lights.handle();
-    bindings[VKRAY_BINDING_PIXELS] = pixels.handle();
-    bindings[VKRAY_BINDING_ACCEL_NODES] = accel.nodes.handle();
-    bindings[VKRAY_BINDING_ACCEL_INDICES] = accel.indices.handle();
-    bindings[VKRAY_BINDING_ACCEL_EXTRA] = accel.extra.handle();
-    kernel.bindStorageBuffers(bindings);
+    std::array<vk::Buffer, VKRAY_STORAGE_BINDING_COUNT> buffers{};
+    buffers[VKRAY_BINDING_TRIANGLES] = scene.triangles.handle();
+    buffers[VKRAY_BINDING_NORMALS] = scene.normals.handle();
+    buffers[VKRAY_BINDING_MATERIALS] = scene.materials.handle();
+    buffers[VKRAY_BINDING_LIGHTS] = scene.lights.handle();
+    buffers[VKRAY_BINDING_PIXELS] = pixels.handle();
+    buffers[VKRAY_BINDING_ACCEL_NODES] = accel.nodes.handle();
+    buffers[VKRAY_BINDING_ACCEL_INDICES] = accel.indices.handle();
+    buffers[VKRAY_BINDING_ACCEL_EXTRA] = accel.extra.handle();
+    std::array<vk::BufferView, VKRAY_BINDING_COUNT - VKRAY_STORAGE_BINDING_COUNT> views{};
+    views[VKRAY_BINDING_TRIANGLE_TEXELS - VKRAY_STORAGE_BINDING_COUNT] = scene.triangleTexels.handle();
+    views[VKRAY_BINDING_NODE_TEXELS - VKRAY_STORAGE_BINDING_COUNT] = accel.nodeTexels.handle();
+    views[VKRAY_BINDING_INDEX_TEXELS - VKRAY_STORAGE_BINDING_COUNT] = accel.indexTexels.handle();
+    views[VKRAY_BINDING_EXTRA_TEXELS - VKRAY_STORAGE_BINDING_COUNT] = accel.extraTexels.handle();
+    kernel.bind(buffers, views);
 }
 
 // Dispatches the tiles, `perSubmission` at a time into `pixels`, and reads each batch into `frame`.
@@ -201,6 +220,26 @@ void throwIfCutShort(const VulkanContext& ctx, const Scene& scene, accel::Kernel
                 ", or another device; no image was written");
 }
 
+// The built-in SPIR-V of a kernel, or with VKRAY_KERNEL_DIR set (docs/benchmarks.md, "A/B of a
+// kernel") render_<kernel>.spv from that folder: a kernel edit is then timed against the built-in one
+// without rebuilding vkray.
+std::span<const uint32_t> kernelSpirv(accel::Kernel kernel, std::vector<uint32_t>& storage) {
+    const char* dir = std::getenv("VKRAY_KERNEL_DIR");
+    if (!dir || !*dir) return generated::kRenderKernels[kernelIndex(kernel)].code;
+    const std::filesystem::path file =
+        std::filesystem::path(dir) / ("render_" + std::string(accel::kernelName(kernel)) + ".spv");
+    std::ifstream in(file, std::ios::binary | std::ios::ate);
+    if (!in) throw Error("VKRAY_KERNEL_DIR: cannot open " + file.string());
+    const std::streamsize size = in.tellg();
+    if (size <= 0 || size % 4 != 0) throw Error("VKRAY_KERNEL_DIR: " + file.string() + " is not SPIR-V (size " + std::to_string(size) + ")");
+    storage.resize(size_t(size) / 4);
+    in.seekg(0);
+    if (!in.read(reinterpret_cast<char*>(storage.data()), size) || storage[0] != 0x07230203u)
+        throw Error("VKRAY_KERNEL_DIR: " + file.string() + " is not SPIR-V");
+    std::fprintf(stderr, "vkray: kernel %s from %s\n", std::string(accel::kernelName(kernel)).c_str(), file.c_str());
+    return storage;
+}
+
 }  // namespace
 
 KernelCache::KernelCache(const VulkanContext& ctx) : ctx_(ctx) {}
@@ -210,7 +249,7 @@ ComputeKernel& KernelCache::kernel(const std::string& name, std::span<const uint
                                    const Specialization& spec) {
     auto& slot = kernels_[{name, spec.values}];
     if (!slot)
-        slot = std::make_unique<ComputeKernel>(ctx_, spirv, VKRAY_BINDING_COUNT, sizeof(GpuFrameParams), spec);
+        slot = std::make_unique<ComputeKernel>(ctx_, spirv, kBindingTypes, sizeof(GpuFrameParams), spec);
     return *slot;
 }
 
@@ -241,9 +280,11 @@ Frame renderOnGpu(const VulkanContext& ctx, const Scene& scene, const RenderOpti
     start = Clock::now();
     rep.features = ShaderFeatures::forScene(scene, options.maxDepth);
     rep.features.countTraversal = options.countTraversal;
+    rep.features.setMaxLeafTriangles(accel.maxLeafTriangles);
     std::optional<KernelCache> ownKernels;
     if (!kernels) kernels = &ownKernels.emplace(ctx);
-    const std::span<const uint32_t> spirv = generated::kRenderKernels[kernelIndex(accel.kernel)].code;
+    std::vector<uint32_t> spirvFromFile;
+    const std::span<const uint32_t> spirv = kernelSpirv(accel.kernel, spirvFromFile);
     ComputeKernel& kernel = kernels->kernel(rep.kernel, spirv, rep.features.specialization());
     rep.pipelineMs = msSince(start);
 

@@ -28,6 +28,15 @@ void checkPermutation(const std::vector<uint32_t>& order, size_t count) {
     }
 }
 
+vk::Format uintTexelFormat(uint32_t bytes) {
+    switch (bytes) {
+        case 4: return vk::Format::eR32Uint;
+        case 8: return vk::Format::eR32G32Uint;
+        case 16: return vk::Format::eR32G32B32A32Uint;
+        default: throw Error("internal: no texel format of " + std::to_string(bytes) + " bytes");
+    }
+}
+
 }  // namespace
 
 PackedScene packScene(const Scene& scene, const std::vector<uint32_t>& triangleOrder) {
@@ -74,7 +83,8 @@ SceneBuffers uploadScene(const VulkanContext& ctx, const PackedScene& packed) {
     SceneBuffers b{uploadVector(ctx, packed.triangles, "triangles"),
                    uploadVector(ctx, packed.normals, "vertex normals"),
                    uploadVector(ctx, packed.materials, "materials"),
-                   uploadVector(ctx, packed.lights, "lights")};
+                   uploadVector(ctx, packed.lights, "lights"), TexelView{}};
+    b.triangleTexels = TexelView(ctx, b.triangles, vk::Format::eR32G32B32A32Uint, 16, "triangles");
     b.bytes = packed.triangles.size() * sizeof(GpuTriangle) +
               packed.normals.size() * sizeof(GpuTriangleNormals) +
               packed.materials.size() * sizeof(GpuMaterial) + packed.lights.size() * sizeof(GpuLight);
@@ -89,7 +99,12 @@ void checkSceneFits(const VulkanContext& ctx, const Scene& scene) {
 AccelBuffers uploadAccel(const VulkanContext& ctx, const accel::GpuAccelData& data) {
     AccelBuffers b{uploadVector(ctx, data.nodes, "acceleration-structure nodes"),
                    uploadVector(ctx, data.indices, "acceleration-structure triangle indices"),
-                   uploadVector(ctx, data.extra, "acceleration-structure extra data")};
+                   uploadVector(ctx, data.extra, "acceleration-structure extra data"), TexelView{}, TexelView{},
+                   TexelView{}};
+    b.nodeTexels = TexelView(ctx, b.nodes, uintTexelFormat(data.nodeTexelBytes), data.nodeTexelBytes,
+                             "acceleration-structure nodes");
+    b.indexTexels = TexelView(ctx, b.indices, vk::Format::eR32Uint, 4, "acceleration-structure triangle indices");
+    b.extraTexels = TexelView(ctx, b.extra, vk::Format::eR32G32B32A32Uint, 16, "acceleration-structure extra data");
     b.bytes = data.bytes();
     return b;
 }

@@ -25,6 +25,7 @@ PackedScene packScene(const Scene& scene, const std::vector<uint32_t>& triangleO
 
 struct SceneBuffers {
     Buffer triangles, normals, materials, lights;
+    TexelView triangleTexels;  // VKRAY_BINDING_TRIANGLE_TEXELS
     uint64_t bytes = 0;  // uploaded, for --stats
 };
 
@@ -37,6 +38,7 @@ void checkSceneFits(const VulkanContext& ctx, const Scene& scene);
 // The acceleration structure's arrays (accel::GpuAccelData), one buffer per binding.
 struct AccelBuffers {
     Buffer nodes, indices, extra;
+    TexelView nodeTexels, indexTexels, extraTexels;  // VKRAY_BINDING_NODE_TEXELS, _INDEX_TEXELS, _EXTRA_TEXELS
     uint64_t bytes = 0;
 };
 

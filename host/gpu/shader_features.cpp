@@ -34,6 +34,7 @@ Specialization ShaderFeatures::specialization() const {
     s.set(VKRAY_SPEC_HAS_DIRECTIONAL_LIGHTS, directionalLights);
     s.set(VKRAY_SPEC_HAS_SMOOTH_NORMALS, smoothNormals);
     s.set(VKRAY_SPEC_COUNT_TRAVERSAL, countTraversal);
+    s.set(VKRAY_SPEC_LEAF_SLOTS, singleSlotLeaves ? 1u : 4u);
     return s;
 }
 
@@ -43,7 +44,8 @@ std::vector<std::pair<std::string, bool>> ShaderFeatures::list() const {
             {"point lights", pointLights},
             {"directional lights", directionalLights},
             {"smooth normals", smoothNormals},
-            {"traversal counters", countTraversal}};
+            {"traversal counters", countTraversal},
+            {"one triangle per leaf-loop iteration", singleSlotLeaves}};
 }
 
 }  // namespace vkray::gpu

@@ -9,6 +9,7 @@
 
 #include "gpu/compute_kernel.h"
 #include "scene/scene.h"
+#include "shared/gpu_layout.h"
 
 namespace vkray::gpu {
 
@@ -20,8 +21,12 @@ struct ShaderFeatures {
     bool directionalLights = false;
     bool smoothNormals = false;
     bool countTraversal = false;     // statistics variant (RenderOptions::countTraversal)
+    // Leaf loop: one triangle per iteration unless a leaf holds more than
+    // VKRAY_SINGLE_SLOT_LEAF_LIMIT (then four, for lavapipe's loop budget).
+    bool singleSlotLeaves = true;
 
     static ShaderFeatures forScene(const Scene& scene, int maxDepth);
+    void setMaxLeafTriangles(uint32_t triangles) { singleSlotLeaves = triangles <= VKRAY_SINGLE_SLOT_LEAF_LIMIT; }
     Specialization specialization() const;
     // (name, compiled in) for --stats.
     std::vector<std::pair<std::string, bool>> list() const;

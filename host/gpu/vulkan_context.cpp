@@ -65,6 +65,7 @@ DeviceInfo describe(const vk::raii::PhysicalDevice& pd, uint32_t index) {
     if (drv.driverInfo[0] != '\0') d.driver += " / " + std::string(drv.driverInfo.data());
     d.apiVersion = versionString(props.apiVersion);
     d.maxStorageBufferRange = props.limits.maxStorageBufferRange;
+    d.maxTexelBufferElements = props.limits.maxTexelBufferElements;
     d.timestampPeriodNs = props.limits.timestampPeriod;
     auto mem = pd.getMemoryProperties();
     for (uint32_t h = 0; h < mem.memoryHeapCount; ++h)

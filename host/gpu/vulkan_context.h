@@ -22,6 +22,7 @@ struct DeviceInfo {
     std::string driver;        // driver name and info, e.g. "llvmpipe / Mesa 22.3.6"
     std::string apiVersion;    // "1.3.230"
     uint64_t maxStorageBufferRange = 0;
+    uint64_t maxTexelBufferElements = 0;
     uint64_t deviceLocalBytes = 0;
     float timestampPeriodNs = 0.0f;
     bool hasCompute = false;

@@ -19,6 +19,20 @@ layout(std430, set = 0, binding = VKRAY_BINDING_LIGHTS) readonly buffer Lights {
 layout(std430, set = 0, binding = VKRAY_BINDING_PIXELS) writeonly buffer Pixels {
     GpuPixel pixels[];
 };
+// The same data as texel views, for the reads of every traversal step (gpu_layout.h, "Texel views").
+layout(set = 0, binding = VKRAY_BINDING_TRIANGLE_TEXELS) uniform usamplerBuffer triangleTexels;
+layout(set = 0, binding = VKRAY_BINDING_NODE_TEXELS) uniform usamplerBuffer nodeTexels;
+layout(set = 0, binding = VKRAY_BINDING_INDEX_TEXELS) uniform usamplerBuffer indexTexels;
+layout(set = 0, binding = VKRAY_BINDING_EXTRA_TEXELS) uniform usamplerBuffer extraTexels;
+
+// Triangle `slot` of the triangle buffer, through its texel view.
+GpuTriangle loadTriangle(uint slot) {
+    const int k = int(3u * slot);
+    const uvec4 a = texelFetch(triangleTexels, k), b = texelFetch(triangleTexels, k + 1),
+                c = texelFetch(triangleTexels, k + 2);
+    return GpuTriangle(uintBitsToFloat(a.xyz), a.w, uintBitsToFloat(b.xyz), b.w, uintBitsToFloat(c.xyz), c.w);
+}
+
 layout(push_constant) uniform Push {
     GpuFrameParams params;
 };

@@ -15,7 +15,7 @@ uint slotTriangle(uint slot) { return slot; }
 // triangle identity (beats(), triangle.glsl), as on the CPU and in every other kernel.
 Hit bruteTrace(vec3 origin, vec3 dir, float tmax, const bool anyHit) {
     Hit best = noHit(tmax);
-    testSlots(0u, params.counts.x, makeWatertightRay(origin, dir), anyHit, best);
+    testSlots(0u, params.counts.x, makeWatertightRay(origin, dir), anyHit, kBruteSlotsPerIteration, best);
     return best;
 }
 

@@ -1,11 +1,14 @@
-// The `bvh` accelerator (accel/bvh: AAC after Gu et al. 2013, or the binned-SAH reference): a
-// depth-first array of 32-byte nodes (shared/bvh_layout.h) over the triangle buffer in leaf order.
+// The `bvh` accelerator (accel/bvh: AAC after Gu et al. 2013, or the binned-SAH reference), in the
+// 4-wide layout of shared/bvh_layout.h: a node holds its children's boxes, coordinates grouped by
+// axis, so one read and one set of vector operations test all four; leaves are runs of the triangle
+// buffer in leaf order, named by the reference itself, and take no node.
 //
-// One loop for both queries, one iteration per node. Closest hit: at an inner node both children's
-// boxes are tested; the nearer one is visited next and the farther one pushed, with its entry
-// distance, on a short stack in local memory; a popped node entered beyond the best hit so far is
-// skipped. Any hit (shadow rays) walks the same way without ordering and stops at the first
-// triangle hit. Leaves test their triangles in the loop of leaf_triangles.glsl.
+// One loop for both queries, one iteration per node or leaf. Closest hit: the children a ray
+// enters are sorted by entry distance; the nearest is visited next and the others are pushed,
+// farthest first, with their entry distances on a stack in local memory; a popped entry entered
+// beyond the best hit so far is skipped. Any hit (shadow rays) walks the same way without sorting
+// and stops at the first triangle hit. Leaves test their triangles in the loop of
+// leaf_triangles.glsl.
 #ifndef VKRAY_BVH_TRAVERSAL_GLSL
 #define VKRAY_BVH_TRAVERSAL_GLSL
 
@@ -17,9 +20,19 @@
 #include "trace_status.glsl"
 #include "triangle.glsl"
 
-layout(std430, set = 0, binding = VKRAY_BINDING_ACCEL_NODES) readonly buffer BvhNodes {
-    GpuBvhNode bvhNodes[];
-};
+// Node `index`, through the nodes' texel view.
+GpuBvhNode loadBvhNode(uint index) {
+    const int k = int(uint(VKRAY_BVH_NODE_TEXELS) * index);
+    GpuBvhNode n;
+    n.loX = uintBitsToFloat(texelFetch(nodeTexels, k));
+    n.hiX = uintBitsToFloat(texelFetch(nodeTexels, k + 1));
+    n.loY = uintBitsToFloat(texelFetch(nodeTexels, k + 2));
+    n.hiY = uintBitsToFloat(texelFetch(nodeTexels, k + 3));
+    n.loZ = uintBitsToFloat(texelFetch(nodeTexels, k + 4));
+    n.hiZ = uintBitsToFloat(texelFetch(nodeTexels, k + 5));
+    n.child = texelFetch(nodeTexels, k + 6);
+    return n;
+}
 
 // Below this magnitude a direction component counts as zero: its inverse would overflow.
 const float kFlatDirection = 1.0e-30;
@@ -31,7 +44,6 @@ struct BoxRay {
     vec3 origin;
     vec3 inv;
     bvec3 flat_;
-    bool anyFlat;
 };
 
 BoxRay makeBoxRay(vec3 origin, vec3 dir) {
@@ -39,43 +51,65 @@ BoxRay makeBoxRay(vec3 origin, vec3 dir) {
     r.origin = origin;
     r.flat_ = lessThan(abs(dir), vec3(kFlatDirection));
     r.inv = mix(1.0 / dir, vec3(0.0), r.flat_);
-    r.anyFlat = any(r.flat_);
     return r;
 }
 
-// Whether the ray meets the node's box for t in [0, tLimit]; tEnter = where it enters.
-bool hitsBox(GpuBvhNode node, BoxRay r, float tLimit, out float tEnter) {
-    const vec3 t0 = (node.lo - r.origin) * r.inv, t1 = (node.hi - r.origin) * r.inv;
-    vec3 tNear = min(t0, t1), tFar = max(t0, t1);
-    if (r.anyFlat) {  // rare: only rays with a zero direction component pay for it
-        const bvec3 inside = bvec3(uvec3(lessThanEqual(node.lo, r.origin)) * uvec3(lessThanEqual(r.origin, node.hi)));
-        tNear = mix(tNear, mix(vec3(kInfinity), vec3(-kInfinity), inside), r.flat_);
-        tFar = mix(tFar, mix(vec3(-kInfinity), vec3(kInfinity), inside), r.flat_);
+// One axis of the slab test for the four children: the parameter interval of each slab, or for a
+// flat axis all t (origin inside the slab) or none.
+void slab4(vec4 lo, vec4 hi, float origin, float inv, bool flatAxis, out vec4 tNear, out vec4 tFar) {
+    const vec4 t0 = (lo - origin) * inv, t1 = (hi - origin) * inv;
+    tNear = min(t0, t1);
+    tFar = max(t0, t1);
+    if (flatAxis) {  // rare: only rays with a zero direction component pay for it
+        const bvec4 inside = bvec4(uvec4(lessThanEqual(lo, vec4(origin))) * uvec4(lessThanEqual(vec4(origin), hi)));
+        tNear = mix(vec4(kInfinity), vec4(-kInfinity), inside);
+        tFar = mix(vec4(-kInfinity), vec4(kInfinity), inside);
     }
-    tEnter = max(max(tNear.x, tNear.y), max(tNear.z, 0.0));
+}
+
+// Which of the node's children the ray meets for t in [0, tLimit]; tEnter = where it enters each.
+bvec4 hitsChildren(GpuBvhNode n, BoxRay r, float tLimit, out vec4 tEnter) {
+    vec4 nearX, farX, nearY, farY, nearZ, farZ;
+    slab4(n.loX, n.hiX, r.origin.x, r.inv.x, r.flat_.x, nearX, farX);
+    slab4(n.loY, n.hiY, r.origin.y, r.inv.y, r.flat_.y, nearY, farY);
+    slab4(n.loZ, n.hiZ, r.origin.z, r.inv.z, r.flat_.z, nearZ, farZ);
+    tEnter = max(max(nearX, nearY), max(nearZ, vec4(0.0)));
     // The far distance widened for float rounding, so a box never rejects a ray that touches it.
-    const float tExit = min(min(tFar.x, tFar.y), min(tFar.z, tLimit)) * kRoundingSlack;
-    return tEnter <= tExit;
+    const vec4 tExit = min(min(farX, farY), min(farZ, vec4(tLimit))) * kRoundingSlack;
+    return bvec4(uvec4(lessThanEqual(tEnter, tExit)) * uvec4(notEqual(n.child, uvec4(VKRAY_BVH_NO_CHILD))));
+}
+
+// Orders entries a and b of (key, ref) by key.
+void sortPair(inout vec4 key, inout uvec4 ref, int a, int b) {
+    if (key[b] < key[a]) {
+        const float k = key[a];
+        key[a] = key[b];
+        key[b] = k;
+        const uint r = ref[a];
+        ref[a] = ref[b];
+        ref[b] = r;
+    }
 }
 
 // Leaves are runs of the triangle buffer in leaf order: Hit.triangle is a slot of it.
 uint slotTriangle(uint slot) { return slot; }
 
+bool isLeafRef(uint ref) { return (ref & VKRAY_BVH_LEAF_BIT) != 0u; }
+
 // Closest hit in (0, tmax), or with anyHit (a constant at both calls below, so the compiler folds
 // every test of it) the first hit found. For any hit best.t stays tmax until the walk ends.
 Hit bvhTrace(vec3 origin, vec3 dir, float tmax, const bool anyHit) {
     Hit best = noHit(tmax);
-    float tRoot;
+    if (params.counts.x == 0u) return best;
     const BoxRay boxRay = makeBoxRay(origin, dir);
-    if (params.counts.x == 0u || !hitsBox(bvhNodes[0], boxRay, tmax, tRoot)) return best;
     const WatertightRay ray = makeWatertightRay(origin, dir);
 
-    uint stackNode[VKRAY_BVH_STACK_SIZE];
+    uint stackRef[VKRAY_BVH_STACK_SIZE];
     float stackEnter[VKRAY_BVH_STACK_SIZE];  // closest hit only
     int top = 0;
-    uint node = 0;
-    // A popped node entered beyond the best hit found since it was pushed is skipped: that costs
-    // its iteration but reads no node. "Beyond" with the slab test's own widening: the triangle
+    uint ref = 0u;  // the root: inner node 0
+    // A popped entry entered beyond the best hit found since it was pushed is skipped: that costs
+    // its iteration but reads nothing. "Beyond" with the slab test's own widening: the triangle
     // test and the slab test round differently, and a triangle lying in a face of its box (axis-
     // aligned geometry) was measured to hit one ulp before the box's computed entry; compared
     // unwidened, that node was skipped and a closer hit, or an equal-t one of lower index
@@ -86,42 +120,53 @@ Hit bvhTrace(vec3 origin, vec3 dir, float tmax, const bool anyHit) {
     for (; iteration < VKRAY_BVH_MAX_ITERATIONS && !done; ++iteration) {
         bool descend = false;
         if (!skip) {
-            const GpuBvhNode n = bvhNodes[node];
             countNode();
-            if (n.count > 0u) {
+            if (isLeafRef(ref)) {
                 countLeaf();
-                const uint first = n.rightOrFirst;
+                const uint first = ref & VKRAY_BVH_FIRST_MASK;
+                const uint count = ((ref >> VKRAY_BVH_COUNT_SHIFT) & VKRAY_BVH_COUNT_MASK) + 1u;
                 // Cut short by the driver (flagged there), or an occluder found: the walk ends.
-                if (!testSlots(first, first + n.count, ray, anyHit, best) || (anyHit && best.triangle >= 0))
+                if (!testSlots(first, first + count, ray, anyHit, LEAF_SLOTS, best) || (anyHit && best.triangle >= 0))
                     return best;
             } else {
-                const uint left = node + 1u, right = n.rightOrFirst;
-                float tl, tr;
-                const bool hitLeft = hitsBox(bvhNodes[left], boxRay, best.t, tl);
-                const bool hitRight = hitsBox(bvhNodes[right], boxRay, best.t, tr);
-                if (hitLeft && hitRight) {
-                    if (top == VKRAY_BVH_STACK_SIZE) {  // deeper than the stack: flag, never guess
-                        gLoopCutShort = true;
-                        return best;
-                    }
-                    // Closest hit: near child first, the far one waits. Any hit: left first.
-                    const bool leftFirst = anyHit || tl <= tr;
-                    stackNode[top] = leftFirst ? right : left;
-                    if (!anyHit) stackEnter[top] = leftFirst ? tr : tl;
-                    ++top;
-                    node = leftFirst ? left : right;
-                    descend = true;
-                } else if (hitLeft || hitRight) {
-                    node = hitLeft ? left : right;
-                    descend = true;
+                const GpuBvhNode n = loadBvhNode(ref);
+                vec4 tEnter;
+                const bvec4 hit = hitsChildren(n, boxRay, best.t, tEnter);
+                // The entered children first, closest hit nearest first: a sorting network of five
+                // compare-swaps on the entry distance, +inf for a miss (any hit sorts 0 and +inf).
+                vec4 key = mix(vec4(kInfinity), anyHit ? vec4(0.0) : tEnter, hit);
+                uvec4 kids = n.child;
+                sortPair(key, kids, 0, 1);
+                sortPair(key, kids, 2, 3);
+                sortPair(key, kids, 0, 2);
+                sortPair(key, kids, 1, 3);
+                sortPair(key, kids, 1, 2);
+                const int hits = int(hit.x) + int(hit.y) + int(hit.z) + int(hit.w);
+                if (top + hits > VKRAY_BVH_STACK_SIZE) {  // deeper than the stack: flag, never guess
+                    gLoopCutShort = true;
+                    return best;
                 }
+                // The entered children after the first, farthest first: the nearest pops next.
+                // (A macro, not a function: GLSL passes arrays by copy.)
+#define VKRAY_BVH_PUSH(when, child, enter)             \
+    if (when) {                                        \
+        stackRef[top] = child;                         \
+        if (!anyHit) stackEnter[top] = enter;          \
+        ++top;                                         \
+    }
+                VKRAY_BVH_PUSH(hits > 3, kids.w, key.w)
+                VKRAY_BVH_PUSH(hits > 2, kids.z, key.z)
+                VKRAY_BVH_PUSH(hits > 1, kids.y, key.y)
+#undef VKRAY_BVH_PUSH
+                ref = kids.x;
+                descend = hits > 0;
             }
         }
         if (!descend) {
             done = top == 0;
             if (!done) {
                 --top;
-                node = stackNode[top];
+                ref = stackRef[top];
                 if (!anyHit) skip = stackEnter[top] > best.t * kRoundingSlack;
             }
         }

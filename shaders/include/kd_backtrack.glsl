@@ -13,9 +13,11 @@
 #include "trace_status.glsl"
 #include "triangle.glsl"
 
-layout(std430, set = 0, binding = VKRAY_BINDING_ACCEL_EXTRA) readonly buffer KdExtra {
-    KdNodeExtra kdExtra[];
-};
+// Node i's parent link and box, through the extra data's texel view: two texels.
+KdNodeExtra kdExtraAt(uint i) {
+    const uvec4 a = texelFetch(extraTexels, int(2u * i)), b = texelFetch(extraTexels, int(2u * i + 1u));
+    return KdNodeExtra(uintBitsToFloat(a.xyz), a.w, uintBitsToFloat(b.xyz), b.w);
+}
 
 bool kdWalkPass(KdRay r, WatertightRay w, const bool anyHit, float segMin, uint minAxis, float segMax,
                 uint maxAxis, inout KdPass pass, inout int steps, inout Hit best) {
@@ -33,7 +35,8 @@ bool kdWalkPass(KdRay r, WatertightRay w, const bool anyHit, float segMin, uint 
             }
             float t0 = segMin, t1 = globalMax;
             uint a0 = minAxis, a1 = globalMaxAxis;
-            if (kdClipBox(r, kdExtra[node].lo, kdExtra[node].hi, t0, a0, t1, a1, pass) &&
+            const KdNodeExtra extra = kdExtraAt(node);
+            if (kdClipBox(r, extra.lo, extra.hi, t0, a0, t1, a1, pass) &&
                 kdCompare(pass, t1, a1, segMin, minAxis) > 0) {
                 segMin = t0;  // at least segMin: the clip started from it
                 minAxis = a0;
@@ -41,11 +44,11 @@ bool kdWalkPass(KdRay r, WatertightRay w, const bool anyHit, float segMin, uint 
                 maxAxis = a1;
                 climbing = false;
             } else {
-                node = kdExtra[node].parent;
+                node = extra.parent;
             }
             continue;
         }
-        const uvec2 n = kdNodes[node];
+        const uvec2 n = kdNode(node);
         if (!kdIsLeaf(n)) {
             uint first, second;
             float thit;
@@ -59,7 +62,7 @@ bool kdWalkPass(KdRay r, WatertightRay w, const bool anyHit, float segMin, uint 
         } else {  // climb from this leaf's parent
             segMin = segMax;
             minAxis = maxAxis;
-            node = kdExtra[node].parent;
+            node = texelFetch(extraTexels, int(2u * node)).w;
             climbing = true;
             countRestart();
         }

@@ -30,12 +30,11 @@
 #include "triangle.glsl"
 
 layout(std430, set = 0, binding = VKRAY_BINDING_ACCEL_NODES) readonly buffer KdNodes {
-    KdTreeHeader kdTree;  // root box
-    uvec2 kdNodes[];      // KdNode: (word0, word1), see kd_layout.h
+    KdTreeHeader kdTree;  // root box; the nodes that follow are read through their texel view
 };
-layout(std430, set = 0, binding = VKRAY_BINDING_ACCEL_INDICES) readonly buffer KdIndices {
-    uint kdIndices[];
-};
+
+// Node i (KdNode: (word0, word1), see kd_layout.h).
+uvec2 kdNode(uint i) { return texelFetch(nodeTexels, int(i) + VKRAY_KD_HEADER_TEXELS).xy; }
 
 bool kdIsLeaf(uvec2 n) { return (n.y & 3u) == VKRAY_KD_LEAF_TAG; }
 uint kdAxis(uvec2 n) { return n.y & 3u; }
@@ -201,13 +200,13 @@ uint kdDescend(int visit, uvec2 n, uint first, uint second, float thit, inout fl
     return visit == kKdSecond ? second : first;
 }
 
-// A leaf lists its triangles in kdIndices: a triangle may lie in several leaves.
-uint slotTriangle(uint slot) { return kdIndices[slot]; }
+// A leaf lists its triangles in the index list: a triangle may lie in several leaves.
+uint slotTriangle(uint slot) { return texelFetch(indexTexels, int(slot)).x; }
 
 // The leaf's triangles against (0, best.t); with anyHit, stops at the first hit.
 void kdVisitLeaf(uvec2 n, WatertightRay w, const bool anyHit, inout Hit best) {
     countLeaf();
-    testSlots(kdFirstIndex(n), kdFirstIndex(n) + kdTriangleCount(n), w, anyHit, best);
+    testSlots(kdFirstIndex(n), kdFirstIndex(n) + kdTriangleCount(n), w, anyHit, LEAF_SLOTS, best);
 }
 
 // Whether the search may stop after a leaf whose segment ends at `exit`: a hit before it, with a

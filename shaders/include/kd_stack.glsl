@@ -22,7 +22,7 @@ bool kdWalkPass(KdRay r, WatertightRay w, const bool anyHit, float segMin, uint 
     bool passDone = false;
     for (; !passDone && steps < VKRAY_KD_MAX_STEPS; ++steps) {
         countNode();
-        const uvec2 n = kdNodes[node];
+        const uvec2 n = kdNode(node);
         if (!kdIsLeaf(n)) {
             uint first, second;
             float thit;

@@ -1,7 +1,17 @@
 // The one loop that tests a run of triangles: brute force runs it over the whole triangle buffer,
-// the BVH and the kd-tree over a leaf. Four triangles per iteration divide a ray's iterations by
-// four, which keeps the loops of a pixel far below lavapipe's budget of 65535 iterations
-// (trace_status.glsl) and multiplies the scene size brute force can handle under it.
+// the BVH and the kd-tree over a leaf.
+//
+// Slots per iteration: brute force tests four per iteration, which divides its iterations by four,
+// keeps the loops of a pixel far below lavapipe's budget of 65535 iterations (trace_status.glsl) and
+// multiplies the scene size it can handle under it. A leaf tests LEAF_SLOTS per iteration, one
+// unless the structure has leaves of more than VKRAY_SINGLE_SLOT_LEAF_LIMIT triangles (the host
+// decides, shader_features.cpp): llvmpipe runs a loop body at least once wherever the loop is
+// reached, for all SIMD lanes and masked, even when no lane has a triangle to test, and a traversal
+// reaches its leaf loop at every node step, so four slots cost four triangle tests per step
+// (measured: the BVH kernel took 1.6x the time; docs/benchmarks.md, "Faster kernels on lavapipe").
+// Large leaves (a burst of overlapping triangles) keep four, within the loop budget.
+layout(constant_id = VKRAY_SPEC_LEAF_SLOTS) const uint LEAF_SLOTS = 1u;
+const uint kBruteSlotsPerIteration = 4u;
 #ifndef VKRAY_LEAF_TRIANGLES_GLSL
 #define VKRAY_LEAF_TRIANGLES_GLSL
 
@@ -11,8 +21,8 @@
 
 // The triangle listed in `slot` of a leaf: an index into the triangle buffer. Defined by the
 // accelerator include: the slot itself for brute force and the BVH (whose leaves are runs of the
-// buffer in leaf order), kdIndices[slot] for the kd-tree (whose leaves share triangles through an
-// index list).
+// buffer in leaf order), the slot's entry of the index list for the kd-tree (whose leaves share
+// triangles through it).
 uint slotTriangle(uint slot);
 
 // Any hit asks only whether: it records the triangle in `best` and keeps best.t, the ray's tmax, so
@@ -22,7 +32,7 @@ uint slotTriangle(uint slot);
 void anyTriangle(uint triangle, WatertightRay ray, inout Hit best) {
     float t;
     vec2 uv;
-    if (hitTriangle(ray, triangles[triangle], t, uv) && t < best.t) best.triangle = int(triangle);
+    if (hitTriangle(ray, loadTriangle(triangle), t, uv) && t < best.t) best.triangle = int(triangle);
 }
 
 // Slot `slot` when below `end`: the last iteration's four slots may run past the end.
@@ -34,16 +44,19 @@ void testSlot(uint slot, uint end, WatertightRay ray, const bool anyHit, inout H
 }
 
 // Tests slots [begin, end) on (0, best.t) and keeps every hit that beats `best` (beats(),
-// triangle.glsl). With anyHit (a constant at every call, so the compiler folds it) the loop ends at
-// the first hit: best.triangle >= 0, best.t unchanged. Returns false, with the pixel flagged, if the
-// driver ended the loop before either; the triangles counted are those the loop reached.
-bool testSlots(uint begin, uint end, WatertightRay ray, const bool anyHit, inout Hit best) {
+// triangle.glsl). With anyHit the loop ends at the first hit: best.triangle >= 0, best.t unchanged.
+// anyHit and perIteration (kBruteSlotsPerIteration or LEAF_SLOTS, 1 or 4) are constants at every
+// call, so the compiler folds every test of them. Returns false, with the pixel flagged, if
+// the driver ended the loop before either; the triangles counted are those the loop reached.
+bool testSlots(uint begin, uint end, WatertightRay ray, const bool anyHit, const uint perIteration, inout Hit best) {
     uint i = begin;
-    for (; i < end && !(anyHit && best.triangle >= 0); i += 4u) {  // 4 slots per iteration
+    for (; i < end && !(anyHit && best.triangle >= 0); i += perIteration) {
         testSlot(i, end, ray, anyHit, best);
-        testSlot(i + 1u, end, ray, anyHit, best);
-        testSlot(i + 2u, end, ray, anyHit, best);
-        testSlot(i + 3u, end, ray, anyHit, best);
+        if (perIteration == 4u) {
+            testSlot(i + 1u, end, ray, anyHit, best);
+            testSlot(i + 2u, end, ray, anyHit, best);
+            testSlot(i + 3u, end, ray, anyHit, best);
+        }
     }
     countTriangles(min(i, end) - begin);
     const bool complete = i >= end || (anyHit && best.triangle >= 0);

@@ -21,7 +21,7 @@ struct SurfacePoint {
 };
 
 SurfacePoint surfaceAt(Hit hit, vec3 dir) {
-    const GpuTriangle tri = triangles[hit.triangle];
+    const GpuTriangle tri = loadTriangle(uint(hit.triangle));
     const vec3 p0 = tri.p0, p1 = tri.p1, p2 = tri.p2;
     const float b0 = 1.0 - hit.uv.x - hit.uv.y;
     SurfacePoint s;

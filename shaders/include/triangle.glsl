@@ -117,7 +117,7 @@ bool beats(float t, uint original, Hit best) {
 
 // Tests the triangle in `slot` of the triangle buffer and keeps its hit if it beats `best`.
 void closestTriangle(uint slot, WatertightRay ray, inout Hit best) {
-    const GpuTriangle tri = triangles[slot];
+    const GpuTriangle tri = loadTriangle(slot);
     float t;
     vec2 uv;
     if (hitTriangle(ray, tri, t, uv) && beats(t, tri.original, best)) {

@@ -2,26 +2,49 @@
 // and the kernel (GLSL, include/bvh_traversal.glsl), like gpu_layout.h: 16-byte slots, checked with
 // static_assert on the C++ side.
 //
-// Layout: depth-first. A node's left child is the next node in the array, so an inner node stores
-// only its right child; a leaf stores a range of the triangle buffer, which the host fills in leaf
-// order (GpuAccelData.triangleOrder) so a leaf's triangles are contiguous.
+// Layout: a 4-wide BVH collapsed from the binary tree (accel/bvh/flatten.cpp, gpuNodes), its nodes
+// depth-first from the root (node 0). A node holds the boxes of up to four children, coordinates
+// grouped by axis so the kernel tests all four with vector operations, and their references (Wald,
+// Benthin and Boulos, "Getting Rid of Packets", RT 2008; Ylitie, Karras and Laine, "Efficient
+// Incoherent Ray Traversal on GPUs Through Compressed Wide BVHs", HPG 2017, without the
+// compression). One node read decides which children a ray enters, and a ray takes about half the
+// steps of the binary tree: on llvmpipe every step pays for all branches of the loop body.
+//
+// A reference is an inner node's index, or a leaf: the leaf bit, the triangle count - 1 and the
+// leaf's first slot in the triangle buffer, which the host fills in leaf order
+// (GpuAccelData.triangleOrder) so a leaf's triangles are contiguous. Unused child slots hold
+// VKRAY_BVH_NO_CHILD.
 #ifndef VKRAY_BVH_LAYOUT_H
 #define VKRAY_BVH_LAYOUT_H
 
 #include "shared/gpu_layout.h"
 
-// Traversal stack entries per ray (local memory): the far children still to visit. Near-child-first
-// traversal pushes at most one entry per level, so a tree no deeper than this never overflows it;
-// the host reports the tree's depth (stats: max_depth) and the kernel flags an overflowing pixel
-// as cut short instead of answering wrongly.
-#define VKRAY_BVH_STACK_SIZE 64
-// Most triangles a leaf holds (accel/bvh: leaf collapse). The kernel tests a leaf's triangles four
-// per loop iteration, so a leaf costs at most two iterations of lavapipe's loop budget.
+// Children per node.
+#define VKRAY_BVH_WIDTH 4
+// Traversal stack entries per ray (local memory): the children still to visit. A step pushes at
+// most VKRAY_BVH_WIDTH - 1 entries, so a tree whose depth d has 3 d + 1 <= this never overflows
+// it; the kernel flags an overflowing pixel as cut short instead of answering wrongly.
+#define VKRAY_BVH_STACK_SIZE 96
+// Most triangles a leaf holds (accel/bvh: leaf collapse).
 #define VKRAY_BVH_MAX_LEAF_SIZE 8
 // Hang guard per traversal (lavapipe has no watchdog): a traversal visits each node at most once,
 // so only a corrupt tree or a scene of hundreds of thousands of overlapping triangles reaches it;
 // such a ray counts in GpuPixel.capped.
 #define VKRAY_BVH_MAX_ITERATIONS 16384
+
+// Child references: bit 31 set for a leaf, bits 28-30 its triangle count - 1, bits 0-27 its first
+// slot; an inner node's index otherwise.
+#define VKRAY_BVH_LEAF_BIT 0x80000000u
+#define VKRAY_BVH_COUNT_SHIFT 28
+#define VKRAY_BVH_COUNT_MASK 7u
+#define VKRAY_BVH_FIRST_MASK 0x0FFFFFFFu
+// Most triangles a BVH may hold: leaf slots must fit in 28 bits.
+#define VKRAY_BVH_MAX_TRIANGLES 0x0FFFFFF0u
+// An unused child slot: a leaf reference no tree can make (VKRAY_BVH_MAX_TRIANGLES keeps
+// first + count below 2^28 - 1).
+#define VKRAY_BVH_NO_CHILD 0xFFFFFFFFu
+// Texels of VKRAY_BINDING_NODE_TEXELS (RGBA32UI) per node.
+#define VKRAY_BVH_NODE_TEXELS 7
 
 #ifdef __cplusplus
 namespace vkray::gpu {
@@ -30,18 +53,20 @@ namespace vkray::gpu {
 #define VKRAY_BVH_STRUCT(name) struct name
 #endif
 
-VKRAY_BVH_STRUCT(GpuBvhNode) {  // 32 bytes: two 16-byte slots
-    vec3 lo;            // 12 bytes: bounding box, min corner
-    uint rightOrFirst;  // 4 bytes: inner node: index of the right child (the left is this + 1);
-                        //          leaf: first triangle of the leaf in the triangle buffer
-    vec3 hi;            // 12 bytes: bounding box, max corner
-    uint count;         // 4 bytes: leaf: number of triangles (1..VKRAY_BVH_MAX_LEAF_SIZE); inner: 0
+VKRAY_BVH_STRUCT(GpuBvhNode) {  // 112 bytes: seven 16-byte slots
+    vec4 loX, hiX;  // children 0-3: box min and max x
+    vec4 loY, hiY;
+    vec4 loZ, hiZ;
+    uvec4 child;    // children 0-3: references, VKRAY_BVH_NO_CHILD where unused
 };
 
 #ifdef __cplusplus
-static_assert(sizeof(GpuBvhNode) == 32 && offsetof(GpuBvhNode, lo) == 0 &&
-              offsetof(GpuBvhNode, rightOrFirst) == 12 && offsetof(GpuBvhNode, hi) == 16 &&
-              offsetof(GpuBvhNode, count) == 28);
+static_assert(sizeof(GpuBvhNode) == 16 * VKRAY_BVH_NODE_TEXELS && offsetof(GpuBvhNode, hiX) == 16 &&
+              offsetof(GpuBvhNode, loY) == 32 && offsetof(GpuBvhNode, loZ) == 64 &&
+              offsetof(GpuBvhNode, child) == 96);
+static_assert(VKRAY_BVH_MAX_LEAF_SIZE - 1 <= VKRAY_BVH_COUNT_MASK, "leaf counts must fit their bits");
+static_assert((VKRAY_BVH_MAX_TRIANGLES + VKRAY_BVH_MAX_LEAF_SIZE) <= VKRAY_BVH_FIRST_MASK,
+              "no leaf reference may equal VKRAY_BVH_NO_CHILD");
 }  // namespace vkray::gpu
 #endif
 #undef VKRAY_BVH_STRUCT

@@ -37,7 +37,16 @@ using uvec4 = glm::uvec4;
 #define VKRAY_BINDING_ACCEL_NODES 5    // nodes
 #define VKRAY_BINDING_ACCEL_INDICES 6  // triangle-index lists of the leaves
 #define VKRAY_BINDING_ACCEL_EXTRA 7    // anything else (kd-backtrack: parent links and node boxes)
-#define VKRAY_BINDING_COUNT 8
+#define VKRAY_STORAGE_BINDING_COUNT 8  // bindings 0-7 are storage buffers, the rest texel views
+// Texel views: the data a traversal reads per step, as uniform texel buffers over the same buffers.
+// On llvmpipe (Mesa 22) a storage-buffer load at a per-invocation address is a loop over the SIMD
+// lanes with a bounds-checked branch per 32-bit word, while a texel fetch is one gather per
+// channel (docs/benchmarks.md, "Texel views"). Data read once per hit stays in storage buffers.
+#define VKRAY_BINDING_TRIANGLE_TEXELS 8  // the triangles as RGBA32UI: texels 3k..3k+2 = GpuTriangle k
+#define VKRAY_BINDING_NODE_TEXELS 9      // the accelerator's nodes (GpuAccelData::nodeTexelBytes a texel)
+#define VKRAY_BINDING_INDEX_TEXELS 10    // the accelerator's triangle indices as R32UI
+#define VKRAY_BINDING_EXTRA_TEXELS 11    // the accelerator's extra data as RGBA32UI
+#define VKRAY_BINDING_COUNT 12
 
 // ---- Specialization constants: what the scene does not need is compiled out --------------------
 #define VKRAY_SPEC_MAX_DEPTH 0              // int: maxdepth; also sizes the ray stack
@@ -49,7 +58,11 @@ using uvec4 = glm::uvec4;
 // bool: count nodes, leaves and triangle tests per pixel (GpuPixel) — the statistics variant; off,
 // the counting is compiled out so timing runs pay nothing for it.
 #define VKRAY_SPEC_COUNT_TRAVERSAL 6
-#define VKRAY_SPEC_COUNT 7
+// uint: triangles a leaf loop tests per iteration, 1 or 4 (leaf_triangles.glsl): 1 unless the
+// structure has a leaf of more than VKRAY_SINGLE_SLOT_LEAF_LIMIT triangles.
+#define VKRAY_SPEC_LEAF_SLOTS 7
+#define VKRAY_SPEC_COUNT 8
+#define VKRAY_SINGLE_SLOT_LEAF_LIMIT 128
 
 // ---- GpuPixel.flags ------------------------------------------------------------------------------
 // A loop of the kernel ended before its bound: the driver cut it short (llvmpipe/lavapipe stops

@@ -40,6 +40,11 @@ using uint = uint32_t;
 // for any N a 32-bit index can name.
 #define VKRAY_KD_MAX_DEPTH 56
 #define VKRAY_KD_STACK_SIZE 56
+// The nodes binding read as RG32UI texels (VKRAY_BINDING_NODE_TEXELS): texel i + VKRAY_KD_HEADER_TEXELS
+// is node i.
+#define VKRAY_KD_NODE_TEXEL_BYTES 8
+#define VKRAY_KD_HEADER_TEXELS 4
+
 // KdNodeExtra.parent of the root.
 #define VKRAY_KD_NO_PARENT 0xffffffffu
 // Hard caps on one traversal's loop iterations (one iteration = one node visited, or one

@@ -29,6 +29,12 @@ vkray_expect_error(size_flag_absurd "--size 100000x100000" render ${CLI_DATA}/on
 vkray_expect_error(size_flag_garbage "--size big" render ${CLI_DATA}/one_triangle.scene --size big -o ${CLI_OUT}/x.png)
 vkray_expect_error(view_flag_garbage "--view 'near': expected scene, close" render ${CLI_DATA}/one_triangle.scene --view near -o ${CLI_OUT}/x.png)
 vkray_expect_error(view_flag_degenerate "--view '1,2,3,1,2,3': camera eye and look-at centre coincide" render ${CLI_DATA}/one_triangle.scene --view 1,2,3,1,2,3 -o ${CLI_OUT}/x.png)
+# VKRAY_KERNEL_DIR (kernels from files, for A/B timing) naming a folder without the kernel.
+add_test(NAME cli.error.kernel_dir_missing
+         COMMAND ${CMAKE_COMMAND} -E env VKRAY_KERNEL_DIR=${CLI_OUT}/no-such-kernels
+                 ${CLI_DIR}/expect_error.sh "VKRAY_KERNEL_DIR: cannot open .*render_bvh\\.spv"
+                 $<TARGET_FILE:vkray> render ${CLI_DATA}/one_triangle.scene --accel bvh -o ${CLI_OUT}/x.png)
+set_tests_properties(cli.error.kernel_dir_missing PROPERTIES TIMEOUT 180)
 vkray_expect_error(maxdepth_flag "--maxdepth 0" render ${CLI_DATA}/one_triangle.scene --maxdepth 0 -o ${CLI_OUT}/x.png)
 vkray_expect_error(unknown_accel "--accel warp" render ${CLI_DATA}/one_triangle.scene --accel warp -o ${CLI_OUT}/x.png)
 vkray_expect_error(unknown_aov "unknown AOV 'albedo'" render ${CLI_DATA}/one_triangle.scene --aov albedo=a.pfm -o ${CLI_OUT}/x.png)

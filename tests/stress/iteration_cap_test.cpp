@@ -36,10 +36,12 @@ const glm::vec3 kLo(-2, -2, -1), kHi(2, 2, 1);
 accel::GpuAccelData cyclicBvh() {
     accel::GpuAccelData data;
     data.kernel = accel::Kernel::Bvh;
-    const std::vector<gpu::GpuBvhNode> nodes = {
-        {.lo = kLo, .rightOrFirst = 0, .hi = kHi, .count = 0},  // inner: left = 1, right = itself
-        {.lo = kLo, .rightOrFirst = 0, .hi = kHi, .count = 1},  // leaf: triangle slot 0
-    };
+    // One node whose first child is a leaf (triangle slot 0) and whose second is itself: the leaf is
+    // tested, the node popped again, forever.
+    gpu::GpuBvhNode node{.loX = gpu::vec4(kLo.x), .hiX = gpu::vec4(kHi.x), .loY = gpu::vec4(kLo.y),
+                         .hiY = gpu::vec4(kHi.y), .loZ = gpu::vec4(kLo.z), .hiZ = gpu::vec4(kHi.z),
+                         .child = gpu::uvec4(VKRAY_BVH_LEAF_BIT, 0u, VKRAY_BVH_NO_CHILD, VKRAY_BVH_NO_CHILD)};
+    const std::vector<gpu::GpuBvhNode> nodes = {node};
     data.nodes = accel::asBytes(nodes);
     return data;
 }

@@ -3,7 +3,8 @@
 // tracer traverse.
 //
 // Pipeline (docs/bvh.md): builder (AAC, aac_builder.h, or binned SAH, sah_builder.h) -> BinaryTree
-// -> leaf collapse (leaf_collapse.h) -> flatten (flatten.h) -> FlatBvh -> BvhTracer / GPU buffers.
+// -> leaf collapse (leaf_collapse.h) -> flatten (flatten.h) -> FlatBvh -> BvhTracer, and gpuNodes()
+// (4-wide) -> GPU buffers.
 #pragma once
 
 #include <cstdint>
@@ -120,10 +121,18 @@ struct BinaryTree {
     uint32_t primitives = 0;
 };
 
-// The flattened tree, in the GPU layout (shared/bvh_layout.h): depth-first nodes; triangle slot k
-// of the leaves holds scene triangle triangleOrder[k].
+// A node of the flattened tree. Depth-first: an inner node's left child is the next node.
+struct FlatNode {
+    glm::vec3 lo;           // bounding box, min corner
+    uint32_t rightOrFirst;  // inner node: index of the right child; leaf: first triangle slot
+    glm::vec3 hi;           // bounding box, max corner
+    uint32_t count;         // leaf: number of triangles (1..VKRAY_BVH_MAX_LEAF_SIZE); inner: 0
+};
+
+// The flattened tree the CPU tracer walks and gpuNodes() (flatten.h) turns into the GPU layout:
+// depth-first nodes; triangle slot k of the leaves holds scene triangle triangleOrder[k].
 struct FlatBvh {
-    std::vector<gpu::GpuBvhNode> nodes;
+    std::vector<FlatNode> nodes;
     std::vector<uint32_t> triangleOrder;
     uint32_t leaves = 0;
     uint32_t maxDepth = 0;  // root = depth 0

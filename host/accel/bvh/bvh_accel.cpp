@@ -39,7 +39,8 @@ public:
         accel::GpuAccelData data;
         data.kernel = accel::Kernel::Bvh;
         data.triangleOrder = flat_.triangleOrder;
-        data.nodes = accel::asBytes(flat_.nodes);
+        data.nodes = accel::asBytes(gpuNodes(flat_));
+        data.maxLeafTriangles = uint32_t(config_.maxLeafSize);
         return data;
     }
 
@@ -55,13 +56,15 @@ public:
         } else {
             s.push_back({"sah_bins", double(config_.sahBins), "per axis"});
         }
-        s.push_back({"nodes", double(flat.nodes.size()), "32-byte nodes"});
+        s.push_back({"nodes", double(flat.nodes.size()), "binary: inner nodes and leaves"});
         s.push_back({"leaves", double(flat.leaves), ""});
         s.push_back({"max_depth", double(flat.maxDepth), "root = 0"});
         const double mean = flat.leaves ? double(flat.triangleOrder.size()) / flat.leaves : 0.0;
         s.push_back({"mean_leaf_size", mean, "triangles"});
         s.push_back({"sah_cost", flat.sahCost, sahUnit(config_)});
-        s.push_back({"gpu_bytes", double(flat.nodes.size() * sizeof(gpu::GpuBvhNode)),
+        const size_t wide = gpuNodes(flat).size();
+        s.push_back({"gpu_nodes", double(wide), std::to_string(VKRAY_BVH_WIDTH) + "-wide nodes of the kernel"});
+        s.push_back({"gpu_bytes", double(wide * sizeof(gpu::GpuBvhNode)),
                      "bytes: node buffer (triangles, reordered, are uploaded as usual)"});
         return s;
     }

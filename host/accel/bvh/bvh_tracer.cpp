@@ -53,7 +53,7 @@ struct BvhTracer::BoxRay {
     }
 
     // Whether the ray meets the box within t in [0, limit]; tEnter = where it enters (widened).
-    bool enters(const gpu::GpuBvhNode& node, double limit, double& tEnter) const {
+    bool enters(const FlatNode& node, double limit, double& tEnter) const {
         const glm::dvec3 lo(node.lo), hi(node.hi);
         double tNear = -kInf, tFar = kInf;
         for (int a = 0; a < 3; ++a) {
@@ -96,7 +96,7 @@ geometry::Hit BvhTracer::closest(const geometry::Ray& ray, double tmax, geometry
     while (!stack.empty()) {
         const StackEntry e = stack.pop();
         if (e.tEnter > limit()) continue;  // a closer hit was found after it was pushed
-        const gpu::GpuBvhNode& node = bvh_.nodes[e.node];
+        const FlatNode& node = bvh_.nodes[e.node];
         ++work.nodes;
         if (node.count > 0) {
             ++work.leaves;
@@ -143,7 +143,7 @@ bool BvhTracer::occluded(const geometry::Ray& ray, double tmax, geometry::Traver
     if (boxRay.enters(bvh_.nodes[0], tmax, tEnter)) stack.push(0, tEnter);
     while (!stack.empty() && !hit) {
         const uint32_t id = stack.pop().node;
-        const gpu::GpuBvhNode& node = bvh_.nodes[id];
+        const FlatNode& node = bvh_.nodes[id];
         ++work.nodes;
         if (node.count > 0) {  // any hit ends the search: no ordering needed
             ++work.leaves;

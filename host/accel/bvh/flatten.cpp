@@ -3,14 +3,15 @@
 #include <algorithm>
 #include <vector>
 
+#include "core/error.h"
 #include "core/fork_join.h"
 #include "core/parallel_alloc.h"
 
 namespace vkray::bvh {
 namespace {
 
-gpu::GpuBvhNode makeNode(const Aabb& box, uint32_t rightOrFirst, uint32_t count) {
-    gpu::GpuBvhNode n{};
+FlatNode makeNode(const Aabb& box, uint32_t rightOrFirst, uint32_t count) {
+    FlatNode n{};
     n.lo = box.lo;
     n.hi = box.hi;
     n.rightOrFirst = rightOrFirst;
@@ -72,7 +73,103 @@ private:
     FlatBvh& out_;
 };
 
+// A child's reference in the GPU layout: an inner node's index, or a leaf's count and first slot.
+uint32_t leafRef(const FlatNode& leaf) {
+    return VKRAY_BVH_LEAF_BIT | ((leaf.count - 1) << VKRAY_BVH_COUNT_SHIFT) | leaf.rightOrFirst;
+}
+
+float halfArea(const FlatNode& n) {
+    const glm::vec3 d = n.hi - n.lo;
+    return d.x * d.y + d.y * d.z + d.z * d.x;
+}
+
+// Collapses the binary flat tree into VKRAY_BVH_WIDTH-wide nodes, depth-first.
+class WideWriter {
+public:
+    WideWriter(const FlatBvh& flat, std::vector<gpu::GpuBvhNode>& out) : flat_(flat), out_(out) {}
+
+    // The wide node of binary inner node `i` and, below it, its subtrees; returns its index.
+    uint32_t write(uint32_t i) {
+        const uint32_t self = uint32_t(out_.size());
+        out_.emplace_back();
+        uint32_t kids[VKRAY_BVH_WIDTH];
+        const int n = gather(i, kids);
+        gpu::GpuBvhNode node = emptyNode();
+        for (int k = 0; k < n; ++k) {
+            const FlatNode& kid = flat_.nodes[kids[k]];
+            setBox(node, k, kid);
+            node.child[k] = kid.count > 0 ? leafRef(kid) : write(kids[k]);
+        }
+        out_[self] = node;
+        return self;
+    }
+
+    static gpu::GpuBvhNode emptyNode() {
+        gpu::GpuBvhNode node{};
+        node.child = gpu::uvec4(VKRAY_BVH_NO_CHILD);
+        return node;
+    }
+
+    static void setBox(gpu::GpuBvhNode& node, int k, const FlatNode& box) {
+        node.loX[k] = box.lo.x;
+        node.loY[k] = box.lo.y;
+        node.loZ[k] = box.lo.z;
+        node.hiX[k] = box.hi.x;
+        node.hiY[k] = box.hi.y;
+        node.hiZ[k] = box.hi.z;
+    }
+
+private:
+    // The children of inner node i's wide node: its two children, then, while fewer than the width,
+    // the inner one of largest surface area replaced by its own two (the choice of Wald, Benthin and
+    // Boulos 2008). Depth-first order is kept for the rest.
+    int gather(uint32_t i, uint32_t (&kids)[VKRAY_BVH_WIDTH]) const {
+        int n = 0;
+        kids[n++] = i + 1;
+        kids[n++] = flat_.nodes[i].rightOrFirst;
+        while (n < VKRAY_BVH_WIDTH) {
+            int widest = -1;
+            float widestArea = -1.0f;
+            for (int k = 0; k < n; ++k) {
+                const FlatNode& kid = flat_.nodes[kids[k]];
+                if (kid.count == 0 && halfArea(kid) > widestArea) {
+                    widest = k;
+                    widestArea = halfArea(kid);
+                }
+            }
+            if (widest < 0) break;
+            const uint32_t opened = kids[widest];
+            for (int k = n; k > widest + 1; --k) kids[k] = kids[k - 1];  // right child next to its sibling
+            kids[widest] = opened + 1;
+            kids[widest + 1] = flat_.nodes[opened].rightOrFirst;
+            ++n;
+        }
+        return n;
+    }
+
+    const FlatBvh& flat_;
+    std::vector<gpu::GpuBvhNode>& out_;
+};
+
 }  // namespace
+
+std::vector<gpu::GpuBvhNode> gpuNodes(const FlatBvh& flat) {
+    std::vector<gpu::GpuBvhNode> out;
+    if (flat.nodes.empty()) return out;
+    if (flat.triangleOrder.size() > VKRAY_BVH_MAX_TRIANGLES)
+        throw Error("the BVH holds " + std::to_string(flat.triangleOrder.size()) +
+                    " triangles; its GPU layout addresses at most " + std::to_string(VKRAY_BVH_MAX_TRIANGLES));
+    if (flat.nodes[0].count > 0) {  // the root is a leaf: one node with one child
+        gpu::GpuBvhNode node = WideWriter::emptyNode();
+        WideWriter::setBox(node, 0, flat.nodes[0]);
+        node.child[0] = leafRef(flat.nodes[0]);
+        out.push_back(node);
+        return out;
+    }
+    out.reserve(flat.nodes.size() / 4 + 1);
+    WideWriter(flat, out).write(0);
+    return out;
+}
 
 FlatBvh flatten(const BinaryTree& tree, const CollapsedTree& collapsed) {
     FlatBvh flat;

@@ -1,6 +1,6 @@
-// Flattening: the collapsed tree written depth-first in the GPU node layout (shared/bvh_layout.h),
-// with the triangles reordered into leaf order so a leaf reads one contiguous run of the triangle
-// buffer; within a leaf, triangles keep ascending original index.
+// Flattening: the collapsed tree written depth-first (FlatNode), with the triangles reordered into
+// leaf order so a leaf reads one contiguous run of the triangle buffer; within a leaf, triangles
+// keep ascending original index. gpuNodes() turns that into the kernel's layout.
 #pragma once
 
 #include "accel/bvh/bvh.h"
@@ -11,5 +11,10 @@ namespace vkray::bvh {
 // Subtrees near the root are written by parallel tasks at offsets known from the collapse, so
 // the arrays are the same for any thread count.
 FlatBvh flatten(const BinaryTree& tree, const CollapsedTree& collapsed);
+
+// The GPU layout (shared/bvh_layout.h): the binary tree collapsed into VKRAY_BVH_WIDTH-wide nodes,
+// depth-first, each with its children's boxes and references. Throws vkray::Error for more
+// triangles than leaf references can address (VKRAY_BVH_MAX_TRIANGLES).
+std::vector<gpu::GpuBvhNode> gpuNodes(const FlatBvh& flat);
 
 }  // namespace vkray::bvh

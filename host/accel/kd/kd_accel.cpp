@@ -1,5 +1,6 @@
 #include "accel/kd/kd_accel.h"
 
+#include <algorithm>
 #include <utility>
 
 #include "accel/kd/kd_traversal.h"
@@ -32,7 +33,10 @@ public:
     GpuAccelData gpuData() const override {
         GpuAccelData data;
         data.kernel = kernelFor(traversal_);
+        data.nodeTexelBytes = VKRAY_KD_NODE_TEXEL_BYTES;
         const kd::KdTree& t = build_.tree;
+        for (const gpu::KdNode& n : t.nodes)
+            if (n.isLeaf()) data.maxLeafTriangles = std::max(data.maxLeafTriangles, n.triangleCount());
         data.nodes = asBytes(std::vector<gpu::KdTreeHeader>{t.header});
         const std::vector<std::byte> nodeBytes = asBytes(t.nodes);
         data.nodes.insert(data.nodes.end(), nodeBytes.begin(), nodeBytes.end());
@@ -51,6 +55,7 @@ public:
             {"build_flatten_ms", ms.flattenMs, "ms: GPU arrays"},
             {"nodes", double(f.nodes), "8 bytes each"},
             {"leaves", double(f.leaves), ""},
+            {"max_leaf_triangles", double(gpuData().maxLeafTriangles), ""},
             {"empty_leaves", double(f.emptyLeaves), ""},
             {"max_depth", double(f.maxDepth), "limit " + std::to_string(config_.resolvedMaxDepth(f.indexedTriangles))},
             {"mean_triangles_per_leaf", f.meanTrianglesPerLeaf(), "references / leaves"},

@@ -13,6 +13,7 @@
 #include "accel/accel.h"
 #include "accel/bvh/aac_builder.h"
 #include "accel/bvh/bvh_accel.h"
+#include "accel/bvh/flatten.h"
 #include "accel/bvh/primitives.h"
 #include "bvh_test_meshes.h"
 
@@ -32,7 +33,7 @@ std::vector<NamedConfig> testConfigs() {
             {"aac_delta7_eps03", Config::withAac(7, 0.3)}};
 }
 
-Aabb boxOf(const gpu::GpuBvhNode& n) { return Aabb{n.lo, n.hi}; }
+Aabb boxOf(const FlatNode& n) { return Aabb{n.lo, n.hi}; }
 
 Aabb boxOf(const Triangle& t) {
     Aabb b;
@@ -56,7 +57,7 @@ void checkFlatTree(const FlatBvh& flat, const Scene& scene, const Config& config
     uint32_t nextSlot = 0, leaves = 0, maxDepth = 0;
     std::function<uint32_t(uint32_t, uint32_t)> walk = [&](uint32_t i, uint32_t depth) -> uint32_t {
         EXPECT_LT(i, flat.nodes.size());
-        const gpu::GpuBvhNode& node = flat.nodes[i];
+        const FlatNode& node = flat.nodes[i];
         maxDepth = std::max(maxDepth, depth);
         if (node.count > 0) {
             ++leaves;
@@ -112,6 +113,56 @@ TEST(BvhStructure, SmallScenes) {
     }
 }
 
+// The GPU layout holds the same tree: from node 0 every triangle slot is reached exactly once, in
+// leaf order; every child box holds the boxes of its own children and the leaves' triangles;
+// inner nodes are numbered depth-first; unused slots come last.
+void checkGpuNodes(const FlatBvh& flat, const Scene& scene) {
+    const std::vector<gpu::GpuBvhNode> nodes = gpuNodes(flat);
+    ASSERT_FALSE(nodes.empty());
+    uint32_t nextSlot = 0, nextInner = 1;
+    const auto boxOfChild = [](const gpu::GpuBvhNode& g, int k) {
+        return Aabb{{g.loX[k], g.loY[k], g.loZ[k]}, {g.hiX[k], g.hiY[k], g.hiZ[k]}};
+    };
+    std::function<void(uint32_t, const Aabb*)> walk = [&](uint32_t index, const Aabb* parentBox) {
+        const gpu::GpuBvhNode& g = nodes.at(index);
+        bool unused = false;
+        for (int k = 0; k < VKRAY_BVH_WIDTH; ++k) {
+            const uint32_t ref = g.child[k];
+            if (ref == VKRAY_BVH_NO_CHILD) {
+                unused = true;
+                continue;
+            }
+            EXPECT_FALSE(unused) << "a used slot after an unused one";
+            const Aabb box = boxOfChild(g, k);
+            if (parentBox) {
+                EXPECT_TRUE(parentBox->contains(box));
+            }
+            if (ref & VKRAY_BVH_LEAF_BIT) {
+                const uint32_t first = ref & VKRAY_BVH_FIRST_MASK;
+                const uint32_t count = ((ref >> VKRAY_BVH_COUNT_SHIFT) & VKRAY_BVH_COUNT_MASK) + 1;
+                EXPECT_EQ(first, nextSlot) << "leaves must cover the triangle slots in order";
+                for (uint32_t s = first; s < first + count; ++s)
+                    EXPECT_TRUE(box.contains(boxOf(scene.triangles[flat.triangleOrder.at(s)])));
+                nextSlot = first + count;
+            } else {
+                EXPECT_EQ(ref, nextInner++) << "inner nodes in depth-first order";
+                walk(ref, &box);
+            }
+        }
+    };
+    walk(0, nullptr);
+    EXPECT_EQ(nextSlot, flat.triangleOrder.size());
+    EXPECT_EQ(nextInner, nodes.size());
+}
+
+TEST(BvhStructure, GpuLayoutHoldsTheSameTree) {
+    for (const NamedConfig& c : testConfigs()) {
+        SCOPED_TRACE(c.name);
+        for (const Scene& scene : {test::randomSoup(5, 3000, 0.05f), test::randomSoup(6, 3, 0.05f)})
+            checkGpuNodes(buildFlatBvh(scene.triangles, c.config, 2).flat, scene);
+    }
+}
+
 // Built with 1, 2 and 4 worker threads: the flat arrays must be byte-for-byte the same. 150k
 // triangles make the radix sort use several blocks and every builder spawn parallel tasks.
 TEST(BvhStructure, SameTreeForAnyThreadCount) {
@@ -124,7 +175,7 @@ TEST(BvhStructure, SameTreeForAnyThreadCount) {
             const BuildResult r = buildFlatBvh(big.triangles, c.config, threads);
             ASSERT_EQ(r.flat.nodes.size(), one.flat.nodes.size()) << threads << " threads";
             EXPECT_EQ(std::memcmp(r.flat.nodes.data(), one.flat.nodes.data(),
-                                  one.flat.nodes.size() * sizeof(gpu::GpuBvhNode)),
+                                  one.flat.nodes.size() * sizeof(FlatNode)),
                       0)
                 << threads << " threads";
             EXPECT_EQ(r.flat.triangleOrder, one.flat.triangleOrder) << threads << " threads";
