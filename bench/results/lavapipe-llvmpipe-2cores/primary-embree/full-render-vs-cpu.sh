@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# usage: fullcpu.sh BIN ROUNDS SCENES... ; per scene: GPU (default accel) and --cpu, interleaved,
+# usage: full-render-vs-cpu.sh BIN ROUNDS SCENES...: per scene the GPU render (default accelerator) and --cpu, interleaved;
 # wall clock of the whole command and the report's render_ms; medians
 BIN=$1; N=$2; shift 2
 for scene in "$@"; do

@@ -1,7 +1,11 @@
 #!/usr/bin/env bash
-# usage: kab.sh SPV_DIR_A SPV_DIR_B ROUNDS SCENE [render args]; same binary, kernels from the dirs; ABBA order
+# usage: kernel-ab.sh SPV_DIR_A SPV_DIR_B ROUNDS SCENE [render args]: one vkray binary ($BIN, default
+# build/vkray) times the kernels compiled into two folders (VKRAY_KERNEL_DIR), alternated ABBA;
+# prints the medians of gpu.gpu_ms and B/A. Compile a folder of kernels as CMakeLists.txt does:
+#   for k in shaders/render_*.comp; do glslangValidator --target-env vulkan1.1 -Os -Ishaders \
+#     -o DIR/$(basename $k .comp).spv $k; done
 A=$1; B=$2; N=$3; SCENE=$4; shift 4
-BIN=${BIN:-/tmp/vkray-B1}
+BIN=${BIN:-build/vkray}
 a=(); b=()
 run() { local d=$1; shift; VKRAY_KERNEL_DIR=$d $BIN render $SCENE -o /tmp/kab.png --json "$@" 2>/dev/null | python3 -c 'import json,sys; print(json.load(sys.stdin)["gpu"]["gpu_ms"])'; }
 for ((r=0; r<N; r++)); do
