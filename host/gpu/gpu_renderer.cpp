@@ -220,9 +220,9 @@ void throwIfCutShort(const VulkanContext& ctx, const Scene& scene, accel::Kernel
                 ", or another device; no image was written");
 }
 
-// The built-in SPIR-V of a kernel, or with VKRAY_KERNEL_DIR set (docs/benchmarks.md, "A/B of a
-// kernel") render_<kernel>.spv from that folder: a kernel edit is then timed against the built-in one
-// without rebuilding vkray.
+// The built-in SPIR-V of a kernel, or with VKRAY_KERNEL_DIR set render_<kernel>.spv from that folder
+// (docs/architecture.md, "Shaders"): a kernel edit is then timed against the built-in one without
+// rebuilding vkray.
 std::span<const uint32_t> kernelSpirv(accel::Kernel kernel, std::vector<uint32_t>& storage) {
     const char* dir = std::getenv("VKRAY_KERNEL_DIR");
     if (!dir || !*dir) return generated::kRenderKernels[kernelIndex(kernel)].code;
@@ -231,12 +231,14 @@ std::span<const uint32_t> kernelSpirv(accel::Kernel kernel, std::vector<uint32_t
     std::ifstream in(file, std::ios::binary | std::ios::ate);
     if (!in) throw Error("VKRAY_KERNEL_DIR: cannot open " + file.string());
     const std::streamsize size = in.tellg();
-    if (size <= 0 || size % 4 != 0) throw Error("VKRAY_KERNEL_DIR: " + file.string() + " is not SPIR-V (size " + std::to_string(size) + ")");
+    if (size <= 0 || size % 4 != 0)
+        throw Error("VKRAY_KERNEL_DIR: " + file.string() + " is not SPIR-V (size " + std::to_string(size) + ")");
     storage.resize(size_t(size) / 4);
     in.seekg(0);
     if (!in.read(reinterpret_cast<char*>(storage.data()), size) || storage[0] != 0x07230203u)
         throw Error("VKRAY_KERNEL_DIR: " + file.string() + " is not SPIR-V");
-    std::fprintf(stderr, "vkray: kernel %s from %s\n", std::string(accel::kernelName(kernel)).c_str(), file.c_str());
+    std::fprintf(stderr, "vkray: kernel %s from %s\n", std::string(accel::kernelName(kernel)).c_str(),
+                 file.c_str());
     return storage;
 }
 
