@@ -14,6 +14,12 @@
 
 namespace vkray::bench {
 
+// Millions of rays per second: `rays` traced in `ms`; empty when there are none or no time.
+inline std::optional<double> mraysPerSecond(double rays, double ms) {
+    if (rays <= 0.0 || !(ms > 0.0)) return std::nullopt;
+    return rays / (ms * 1e3);
+}
+
 // A rendered image against the reference (BenchScene::reference): colour error and primary hits.
 struct ImageError {
     double rmse = 0.0;                // over RGB, values clamped to [0, 1] as in the PNG
@@ -60,6 +66,12 @@ struct AccelResult {
     double nodesPerRay = 0.0, leavesPerRay = 0.0, trianglesPerRay = 0.0, restartsPerRay = 0.0;
     // The same for camera rays alone (from the primary-only statistics render).
     double primaryNodesPerRay = 0.0, primaryTrianglesPerRay = 0.0;
+    // The camera-ray rate (the "primary" ray kind).
+    std::optional<double> primaryMrays() const {
+        for (const RayKindFigures& k : rayKinds)
+            if (k.kind == "primary") return k.mraysPerSecond;
+        return std::nullopt;
+    }
     // Primary-ray rate over Embree rtcIntersect1's on the same rays: embreeSingleMs / primaryOnlyMs.
     std::optional<double> primaryVsEmbree() const {
         if (!embreeSingleMs || !(primaryOnlyMs.median > 0.0)) return std::nullopt;
@@ -112,7 +124,6 @@ struct EmbreeResult {
     std::string note;                  // why there is none
     int threads = 0;
     Spread singleMs, packetMs;         // over every repeat of every accelerator
-    std::optional<double> singleMrays, packetMrays;
     // Camera rays on which Embree names the reference's triangle (primary hit), as a check that the
     // baseline traces the same rays; below 1 only through ties and float rounding at edges.
     double agreement = 0.0;

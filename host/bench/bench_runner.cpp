@@ -165,11 +165,8 @@ private:
 
     void finishEmbree(SceneResult& result) {
         if (!embree_ || embreeSingle_.empty()) return;
-        const double rays = double(result.width) * double(result.height);
         result.embree.singleMs = spreadOf(embreeSingle_);
         result.embree.packetMs = spreadOf(embreePacket_);
-        result.embree.singleMrays = mrays(rays, result.embree.singleMs.median);
-        result.embree.packetMrays = mrays(rays, result.embree.packetMs.median);
         embree_.reset();
     }
 
@@ -283,11 +280,6 @@ private:
                 std::move(c.report.nodesPerPixel)};
     }
 
-    static std::optional<double> mrays(double rays, double ms) {
-        if (rays <= 0.0 || !(ms > 0.0)) return std::nullopt;
-        return rays / (ms * 1e3);
-    }
-
     static std::vector<RayKindFigures> rayKindFigures(const Traced& t, uint64_t pixels) {
         const gpu::GpuRenderReport& full = t.full.report;
         const uint64_t secondary = full.raysTraced - std::min(full.raysTraced, pixels);
@@ -296,9 +288,9 @@ private:
         const double shadowMs = t.depthOneMs.median - t.primaryMs.median;
         const double secondaryMs = t.fullMs.median - t.depthOneMs.median;
         std::vector<RayKindFigures> kinds(3);
-        kinds[0] = {"primary", pixels, mrays(double(pixels), t.primaryMs.median), ""};
-        kinds[1] = {"shadow", full.shadowRays, mrays(double(shadowOfPrimary), shadowMs), ""};
-        kinds[2] = {"secondary", secondary, mrays(double(secondaryWithShadows), secondaryMs), ""};
+        kinds[0] = {"primary", pixels, mraysPerSecond(double(pixels), t.primaryMs.median), ""};
+        kinds[1] = {"shadow", full.shadowRays, mraysPerSecond(double(shadowOfPrimary), shadowMs), ""};
+        kinds[2] = {"secondary", secondary, mraysPerSecond(double(secondaryWithShadows), secondaryMs), ""};
         for (RayKindFigures& k : kinds)
             if (!k.mraysPerSecond)
                 k.note = k.rays == 0 ? "none in this scene" : "time difference within the noise";
@@ -326,7 +318,7 @@ private:
         const uint64_t pixels = uint64_t(render.width) * uint64_t(render.height);
         a.rayKinds = rayKindFigures(t, pixels);
         const gpu::GpuRenderReport& rep = t.full.report;
-        a.mraysPerSecond = mrays(double(rep.raysTraced + rep.shadowRays), t.fullMs.median).value_or(0.0);
+        a.mraysPerSecond = mraysPerSecond(double(rep.raysTraced + rep.shadowRays), t.fullMs.median).value_or(0.0);
         a.cappedRays = rep.cappedRays;
         a.image = colorImage(t.full.frame);
         a.error = imageError(t.full.frame, a.image, reference, result.reference);

@@ -29,26 +29,10 @@ void onEmbreeError(void* user, RTCError code, const char* text) {
     if (sink->message.empty()) sink->message = "Embree error " + std::to_string(int(code)) + ": " + (text ? text : "");
 }
 
-// The camera rays of the kernels (shaders/include/camera.glsl): the same formula in float from the
-// double basis the host uploads.
-struct CameraRays {
-    glm::vec3 eye, u, v, w;
-    float tanX = 0.0f, tanY = 0.0f;
-    int width = 0, height = 0;
-    glm::vec3 direction(int i, int j) const {
-        const float halfW = float(width) * 0.5f, halfH = float(height) * 0.5f;
-        const float a = tanX * ((float(i) + 0.5f) - halfW) / halfW;
-        const float b = tanY * (halfH - (float(j) + 0.5f)) / halfH;
-        return glm::normalize(a * u + b * v - w);
-    }
-};
-
 class Embree final : public EmbreeBaseline {
 public:
-    Embree(const Scene& scene, int width, int height) {
-        const CameraFrame f = makeCameraFrame(scene.camera, width, height);
-        rays_ = {glm::vec3(f.eye), glm::vec3(f.u), glm::vec3(f.v), glm::vec3(f.w), float(f.tanX), float(f.tanY),
-                 width, height};
+    Embree(const Scene& scene, int width, int height)
+        : camera_(makeCameraFrame(scene.camera, width, height)), eye_(camera_.eye) {
         hits_.assign(size_t(width) * size_t(height), -1);
         device_ = rtcNewDevice(nullptr);
         if (!device_) throw Error("Embree: cannot create a device (rtcNewDevice failed)");
@@ -90,7 +74,7 @@ public:
         tbb::task_arena arena(std::max(1, threads));
         const auto t0 = Clock::now();
         // 4x4 blocks: one packet of 16, or 16 single rays of neighbouring pixels.
-        const tbb::blocked_range2d<int> blocks(0, (rays_.height + 3) / 4, 4, 0, (rays_.width + 3) / 4, 16);
+        const tbb::blocked_range2d<int> blocks(0, (camera_.height + 3) / 4, 4, 0, (camera_.width + 3) / 4, 16);
         arena.execute([&] {
             tbb::parallel_for(blocks, [&](const tbb::blocked_range2d<int>& r) {
                 for (int by = r.rows().begin(); by < r.rows().end(); ++by)
@@ -111,18 +95,21 @@ private:
         if (!errors_.message.empty()) throw Error(errors_.message);
     }
 
+    // The camera ray through pixel (x, y) (scene/camera.h), in the float Embree takes.
+    glm::vec3 direction(int x, int y) const { return glm::vec3(primaryDirection(camera_, x, y)); }
+
     void traceBlock1(int x0, int y0) {
         RTCIntersectContext context;
         rtcInitIntersectContext(&context);
-        for (int y = y0; y < std::min(y0 + 4, rays_.height); ++y)
-            for (int x = x0; x < std::min(x0 + 4, rays_.width); ++x) {
+        for (int y = y0; y < std::min(y0 + 4, camera_.height); ++y)
+            for (int x = x0; x < std::min(x0 + 4, camera_.width); ++x) {
                 RTCRayHit rh{};
-                const glm::vec3 d = rays_.direction(x, y);
-                rh.ray = {rays_.eye.x, rays_.eye.y, rays_.eye.z, 0.0f, d.x, d.y, d.z, 0.0f,
+                const glm::vec3 d = direction(x, y);
+                rh.ray = {eye_.x, eye_.y, eye_.z, 0.0f, d.x, d.y, d.z, 0.0f,
                           std::numeric_limits<float>::infinity(), 0xffffffffu, 0, 0};
                 rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
                 rtcIntersect1(scene_, &context, &rh);
-                hits_[size_t(y) * size_t(rays_.width) + size_t(x)] =
+                hits_[size_t(y) * size_t(camera_.width) + size_t(x)] =
                     rh.hit.geomID == RTC_INVALID_GEOMETRY_ID ? -1 : int32_t(rh.hit.primID);
             }
     }
@@ -134,11 +121,11 @@ private:
         alignas(64) int valid[16];
         for (int k = 0; k < 16; ++k) {
             const int x = x0 + k % 4, y = y0 + k / 4;
-            valid[k] = x < rays_.width && y < rays_.height ? -1 : 0;
-            const glm::vec3 d = valid[k] ? rays_.direction(x, y) : glm::vec3(0.0f, 0.0f, 1.0f);
-            rh.ray.org_x[k] = rays_.eye.x;
-            rh.ray.org_y[k] = rays_.eye.y;
-            rh.ray.org_z[k] = rays_.eye.z;
+            valid[k] = x < camera_.width && y < camera_.height ? -1 : 0;
+            const glm::vec3 d = valid[k] ? direction(x, y) : glm::vec3(0.0f, 0.0f, 1.0f);
+            rh.ray.org_x[k] = eye_.x;
+            rh.ray.org_y[k] = eye_.y;
+            rh.ray.org_z[k] = eye_.z;
             rh.ray.dir_x[k] = d.x;
             rh.ray.dir_y[k] = d.y;
             rh.ray.dir_z[k] = d.z;
@@ -153,11 +140,12 @@ private:
         rtcIntersect16(valid, scene_, &context, &rh);
         for (int k = 0; k < 16; ++k)
             if (valid[k])
-                hits_[size_t(y0 + k / 4) * size_t(rays_.width) + size_t(x0 + k % 4)] =
+                hits_[size_t(y0 + k / 4) * size_t(camera_.width) + size_t(x0 + k % 4)] =
                     rh.hit.geomID[k] == RTC_INVALID_GEOMETRY_ID ? -1 : int32_t(rh.hit.primID[k]);
     }
 
-    CameraRays rays_;
+    CameraFrame camera_;
+    glm::vec3 eye_;
     ErrorSink errors_;
     RTCDevice device_ = nullptr;
     RTCScene scene_ = nullptr;

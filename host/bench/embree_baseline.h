@@ -40,8 +40,8 @@ bool embreeAvailable();
 // Why there is no baseline, for reports of a build without Embree.
 const char* embreeMissingNote();
 
-// Builds Embree's BVH over the scene (high quality, the triangles as given) and the camera rays of a
-// width x height image of scene.camera, in float as the kernels make them. Throws vkray::Error when
+// Builds Embree's BVH over the scene (high quality, the triangles as given) for the camera rays of a
+// width x height image of scene.camera (scene/camera.h, rounded to float). Throws vkray::Error when
 // Embree reports an error.
 std::unique_ptr<EmbreeBaseline> makeEmbreeBaseline(const Scene& scene, int width, int height);
 

@@ -83,14 +83,14 @@ Json deltaResult(const DeltaResult& d) {
             {"sah_cost", number(d.sahCost)}};
 }
 
-Json embree(const EmbreeResult& e) {
+Json embree(const EmbreeResult& e, double rays) {
     if (e.version.empty()) return {{"note", e.note}};
     return {{"version", e.version},
             {"threads", e.threads},
             {"intersect1_ms", spread(e.singleMs)},
             {"intersect16_ms", spread(e.packetMs)},
-            {"intersect1_mrays_per_s", number(e.singleMrays)},
-            {"intersect16_mrays_per_s", number(e.packetMrays)},
+            {"intersect1_mrays_per_s", number(mraysPerSecond(rays, e.singleMs.median))},
+            {"intersect16_mrays_per_s", number(mraysPerSecond(rays, e.packetMs.median))},
             {"agreement_with_reference", number(e.agreement)}};
 }
 
@@ -110,7 +110,7 @@ Json sceneResult(const SceneResult& s) {
                              {"build_ms", number(s.referenceBuildMs)},
                              {"render_ms", number(s.referenceRenderMs)}}},
               {"view", s.view},
-              {"embree", embree(s.embree)},
+              {"embree", embree(s.embree, double(s.width) * double(s.height))},
               {"accelerators", accels},
               {"aac_delta_sweep", deltas},
               {"error_vs_time", points}};

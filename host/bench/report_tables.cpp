@@ -212,7 +212,9 @@ Facts sceneFacts(const SceneResult& s) {
             {"Triangles", withThousands(s.triangles)},
             {"Image", std::to_string(s.width) + "x" + std::to_string(s.height) + ", maxdepth " +
                           std::to_string(s.maxDepth)},
-            {"Camera", s.view == "scene" ? std::string("the scene's") : s.view == "close" ? std::string("close-up (--view close)") : "--view " + s.view},
+            {"Camera", s.view == "scene"   ? std::string("the scene's")
+                       : s.view == "close" ? std::string("close-up (--view close)")
+                                           : "--view " + s.view},
             {"Reference", "CPU renderer in double precision with the " + s.referenceAccel + " traversal: built in " +
                               formatNumber(s.referenceBuildMs) + " ms, rendered in " +
                               formatNumber(s.referenceRenderMs) + " ms"}};
@@ -371,13 +373,17 @@ Table embreeTable(const SceneResult& scene) {
         return t;
     }
     const double rays = double(scene.width) * double(scene.height);
-    auto rate = [&](double ms) { return ms > 0.0 ? formatNumber(rays / (ms * 1e3)) : std::string(kMissing); };
-    addRow(t, {e.version + " rtcIntersect1", formatSpread(e.singleMs), rate(e.singleMs.median), "1.00x"});
-    addRow(t, {e.version + " rtcIntersect16", formatSpread(e.packetMs), rate(e.packetMs.median),
+    const auto cell = [](std::optional<double> v, std::string (*format)(double)) {
+        return v ? format(*v) : std::string(kMissing);
+    };
+    addRow(t, {e.version + " rtcIntersect1", formatSpread(e.singleMs),
+               cell(mraysPerSecond(rays, e.singleMs.median), formatNumber), "1.00x"});
+    addRow(t, {e.version + " rtcIntersect16", formatSpread(e.packetMs),
+               cell(mraysPerSecond(rays, e.packetMs.median), formatNumber),
                formatRatio(e.singleMs.median / e.packetMs.median)});
     for (const AccelResult& a : scene.accels)
-        addRow(t, {a.accel, formatSpread(a.primaryOnlyMs), rate(a.primaryOnlyMs.median),
-                   a.primaryVsEmbree() ? formatRatio(*a.primaryVsEmbree()) : std::string(kMissing)});
+        addRow(t, {a.accel, formatSpread(a.primaryOnlyMs), cell(a.primaryMrays(), formatNumber),
+                   cell(a.primaryVsEmbree(), formatRatio)});
     t.notes.push_back("Camera rays only (no lights, maxdepth 1): GPU time from timestamps, Embree wall-clock on " +
                       std::to_string(e.threads) + " threads, the same rays, medians with the min–max spread. Each "
                       "accelerator's ratio uses the Embree times measured in its own repeats, interleaved with its "

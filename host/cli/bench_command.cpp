@@ -91,17 +91,16 @@ void printSummary(const bench::BenchResults& r, const std::filesystem::path& dir
         std::printf("%s (%llu triangles, %dx%d):\n", s.file.c_str(), (unsigned long long)s.triangles, s.width,
                     s.height);
         const double pixels = double(s.width) * double(s.height);
-        if (s.embree.singleMrays)
+        if (const auto single = bench::mraysPerSecond(pixels, s.embree.singleMs.median); !s.embree.version.empty() && single)
             std::printf("  %-14s camera rays %7.2f Mrays/s (rtcIntersect1), %7.2f Mrays/s (rtcIntersect16)\n",
-                        "Embree", *s.embree.singleMrays, s.embree.packetMrays.value_or(0.0));
+                        "Embree", *single, bench::mraysPerSecond(pixels, s.embree.packetMs.median).value_or(0.0));
         else if (!s.embree.note.empty())
             std::printf("  %-14s %s\n", "Embree", s.embree.note.c_str());
         for (const bench::AccelResult& a : s.accels) {
             std::printf("  %-14s build %9.1f ms  trace %9.1f ms  %7.2f Mrays/s  %6.1f nodes/ray  RMSE %.4f",
                         a.accel.c_str(), a.build.back().ms.median, a.traceMs.median, a.mraysPerSecond,
                         a.nodesPerRay, a.error.rmse);
-            if (a.primaryOnlyMs.median > 0.0)
-                std::printf("  camera rays %7.2f Mrays/s", pixels / (a.primaryOnlyMs.median * 1e3));
+            if (const auto camera = a.primaryMrays()) std::printf("  camera rays %7.2f Mrays/s", *camera);
             if (a.primaryVsEmbree()) std::printf(" (%.3fx Embree)", *a.primaryVsEmbree());
             std::printf("\n");
         }
@@ -129,10 +128,7 @@ void registerBenchCommand(CLI::App& app, int& exitCode, int argc, const char* co
                     "Comma-separated accelerators (default bvh-fast,bvh-hq,kd-stack,kd-restart,kd-backtrack)");
     cmd->add_option("--device", args->device, "Vulkan device: index or name substring (see `vkray devices`)");
     cmd->add_option("--size", args->size, "Image size WIDTHxHEIGHT (default: each scene's 'size')");
-    cmd->add_option("--view", args->view,
-                    "Camera of every scene: scene (its own), close (a close-up of its triangles, where most "
-                    "camera rays hit) or EX,EY,EZ,CX,CY,CZ[,FOVY] (eye, look-at centre, fovy; up from the scene)")
-        ->default_str("scene");
+    addViewOption(*cmd, args->view);
     cmd->add_option("--repeat", args->repeat, "Timed runs after one warm-up; medians with min-max")->default_str("3");
     cmd->add_option("--out", args->out, "Output folder for bench.json, bench.md, report.html, images/")
         ->default_str(args->out);

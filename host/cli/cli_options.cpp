@@ -19,6 +19,13 @@ std::pair<int, int> parseSize(const std::string& text, const std::string& option
     return {int(w), int(h)};
 }
 
+void addViewOption(CLI::App& cmd, std::string& view) {
+    cmd.add_option("--view", view,
+                   "Camera: scene (its own), close (a close-up of its triangles, where most camera rays hit) or "
+                   "EX,EY,EZ,CX,CY,CZ[,FOVY] (eye, look-at centre, fovy; up from the scene)")
+        ->default_str("scene");
+}
+
 std::vector<std::string> parseNameList(const std::string& text, const std::string& option) {
     std::vector<std::string> out;
     std::stringstream in(text);

@@ -5,6 +5,8 @@
 #include <utility>
 #include <vector>
 
+#include <CLI/CLI.hpp>
+
 namespace vkray::cli {
 
 // "640x480" -> (640, 480), within the image limits of scene.h; `option` names the flag in errors.
@@ -12,6 +14,9 @@ std::pair<int, int> parseSize(const std::string& text, const std::string& option
 
 // "1,2,4" -> {1, 2, 4}, each in [lo, hi]; "none" -> {} when allowNone.
 std::vector<int> parseIntList(const std::string& text, const std::string& option, int lo, int hi, bool allowNone);
+
+// --view, as render and bench take it (scene/camera.h, viewCamera, checks the value).
+void addViewOption(CLI::App& cmd, std::string& view);
 
 // "a,b,c" -> {"a", "b", "c"}; empty items are an error.
 std::vector<std::string> parseNameList(const std::string& text, const std::string& option);

@@ -204,10 +204,7 @@ void registerRenderCommand(CLI::App& app, int& exitCode) {
     cmd->add_flag("--cpu", args->cpu, "Render with the CPU reference renderer (double precision)");
     cmd->add_option("--device", args->device, "Vulkan device: index or name substring (see `vkray devices`)");
     cmd->add_option("--size", args->size, "Image size WIDTHxHEIGHT (overrides the scene's 'size')");
-    cmd->add_option("--view", args->view,
-                    "Camera: scene (its own), close (a close-up of the scene's triangles) or "
-                    "EX,EY,EZ,CX,CY,CZ[,FOVY] (eye, look-at centre, fovy; up from the scene)")
-        ->default_str("scene");
+    addViewOption(*cmd, args->view);
     cmd->add_option("--maxdepth", args->maxDepth, "Ray depth, primary rays count as 1 (overrides the scene's)");
     cmd->add_option("--threads", args->threads, "CPU threads (0 = all cores)");
     cmd->add_option("--aov", args->aovs, "Write an AOV: depth=F.pfm, primid=F.pfm, normal=F.pfm (repeatable)");

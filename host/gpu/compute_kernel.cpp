@@ -64,20 +64,19 @@ ComputeKernel::ComputeKernel(const VulkanContext& ctx, std::span<const uint32_t>
     set_ = std::move(sets[0]);
 }
 
-void ComputeKernel::bind(std::span<const vk::Buffer> buffers, std::span<const vk::BufferView> views) {
-    std::vector<vk::DescriptorBufferInfo> infos;
-    infos.reserve(buffers.size());
-    for (vk::Buffer b : buffers) infos.push_back({.buffer = b, .offset = 0, .range = VK_WHOLE_SIZE});
+void ComputeKernel::bind(std::span<const Resource> resources) {
+    if (resources.size() != bindings_.size())
+        throw Error("internal: " + std::to_string(resources.size()) + " resources for a kernel of " +
+                    std::to_string(bindings_.size()) + " bindings");
+    std::vector<vk::DescriptorBufferInfo> infos(resources.size());
     std::vector<vk::WriteDescriptorSet> writes;
-    size_t nextBuffer = 0, nextView = 0;
     for (uint32_t i = 0; i < bindings_.size(); ++i) {
         vk::WriteDescriptorSet w{.dstSet = *set_, .dstBinding = i, .descriptorCount = 1, .descriptorType = bindings_[i]};
         if (bindings_[i] == vk::DescriptorType::eUniformTexelBuffer) {
-            if (nextView >= views.size()) throw Error("internal: too few texel views for the kernel's bindings");
-            w.pTexelBufferView = &views[nextView++];
+            w.pTexelBufferView = &resources[i].view;
         } else {
-            if (nextBuffer >= infos.size()) throw Error("internal: too few buffers for the kernel's bindings");
-            w.pBufferInfo = &infos[nextBuffer++];
+            infos[i] = vk::DescriptorBufferInfo{.buffer = resources[i].buffer, .offset = 0, .range = VK_WHOLE_SIZE};
+            w.pBufferInfo = &infos[i];
         }
         writes.push_back(w);
     }

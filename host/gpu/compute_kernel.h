@@ -28,9 +28,14 @@ public:
                   std::span<const vk::DescriptorType> bindings, uint32_t pushConstantBytes,
                   const Specialization& spec);
 
-    // Points the storage-buffer bindings at their buffers (whole range) and the texel-buffer
-    // bindings at their views, in binding order; each list skips the bindings of the other type.
-    void bind(std::span<const vk::Buffer> buffers, std::span<const vk::BufferView> views);
+    // What binding i is pointed at: the buffer (whole range) of a storage-buffer binding, the view
+    // of a texel-buffer binding.
+    struct Resource {
+        vk::Buffer buffer;
+        vk::BufferView view;
+    };
+    // Points every binding at resources[i]; one entry per binding.
+    void bind(std::span<const Resource> resources);
 
     void dispatch(const vk::raii::CommandBuffer& cmd, const void* pushConstants, uint32_t groupsX,
                   uint32_t groupsY) const;

@@ -166,21 +166,20 @@ void recordBatch(const vk::raii::CommandBuffer& cmd, const ComputeKernel& kernel
 }
 
 void bindBuffers(ComputeKernel& kernel, const SceneBuffers& scene, const AccelBuffers& accel, const Buffer& pixels) {
-    std::array<vk::Buffer, VKRAY_STORAGE_BINDING_COUNT> buffers{};
-    buffers[VKRAY_BINDING_TRIANGLES] = scene.triangles.handle();
-    buffers[VKRAY_BINDING_NORMALS] = scene.normals.handle();
-    buffers[VKRAY_BINDING_MATERIALS] = scene.materials.handle();
-    buffers[VKRAY_BINDING_LIGHTS] = scene.lights.handle();
-    buffers[VKRAY_BINDING_PIXELS] = pixels.handle();
-    buffers[VKRAY_BINDING_ACCEL_NODES] = accel.nodes.handle();
-    buffers[VKRAY_BINDING_ACCEL_INDICES] = accel.indices.handle();
-    buffers[VKRAY_BINDING_ACCEL_EXTRA] = accel.extra.handle();
-    std::array<vk::BufferView, VKRAY_BINDING_COUNT - VKRAY_STORAGE_BINDING_COUNT> views{};
-    views[VKRAY_BINDING_TRIANGLE_TEXELS - VKRAY_STORAGE_BINDING_COUNT] = scene.triangleTexels.handle();
-    views[VKRAY_BINDING_NODE_TEXELS - VKRAY_STORAGE_BINDING_COUNT] = accel.nodeTexels.handle();
-    views[VKRAY_BINDING_INDEX_TEXELS - VKRAY_STORAGE_BINDING_COUNT] = accel.indexTexels.handle();
-    views[VKRAY_BINDING_EXTRA_TEXELS - VKRAY_STORAGE_BINDING_COUNT] = accel.extraTexels.handle();
-    kernel.bind(buffers, views);
+    std::array<ComputeKernel::Resource, VKRAY_BINDING_COUNT> r{};
+    r[VKRAY_BINDING_TRIANGLES].buffer = scene.triangles.handle();
+    r[VKRAY_BINDING_NORMALS].buffer = scene.normals.handle();
+    r[VKRAY_BINDING_MATERIALS].buffer = scene.materials.handle();
+    r[VKRAY_BINDING_LIGHTS].buffer = scene.lights.handle();
+    r[VKRAY_BINDING_PIXELS].buffer = pixels.handle();
+    r[VKRAY_BINDING_ACCEL_NODES].buffer = accel.nodes.handle();
+    r[VKRAY_BINDING_ACCEL_INDICES].buffer = accel.indices.handle();
+    r[VKRAY_BINDING_ACCEL_EXTRA].buffer = accel.extra.handle();
+    r[VKRAY_BINDING_TRIANGLE_TEXELS].view = scene.triangleTexels.handle();
+    r[VKRAY_BINDING_NODE_TEXELS].view = accel.nodeTexels.handle();
+    r[VKRAY_BINDING_INDEX_TEXELS].view = accel.indexTexels.handle();
+    r[VKRAY_BINDING_EXTRA_TEXELS].view = accel.extraTexels.handle();
+    kernel.bind(r);
 }
 
 // Dispatches the tiles, `perSubmission` at a time into `pixels`, and reads each batch into `frame`.

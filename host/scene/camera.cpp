@@ -3,11 +3,12 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <sstream>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "core/error.h"
+#include "scene/text_input.h"
 
 namespace vkray {
 
@@ -56,35 +57,30 @@ Camera closeUpCamera(const Scene& scene) {
     const glm::dvec3 centre = 0.5 * (glm::dvec3(lo) + glm::dvec3(hi));
     const double radius = 0.5 * glm::length(glm::dvec3(hi) - glm::dvec3(lo));
     const CameraFrame f = makeCameraFrame(scene.camera, 1, 1);  // validates the scene's camera
-    const double tanY = std::tan(glm::radians(double(scene.camera.fovyDegrees)) / 2.0);
-    const double distance = std::max(0.5 * radius / tanY, radius);
+    const double distance = std::max({0.5 * radius / f.tanY, radius, 1e-6});
     Camera c = scene.camera;
     c.center = glm::vec3(centre);
-    c.eye = glm::vec3(centre + f.w * std::max(distance, 1e-6));
+    c.eye = glm::vec3(centre + f.w * distance);
     return c;
 }
 
 Camera explicitCamera(const Scene& scene, const std::string& text, const std::string& option) {
     const std::string usage = option + " '" + text + "': expected scene, close or EX,EY,EZ,CX,CY,CZ[,FOVY]";
-    if (text.empty() || text.back() == ',') throw Error(usage);  // getline drops a last empty item
-    std::vector<double> v;
-    std::stringstream in(text);
-    for (std::string item; std::getline(in, item, ',');) {
-        size_t used = 0;
-        double x = 0.0;
-        try {
-            x = std::stod(item, &used);
-        } catch (const std::exception&) {
+    std::vector<float> v;
+    for (size_t start = 0;;) {  // every comma-separated item, empty ones included
+        const size_t comma = std::min(text.find(',', start), text.size());
+        float x = 0.0f;
+        if (parseFloat(std::string_view(text).substr(start, comma - start), x) != NumberStatus::Ok)
             throw Error(usage);
-        }
-        if (used != item.size() || !std::isfinite(x)) throw Error(usage);
         v.push_back(x);
+        if (comma == text.size()) break;
+        start = comma + 1;
     }
     if (v.size() != 6 && v.size() != 7) throw Error(usage);
     Camera c = scene.camera;
     c.eye = glm::vec3(v[0], v[1], v[2]);
     c.center = glm::vec3(v[3], v[4], v[5]);
-    if (v.size() == 7) c.fovyDegrees = float(v[6]);
+    if (v.size() == 7) c.fovyDegrees = v[6];
     try {
         makeCameraFrame(c, 1, 1);
     } catch (const Error& e) {

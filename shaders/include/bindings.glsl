@@ -4,9 +4,7 @@
 
 #include "shared/gpu_layout.h"
 
-layout(std430, set = 0, binding = VKRAY_BINDING_TRIANGLES) readonly buffer Triangles {
-    GpuTriangle triangles[];
-};
+// The triangles (VKRAY_BINDING_TRIANGLES) are read only through their texel view: loadTriangle().
 layout(std430, set = 0, binding = VKRAY_BINDING_NORMALS) readonly buffer Normals {
     GpuTriangleNormals triangleNormals[];
 };

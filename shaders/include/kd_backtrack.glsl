@@ -62,7 +62,7 @@ bool kdWalkPass(KdRay r, WatertightRay w, const bool anyHit, float segMin, uint 
         } else {  // climb from this leaf's parent
             segMin = segMax;
             minAxis = maxAxis;
-            node = texelFetch(extraTexels, int(2u * node)).w;
+            node = kdExtraAt(node).parent;
             climbing = true;
             countRestart();
         }

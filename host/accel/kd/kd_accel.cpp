@@ -48,6 +48,7 @@ public:
     std::vector<AccelStat> stats() const override {
         const kd::KdTreeFigures f = kd::measureTree(build_.tree, config_);
         const kd::KdBuildTimes& ms = build_.times;
+        const GpuAccelData data = gpuData();
         return {
             {"build_ms", ms.totalMs, "ms"},
             {"build_events_ms", ms.eventsMs, "ms: bounds, events, sort"},
@@ -55,13 +56,13 @@ public:
             {"build_flatten_ms", ms.flattenMs, "ms: GPU arrays"},
             {"nodes", double(f.nodes), "8 bytes each"},
             {"leaves", double(f.leaves), ""},
-            {"max_leaf_triangles", double(gpuData().maxLeafTriangles), ""},
+            {"max_leaf_triangles", double(data.maxLeafTriangles), ""},
             {"empty_leaves", double(f.emptyLeaves), ""},
             {"max_depth", double(f.maxDepth), "limit " + std::to_string(config_.resolvedMaxDepth(f.indexedTriangles))},
             {"mean_triangles_per_leaf", f.meanTrianglesPerLeaf(), "references / leaves"},
             {"duplicated_references", double(f.duplicatedReferences()), "references beyond one per triangle"},
             {"sah_cost", f.sahCost, config_.describe()},
-            {"gpu_bytes", double(gpuData().bytes()), "bytes"},
+            {"gpu_bytes", double(data.bytes()), "bytes"},
         };
     }
 
