@@ -168,9 +168,6 @@ void recordBatch(const vk::raii::CommandBuffer& cmd, const ComputeKernel& kernel
 void bindBuffers(ComputeKernel& kernel, const SceneBuffers& scene, const AccelBuffers& accel, const Buffer& pixels) {
     std::array<ComputeKernel::Resource, VKRAY_BINDING_COUNT> r{};
     r[VKRAY_BINDING_TRIANGLES].buffer = scene.triangles.handle();
-    r[VKRAY_BINDING_NORMALS].buffer = scene.normals.handle();
-    r[VKRAY_BINDING_MATERIALS].buffer = scene.materials.handle();
-    r[VKRAY_BINDING_LIGHTS].buffer = scene.lights.handle();
     r[VKRAY_BINDING_PIXELS].buffer = pixels.handle();
     r[VKRAY_BINDING_ACCEL_NODES].buffer = accel.nodes.handle();
     r[VKRAY_BINDING_ACCEL_INDICES].buffer = accel.indices.handle();
@@ -179,6 +176,9 @@ void bindBuffers(ComputeKernel& kernel, const SceneBuffers& scene, const AccelBu
     r[VKRAY_BINDING_NODE_TEXELS].view = accel.nodeTexels.handle();
     r[VKRAY_BINDING_INDEX_TEXELS].view = accel.indexTexels.handle();
     r[VKRAY_BINDING_EXTRA_TEXELS].view = accel.extraTexels.handle();
+    r[VKRAY_BINDING_NORMAL_TEXELS].view = scene.normalTexels.handle();
+    r[VKRAY_BINDING_MATERIAL_TEXELS].view = scene.materialTexels.handle();
+    r[VKRAY_BINDING_LIGHT_TEXELS].view = scene.lightTexels.handle();
     kernel.bind(r);
 }
 

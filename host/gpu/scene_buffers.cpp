@@ -83,8 +83,12 @@ SceneBuffers uploadScene(const VulkanContext& ctx, const PackedScene& packed) {
     SceneBuffers b{uploadVector(ctx, packed.triangles, "triangles"),
                    uploadVector(ctx, packed.normals, "vertex normals"),
                    uploadVector(ctx, packed.materials, "materials"),
-                   uploadVector(ctx, packed.lights, "lights"), TexelView{}};
-    b.triangleTexels = TexelView(ctx, b.triangles, vk::Format::eR32G32B32A32Uint, 16, "triangles");
+                   uploadVector(ctx, packed.lights, "lights"), {}, {}, {}, {}};
+    constexpr vk::Format kRgba32 = vk::Format::eR32G32B32A32Uint;
+    b.triangleTexels = TexelView(ctx, b.triangles, kRgba32, 16, "triangles");
+    b.normalTexels = TexelView(ctx, b.normals, kRgba32, 16, "vertex normals");
+    b.materialTexels = TexelView(ctx, b.materials, kRgba32, 16, "materials");
+    b.lightTexels = TexelView(ctx, b.lights, kRgba32, 16, "lights");
     b.bytes = packed.triangles.size() * sizeof(GpuTriangle) +
               packed.normals.size() * sizeof(GpuTriangleNormals) +
               packed.materials.size() * sizeof(GpuMaterial) + packed.lights.size() * sizeof(GpuLight);

@@ -25,7 +25,8 @@ PackedScene packScene(const Scene& scene, const std::vector<uint32_t>& triangleO
 
 struct SceneBuffers {
     Buffer triangles, normals, materials, lights;
-    TexelView triangleTexels;  // VKRAY_BINDING_TRIANGLE_TEXELS
+    // VKRAY_BINDING_TRIANGLE_TEXELS, _NORMAL_TEXELS, _MATERIAL_TEXELS, _LIGHT_TEXELS
+    TexelView triangleTexels, normalTexels, materialTexels, lightTexels;
     uint64_t bytes = 0;  // uploaded, for --stats
 };
 

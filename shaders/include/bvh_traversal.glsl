@@ -3,12 +3,11 @@
 // axis, so one read and one set of vector operations test all four; leaves are runs of the triangle
 // buffer in leaf order, named by the reference itself, and take no node.
 //
-// One loop for both queries, one iteration per node or leaf. Closest hit: the children a ray
-// enters are sorted by entry distance; the nearest is visited next and the others are pushed,
-// farthest first, with their entry distances on a stack in local memory; a popped entry entered
-// beyond the best hit so far is skipped. Any hit (shadow rays) walks the same way without sorting
-// and stops at the first triangle hit. Leaves test their triangles in the loop of
-// leaf_triangles.glsl.
+// One walk for both queries (bvhTrace). Closest hit: the children a ray enters are sorted by entry
+// distance; the nearest is visited next and the others are pushed, farthest first, with their
+// entry distances on a stack in local memory; a popped entry entered beyond the best hit so far is
+// skipped. Any hit (shadow rays) walks the same way without sorting and stops at the first
+// triangle hit. Leaves test their triangles in the loop of leaf_triangles.glsl.
 #ifndef VKRAY_BVH_TRAVERSAL_GLSL
 #define VKRAY_BVH_TRAVERSAL_GLSL
 
@@ -98,6 +97,12 @@ bool isLeafRef(uint ref) { return (ref & VKRAY_BVH_LEAF_BIT) != 0u; }
 
 // Closest hit in (0, tmax), or with anyHit (a constant at both calls below, so the compiler folds
 // every test of it) the first hit found. For any hit best.t stays tmax until the walk ends.
+//
+// A loop over leaves around a loop over the node steps down to the next leaf ("while-while", Aila
+// and Laine, "Understanding the Efficiency of Ray Traversal on GPUs", HPG 2009): llvmpipe runs
+// every statement of a loop body for all SIMD lanes, masked, so with the leaf's triangle loop
+// inside the node loop every node step of every lane paid for a triangle test, about 11 node steps
+// for 2 triangle tests per camera ray here (docs/benchmarks.md, "Node steps apart from leaves").
 Hit bvhTrace(vec3 origin, vec3 dir, float tmax, const bool anyHit) {
     Hit best = noHit(tmax);
     if (params.counts.x == 0u) return best;
@@ -108,27 +113,31 @@ Hit bvhTrace(vec3 origin, vec3 dir, float tmax, const bool anyHit) {
     float stackEnter[VKRAY_BVH_STACK_SIZE];  // closest hit only
     int top = 0;
     uint ref = 0u;  // the root: inner node 0
-    // A popped entry entered beyond the best hit found since it was pushed is skipped: that costs
-    // its iteration but reads nothing. "Beyond" with the slab test's own widening: the triangle
-    // test and the slab test round differently, and a triangle lying in a face of its box (axis-
-    // aligned geometry) was measured to hit one ulp before the box's computed entry; compared
-    // unwidened, that node was skipped and a closer hit, or an equal-t one of lower index
-    // (beats(), triangle.glsl), lost (scenes/stress/split-planes.scene, 3 of 3969 camera rays).
-    // Any hit never skips: it ends at its first hit.
-    bool skip = false, done = false;
+    bool haveRef = true;
+    bool done = false;
     int iteration = 0;
-    for (; iteration < VKRAY_BVH_MAX_ITERATIONS && !done; ++iteration) {
-        bool descend = false;
-        if (!skip) {
-            countNode();
-            if (isLeafRef(ref)) {
-                countLeaf();
-                const uint first = ref & VKRAY_BVH_FIRST_MASK;
-                const uint count = ((ref >> VKRAY_BVH_COUNT_SHIFT) & VKRAY_BVH_COUNT_MASK) + 1u;
-                // Cut short by the driver (flagged there), or an occluder found: the walk ends.
-                if (!testSlots(first, first + count, ray, anyHit, LEAF_SLOTS, best) || (anyHit && best.triangle >= 0))
-                    return best;
-            } else {
+    // The next entry of the stack into `ref`. A popped entry entered beyond the best hit found
+    // since it was pushed is dropped (haveRef false): that costs an iteration but reads nothing.
+    // "Beyond" with the slab test's own widening: the triangle test and the slab test round
+    // differently, and a triangle lying in a face of its box (axis-aligned geometry) was measured
+    // to hit one ulp before the box's computed entry; compared unwidened, that node was dropped and
+    // a closer hit, or an equal-t one of lower index (beats(), triangle.glsl), lost
+    // (scenes/stress/split-planes.scene, 3 of 3969 camera rays). Any hit never drops: it ends at
+    // its first hit. (A macro, not a function: GLSL passes arrays by copy.)
+#define VKRAY_BVH_POP()                                                            \
+    {                                                                              \
+        --top;                                                                     \
+        ref = stackRef[top];                                                       \
+        haveRef = anyHit || !(stackEnter[top] > best.t * kRoundingSlack);          \
+    }
+    while (iteration < VKRAY_BVH_MAX_ITERATIONS) {
+        // Node steps while `ref` is an inner node or a dropped entry, and something is left. The
+        // loop's exits are all in its condition: a `break` in its body made llvmpipe's masked
+        // loop measurably slower.
+        for (; iteration < VKRAY_BVH_MAX_ITERATIONS && (haveRef || top > 0) && !(haveRef && isLeafRef(ref));
+             ++iteration) {
+            if (haveRef) {
+                countNode();
                 const GpuBvhNode n = loadBvhNode(ref);
                 vec4 tEnter;
                 const bvec4 hit = hitsChildren(n, boxRay, best.t, tEnter);
@@ -147,7 +156,6 @@ Hit bvhTrace(vec3 origin, vec3 dir, float tmax, const bool anyHit) {
                     return best;
                 }
                 // The entered children after the first, farthest first: the nearest pops next.
-                // (A macro, not a function: GLSL passes arrays by copy.)
 #define VKRAY_BVH_PUSH(when, child, enter)             \
     if (when) {                                        \
         stackRef[top] = child;                         \
@@ -159,18 +167,28 @@ Hit bvhTrace(vec3 origin, vec3 dir, float tmax, const bool anyHit) {
                 VKRAY_BVH_PUSH(hits > 1, kids.y, key.y)
 #undef VKRAY_BVH_PUSH
                 ref = kids.x;
-                descend = hits > 0;
+                haveRef = hits > 0;
             }
+            if (!haveRef && top > 0) VKRAY_BVH_POP()
         }
-        if (!descend) {
+        if (!haveRef) {  // the stack ran empty, or the loop was cut short (cap or driver)
             done = top == 0;
-            if (!done) {
-                --top;
-                ref = stackRef[top];
-                if (!anyHit) skip = stackEnter[top] > best.t * kRoundingSlack;
-            }
+            break;
         }
+        if (!isLeafRef(ref) || iteration >= VKRAY_BVH_MAX_ITERATIONS) break;
+        // The leaf: its triangles, in the loop of leaf_triangles.glsl, then the next entry.
+        ++iteration;
+        countNode();
+        countLeaf();
+        const uint first = ref & VKRAY_BVH_FIRST_MASK;
+        const uint count = ((ref >> VKRAY_BVH_COUNT_SHIFT) & VKRAY_BVH_COUNT_MASK) + 1u;
+        // Cut short by the driver (flagged there), or an occluder found: the walk ends.
+        if (!testSlots(first, first + count, ray, anyHit, LEAF_SLOTS, best) || (anyHit && best.triangle >= 0))
+            return best;
+        haveRef = false;
+        if (top > 0) VKRAY_BVH_POP()
     }
+#undef VKRAY_BVH_POP
     if (!done) {
         if (iteration >= VKRAY_BVH_MAX_ITERATIONS) ++gCappedRays;
         else gLoopCutShort = true;

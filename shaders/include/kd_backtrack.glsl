@@ -19,6 +19,24 @@ KdNodeExtra kdExtraAt(uint i) {
     return KdNodeExtra(uintBitsToFloat(a.xyz), a.w, uintBitsToFloat(b.xyz), b.w);
 }
 
+// One climbing step from `node`: whether its box still holds part of the segment past segMin (then
+// the segment becomes that part and the walk descends from there); else `node` moves to its parent.
+bool kdClimbStep(KdRay r, inout uint node, inout float segMin, inout uint minAxis, inout float segMax,
+                 inout uint maxAxis, float globalMax, uint globalMaxAxis, inout KdPass pass) {
+    float t0 = segMin, t1 = globalMax;
+    uint a0 = minAxis, a1 = globalMaxAxis;
+    const KdNodeExtra extra = kdExtraAt(node);
+    if (kdClipBox(r, extra.lo, extra.hi, t0, a0, t1, a1, pass) && kdCompare(pass, t1, a1, segMin, minAxis) > 0) {
+        segMin = t0;  // at least segMin: the clip started from it
+        minAxis = a0;
+        segMax = t1;
+        maxAxis = a1;
+        return true;
+    }
+    node = extra.parent;
+    return false;
+}
+
 bool kdWalkPass(KdRay r, WatertightRay w, const bool anyHit, float segMin, uint minAxis, float segMax,
                 uint maxAxis, inout KdPass pass, inout int steps, inout Hit best) {
     const float globalMax = segMax;
@@ -26,36 +44,31 @@ bool kdWalkPass(KdRay r, WatertightRay w, const bool anyHit, float segMin, uint 
     uint node = 0u;
     bool climbing = false;
     bool passDone = false;
-    for (; !passDone && steps < VKRAY_KD_MAX_STEPS; ++steps) {
-        countNode();
-        if (climbing) {  // does this ancestor's box still hold part of the segment?
-            if (node == VKRAY_KD_NO_PARENT) {
-                passDone = true;
-                continue;
-            }
-            float t0 = segMin, t1 = globalMax;
-            uint a0 = minAxis, a1 = globalMaxAxis;
-            const KdNodeExtra extra = kdExtraAt(node);
-            if (kdClipBox(r, extra.lo, extra.hi, t0, a0, t1, a1, pass) &&
-                kdCompare(pass, t1, a1, segMin, minAxis) > 0) {
-                segMin = t0;  // at least segMin: the clip started from it
-                minAxis = a0;
-                segMax = t1;
-                maxAxis = a1;
-                climbing = false;
+    while (!passDone && steps < VKRAY_KD_MAX_STEPS) {
+        // Up to an ancestor the segment still crosses, then down to the next leaf (kd_common.glsl,
+        // "Loops"); climbing and descending steps share the loop and its cap.
+        uvec2 n = climbing ? uvec2(0u) : kdNode(node);
+        for (; (climbing || !kdIsLeaf(n)) && steps < VKRAY_KD_MAX_STEPS; ++steps) {
+            countNode();
+            if (climbing) {
+                if (node == VKRAY_KD_NO_PARENT) {  // past the root: the segment left the tree
+                    passDone = true;
+                    break;
+                }
+                climbing = !kdClimbStep(r, node, segMin, minAxis, segMax, maxAxis, globalMax, globalMaxAxis, pass);
             } else {
-                node = extra.parent;
+                uint first, second;
+                float thit;
+                const int visit = kdStepInner(r, n, node, segMin, minAxis, segMax, maxAxis, pass, first, second, thit);
+                node = kdDescend(visit, n, first, second, thit, segMax, maxAxis);
             }
-            continue;
+            if (!climbing) n = kdNode(node);
         }
-        const uvec2 n = kdNode(node);
-        if (!kdIsLeaf(n)) {
-            uint first, second;
-            float thit;
-            const int visit = kdStepInner(r, n, node, segMin, minAxis, segMax, maxAxis, pass, first, second, thit);
-            node = kdDescend(visit, n, first, second, thit, segMax, maxAxis);
-            continue;
+        if (passDone) {
+            ++steps;  // the step that found the root's parent
+            break;
         }
+        if (!kdLeafStep(n, steps)) break;  // the cap, or the driver
         kdVisitLeaf(n, w, anyHit, best);
         if (kdFinished(best, anyHit, segMax) || kdCompare(pass, segMax, maxAxis, globalMax, globalMaxAxis) >= 0) {
             passDone = true;

@@ -16,8 +16,13 @@
 //  - a leaf's triangles are tested on the whole ray (0, best.t]; the search ends once the best hit
 //    lies strictly before the current leaf's exit (a hit beyond the leaf does not end it; one at
 //    the exit may still lose a tie to the next leaf); exact ties in t go to the lowest index.
-// Loops: one iteration per node step, leaf triangles 4 per iteration (leaf_triangles.glsl), because
-// llvmpipe ends all loops of an invocation after 65535 iterations in total (trace_status.glsl).
+// Loops: each walk is a loop over leaves around a loop over the node steps down to the next leaf;
+// leaf triangles one (or 4) per iteration (leaf_triangles.glsl). Every step counts against
+// VKRAY_KD_MAX_STEPS, and llvmpipe ends all loops of an invocation after 65535 iterations in total
+// (trace_status.glsl). The leaf's triangle loop stands outside the node-step loop because llvmpipe
+// runs every statement of a loop body for all SIMD lanes, masked: with the leaf test in the step
+// loop, every node step of every lane paid for a triangle test (docs/benchmarks.md, "Node steps
+// apart from leaves").
 #ifndef VKRAY_KD_COMMON_GLSL
 #define VKRAY_KD_COMMON_GLSL
 
@@ -202,6 +207,15 @@ uint kdDescend(int visit, uvec2 n, uint first, uint second, float thit, inout fl
 
 // A leaf lists its triangles in the index list: a triangle may lie in several leaves.
 uint slotTriangle(uint slot) { return texelFetch(indexTexels, int(slot)).x; }
+
+// The step onto leaf `n` that a descent loop ended at: false when it ended elsewhere, at the step
+// cap or cut short by the driver (the pass then ends unfinished).
+bool kdLeafStep(uvec2 n, inout int steps) {
+    if (!kdIsLeaf(n) || steps >= VKRAY_KD_MAX_STEPS) return false;
+    countNode();
+    ++steps;
+    return true;
+}
 
 // The leaf's triangles against (0, best.t); with anyHit, stops at the first hit.
 void kdVisitLeaf(uvec2 n, WatertightRay w, const bool anyHit, inout Hit best) {

@@ -18,16 +18,18 @@ bool kdWalkPass(KdRay r, WatertightRay w, const bool anyHit, float segMin, uint 
     const uint globalMaxAxis = maxAxis;
     uint node = 0u;
     bool passDone = false;
-    for (; !passDone && steps < VKRAY_KD_MAX_STEPS; ++steps) {
-        countNode();
-        const uvec2 n = kdNode(node);
-        if (!kdIsLeaf(n)) {
+    while (!passDone && steps < VKRAY_KD_MAX_STEPS) {
+        // Down to the next leaf (kd_common.glsl, "Loops").
+        uvec2 n = kdNode(node);
+        for (; !kdIsLeaf(n) && steps < VKRAY_KD_MAX_STEPS; ++steps) {
+            countNode();
             uint first, second;
             float thit;
             const int visit = kdStepInner(r, n, node, segMin, minAxis, segMax, maxAxis, pass, first, second, thit);
             node = kdDescend(visit, n, first, second, thit, segMax, maxAxis);
-            continue;
+            n = kdNode(node);
         }
+        if (!kdLeafStep(n, steps)) break;  // the cap, or the driver
         kdVisitLeaf(n, w, anyHit, best);
         if (kdFinished(best, anyHit, segMax) || kdCompare(pass, segMax, maxAxis, globalMax, globalMaxAxis) >= 0) {
             passDone = true;

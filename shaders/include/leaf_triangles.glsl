@@ -25,16 +25,6 @@ const uint kBruteSlotsPerIteration = 4u;
 // triangles through it).
 uint slotTriangle(uint slot);
 
-// Any hit asks only whether: it records the triangle in `best` and keeps best.t, the ray's tmax, so
-// it neither loads the triangle's identity nor computes uv as the closest-hit update does. (Any hit
-// through closestTriangle, or testSlot written with early returns, made the brute-force kernel,
-// nearly all shadow rays, 4-9% slower on lavapipe; docs/benchmarks.md, "One loop per traversal".)
-void anyTriangle(uint triangle, WatertightRay ray, inout Hit best) {
-    float t;
-    vec2 uv;
-    if (hitTriangle(ray, loadTriangle(triangle), t, uv) && t < best.t) best.triangle = int(triangle);
-}
-
 // Slot `slot` when below `end`: the last iteration's four slots may run past the end.
 void testSlot(uint slot, uint end, WatertightRay ray, const bool anyHit, inout Hit best) {
     if (slot < end) {

@@ -93,7 +93,7 @@ void main() {
             normalAov = s.normal;
             primAov = s.original;
         }
-        const GpuMaterial m = materials[s.material];
+        const GpuMaterial m = loadMaterial(s.material);
         radiance += ray.weight * localShading(s, m, -ray.dir);
         if ((HAS_REFLECTION || HAS_REFRACTION) && ray.depth < MAX_DEPTH) {
             PendingRay reflected, refracted;

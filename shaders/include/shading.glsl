@@ -35,7 +35,7 @@ SurfacePoint surfaceAt(Hit hit, vec3 dir) {
     s.facing = s.front ? ng : -ng;
     s.normal = ng;
     if (HAS_SMOOTH_NORMALS) {
-        const GpuTriangleNormals tn = triangleNormals[hit.triangle];
+        const GpuTriangleNormals tn = loadNormals(uint(hit.triangle));
         const vec3 interpolated = b0 * tn.n0.xyz + hit.uv.x * tn.n1.xyz + hit.uv.y * tn.n2.xyz;
         const float len = length(interpolated);
         if (len > 0.0) s.normal = interpolated / len;
@@ -98,7 +98,7 @@ vec3 localShading(SurfacePoint s, GpuMaterial m, vec3 V) {
     const vec3 shadowOrigin = offsetRayOrigin(s.position, s.facing, s.offset);
     const uint lightCount = params.counts.y;
     for (uint i = 0; i < lightCount; ++i) {
-        const LightSample ls = sampleLight(lights[i], s.position, shadowOrigin);
+        const LightSample ls = sampleLight(loadLight(i), s.position, shadowOrigin);
         const vec3 term = blinnPhong(s, m, V, transmit, ls.L, ls.radiance);
         // Shadow rays only where the light would add something.
         if (any(greaterThan(term, vec3(0.0))) && !traceShadowRay(shadowOrigin, ls.shadowDir, ls.shadowTmax))

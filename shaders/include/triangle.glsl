@@ -128,4 +128,15 @@ void closestTriangle(uint slot, WatertightRay ray, inout Hit best) {
     }
 }
 
+// Any hit asks only whether: it records the triangle in `best` and keeps best.t, the ray's tmax, so
+// it neither loads the triangle's identity nor computes uv as the closest-hit update does. (Any
+// hit through closestTriangle, or leaf_triangles.glsl's testSlot written with early returns, made
+// the brute-force kernel, nearly all shadow rays, 4-9% slower on lavapipe; docs/benchmarks.md,
+// "One loop per traversal".)
+void anyTriangle(uint triangle, WatertightRay ray, inout Hit best) {
+    float t;
+    vec2 uv;
+    if (hitTriangle(ray, loadTriangle(triangle), t, uv) && t < best.t) best.triangle = int(triangle);
+}
+
 #endif

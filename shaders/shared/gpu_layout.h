@@ -28,25 +28,30 @@ using uvec4 = glm::uvec4;
 
 // ---- Descriptor bindings (set 0) -------------------------------------------------------------
 #define VKRAY_BINDING_TRIANGLES 0  // GpuTriangle[]
-#define VKRAY_BINDING_NORMALS 1    // GpuTriangleNormals[] (one dummy entry without smooth normals)
-#define VKRAY_BINDING_MATERIALS 2  // GpuMaterial[]
-#define VKRAY_BINDING_LIGHTS 3     // GpuLight[] (one dummy entry without lights)
-#define VKRAY_BINDING_PIXELS 4     // GpuPixel[], one batch of tiles
+#define VKRAY_BINDING_PIXELS 1     // GpuPixel[], one batch of tiles
 // The acceleration structure, in the layout its own header defines (shared/bvh_layout.h,
 // shared/kd_layout.h); a binding the structure does not use holds a small dummy buffer.
-#define VKRAY_BINDING_ACCEL_NODES 5    // nodes
-#define VKRAY_BINDING_ACCEL_INDICES 6  // triangle-index lists of the leaves
-#define VKRAY_BINDING_ACCEL_EXTRA 7    // anything else (kd-backtrack: parent links and node boxes)
-#define VKRAY_STORAGE_BINDING_COUNT 8  // bindings 0-7 are storage buffers, the rest texel views
-// Texel views: the data a traversal reads per step, as uniform texel buffers over the same buffers.
-// On llvmpipe (Mesa 22) a storage-buffer load at a per-invocation address is a loop over the SIMD
-// lanes with a bounds-checked branch per 32-bit word, while a texel fetch is one gather per
-// channel (docs/benchmarks.md, "Texel views"). Data read once per hit stays in storage buffers.
-#define VKRAY_BINDING_TRIANGLE_TEXELS 8  // the triangles as RGBA32UI: texels 3k..3k+2 = GpuTriangle k
-#define VKRAY_BINDING_NODE_TEXELS 9      // the accelerator's nodes (GpuAccelData::nodeTexelBytes a texel)
-#define VKRAY_BINDING_INDEX_TEXELS 10    // the accelerator's triangle indices as R32UI
-#define VKRAY_BINDING_EXTRA_TEXELS 11    // the accelerator's extra data as RGBA32UI
+#define VKRAY_BINDING_ACCEL_NODES 2    // nodes
+#define VKRAY_BINDING_ACCEL_INDICES 3  // triangle-index lists of the leaves
+#define VKRAY_BINDING_ACCEL_EXTRA 4    // anything else (kd-backtrack: parent links and node boxes)
+#define VKRAY_STORAGE_BINDING_COUNT 5  // bindings 0-4 are storage buffers, the rest texel views
+// Texel views: everything the kernels read, as uniform texel buffers. On llvmpipe (Mesa 22) a
+// storage-buffer load at a per-invocation address is a loop over the SIMD lanes with a
+// bounds-checked branch per 32-bit word, while a texel fetch loads one 16-byte texel per lane and
+// transposes (docs/benchmarks.md, "Texel views", and "Shading data through texel views").
+#define VKRAY_BINDING_TRIANGLE_TEXELS 5  // the triangles as RGBA32UI: texels 3k..3k+2 = GpuTriangle k
+#define VKRAY_BINDING_NODE_TEXELS 6      // the accelerator's nodes (GpuAccelData::nodeTexelBytes a texel)
+#define VKRAY_BINDING_INDEX_TEXELS 7     // the accelerator's triangle indices as R32UI
+#define VKRAY_BINDING_EXTRA_TEXELS 8     // the accelerator's extra data as RGBA32UI
+#define VKRAY_BINDING_NORMAL_TEXELS 9    // GpuTriangleNormals[] as RGBA32UI, 3 texels each (one dummy without smooth normals)
+#define VKRAY_BINDING_MATERIAL_TEXELS 10 // GpuMaterial[] as RGBA32UI, 6 texels each
+#define VKRAY_BINDING_LIGHT_TEXELS 11    // GpuLight[] as RGBA32UI, 2 texels each (one dummy without lights)
 #define VKRAY_BINDING_COUNT 12
+// Texels (16 bytes) per element of the texel views of the scene's structs below.
+#define VKRAY_TRIANGLE_TEXELS 3
+#define VKRAY_NORMAL_TEXELS 3
+#define VKRAY_MATERIAL_TEXELS 6
+#define VKRAY_LIGHT_TEXELS 2
 
 // ---- Specialization constants: what the scene does not need is compiled out --------------------
 #define VKRAY_SPEC_MAX_DEPTH 0              // int: maxdepth; also sizes the ray stack
@@ -154,6 +159,9 @@ static_assert(sizeof(GpuMaterial) == 96 && offsetof(GpuMaterial, shininess) == 1
               offsetof(GpuMaterial, diffuse) == 16 && offsetof(GpuMaterial, ior) == 28 &&
               offsetof(GpuMaterial, specular) == 32 && offsetof(GpuMaterial, transmit) == 80);
 static_assert(sizeof(GpuLight) == 32 && offsetof(GpuLight, type) == 12 && offsetof(GpuLight, color) == 16);
+static_assert(sizeof(GpuTriangle) == 16 * VKRAY_TRIANGLE_TEXELS && sizeof(GpuTriangleNormals) == 16 * VKRAY_NORMAL_TEXELS &&
+              sizeof(GpuMaterial) == 16 * VKRAY_MATERIAL_TEXELS && sizeof(GpuLight) == 16 * VKRAY_LIGHT_TEXELS,
+              "the texel views read these structs as whole RGBA32UI texels");
 static_assert(sizeof(GpuPixel) == 64 && offsetof(GpuPixel, depth) == 12 &&
               offsetof(GpuPixel, normal) == 16 && offsetof(GpuPixel, primId) == 28 &&
               offsetof(GpuPixel, flags) == 32 && offsetof(GpuPixel, shadowRays) == 40 &&
