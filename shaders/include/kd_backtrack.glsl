@@ -45,28 +45,27 @@ bool kdWalkPass(KdRay r, WatertightRay w, const bool anyHit, float segMin, uint 
     bool climbing = false;
     bool passDone = false;
     while (!passDone && steps < VKRAY_KD_MAX_STEPS) {
-        // Up to an ancestor the segment still crosses, then down to the next leaf (kd_common.glsl,
-        // "Loops"); climbing and descending steps share the loop and its cap.
-        uvec2 n = climbing ? uvec2(0u) : kdNode(node);
-        for (; (climbing || !kdIsLeaf(n)) && steps < VKRAY_KD_MAX_STEPS; ++steps) {
+        // Up to an ancestor the segment still crosses (after a leaf), then down to the next leaf:
+        // two loops, so that a descending step does not pay for the box clip of a climbing step
+        // (kd_common.glsl, "Loops"). Both count against the one step cap.
+        for (; climbing && node != VKRAY_KD_NO_PARENT && steps < VKRAY_KD_MAX_STEPS; ++steps) {
             countNode();
-            if (climbing) {
-                if (node == VKRAY_KD_NO_PARENT) {  // past the root: the segment left the tree
-                    passDone = true;
-                    break;
-                }
-                climbing = !kdClimbStep(r, node, segMin, minAxis, segMax, maxAxis, globalMax, globalMaxAxis, pass);
-            } else {
-                uint first, second;
-                float thit;
-                const int visit = kdStepInner(r, n, node, segMin, minAxis, segMax, maxAxis, pass, first, second, thit);
-                node = kdDescend(visit, n, first, second, thit, segMax, maxAxis);
-            }
-            if (!climbing) n = kdNode(node);
+            climbing = !kdClimbStep(r, node, segMin, minAxis, segMax, maxAxis, globalMax, globalMaxAxis, pass);
         }
-        if (passDone) {
-            ++steps;  // the step that found the root's parent
+        if (climbing && node == VKRAY_KD_NO_PARENT && steps < VKRAY_KD_MAX_STEPS) {
+            countNode();  // the step that found the root's parent: the segment left the tree
+            ++steps;
+            passDone = true;
             break;
+        }
+        uvec2 n = kdNode(node);
+        for (; !climbing && !kdIsLeaf(n) && steps < VKRAY_KD_MAX_STEPS; ++steps) {
+            countNode();
+            uint first, second;
+            float thit;
+            const int visit = kdStepInner(r, n, node, segMin, minAxis, segMax, maxAxis, pass, first, second, thit);
+            node = kdDescend(visit, n, first, second, thit, segMax, maxAxis);
+            n = kdNode(node);
         }
         if (!kdLeafStep(n, steps)) break;  // the cap, or the driver
         kdVisitLeaf(n, w, anyHit, best);
