@@ -38,7 +38,7 @@ using uvec4 = glm::uvec4;
 // Texel views: everything the kernels read, as uniform texel buffers. On llvmpipe (Mesa 22) a
 // storage-buffer load at a per-invocation address is a loop over the SIMD lanes with a
 // bounds-checked branch per 32-bit word, while a texel fetch loads one 16-byte texel per lane and
-// transposes (docs/benchmarks.md, "Texel views", and "Shading data through texel views").
+// transposes (docs/benchmarks.md, "Faster kernels on lavapipe" and "Node steps apart from leaves").
 #define VKRAY_BINDING_TRIANGLE_TEXELS 5  // the triangles as RGBA32UI: texels 3k..3k+2 = GpuTriangle k
 #define VKRAY_BINDING_NODE_TEXELS 6      // the accelerator's nodes (GpuAccelData::nodeTexelBytes a texel)
 #define VKRAY_BINDING_INDEX_TEXELS 7     // the accelerator's triangle indices as R32UI
