@@ -90,6 +90,18 @@ void sortPair(inout vec4 key, inout uvec4 ref, int a, int b) {
     }
 }
 
+// The entered children first, closest hit nearest first: a sorting network of five compare-swaps
+// on the entry distance, +inf for a miss (any hit sorts 0 and +inf).
+void sortEntered(bvec4 hit, vec4 tEnter, uvec4 child, bool anyHit, out vec4 key, out uvec4 kids) {
+    key = mix(vec4(kInfinity), anyHit ? vec4(0.0) : tEnter, hit);
+    kids = child;
+    sortPair(key, kids, 0, 1);
+    sortPair(key, kids, 2, 3);
+    sortPair(key, kids, 0, 2);
+    sortPair(key, kids, 1, 3);
+    sortPair(key, kids, 1, 2);
+}
+
 // Leaves are runs of the triangle buffer in leaf order: Hit.triangle is a slot of it.
 uint slotTriangle(uint slot) { return slot; }
 
@@ -141,15 +153,9 @@ Hit bvhTrace(vec3 origin, vec3 dir, float tmax, const bool anyHit) {
                 const GpuBvhNode n = loadBvhNode(ref);
                 vec4 tEnter;
                 const bvec4 hit = hitsChildren(n, boxRay, best.t, tEnter);
-                // The entered children first, closest hit nearest first: a sorting network of five
-                // compare-swaps on the entry distance, +inf for a miss (any hit sorts 0 and +inf).
-                vec4 key = mix(vec4(kInfinity), anyHit ? vec4(0.0) : tEnter, hit);
-                uvec4 kids = n.child;
-                sortPair(key, kids, 0, 1);
-                sortPair(key, kids, 2, 3);
-                sortPair(key, kids, 0, 2);
-                sortPair(key, kids, 1, 3);
-                sortPair(key, kids, 1, 2);
+                vec4 key;
+                uvec4 kids;
+                sortEntered(hit, tEnter, n.child, anyHit, key, kids);
                 const int hits = int(hit.x) + int(hit.y) + int(hit.z) + int(hit.w);
                 if (top + hits > VKRAY_BVH_STACK_SIZE) {  // deeper than the stack: flag, never guess
                     gLoopCutShort = true;
