@@ -126,7 +126,6 @@ Hit bvhTrace(vec3 origin, vec3 dir, float tmax, const bool anyHit) {
     int top = 0;
     uint ref = 0u;  // the root: inner node 0
     bool haveRef = true;
-    bool done = false;
     int iteration = 0;
     // The next entry of the stack into `ref`. A popped entry entered beyond the best hit found
     // since it was pushed is dropped (haveRef false): that costs an iteration but reads nothing.
@@ -177,11 +176,8 @@ Hit bvhTrace(vec3 origin, vec3 dir, float tmax, const bool anyHit) {
             }
             if (!haveRef && top > 0) VKRAY_BVH_POP()
         }
-        if (!haveRef) {  // the stack ran empty, or the loop was cut short (cap or driver)
-            done = top == 0;
-            break;
-        }
-        if (!isLeafRef(ref) || iteration >= VKRAY_BVH_MAX_ITERATIONS) break;
+        // The stack ran empty, or the loop was cut short (cap or driver).
+        if (!haveRef || !isLeafRef(ref) || iteration >= VKRAY_BVH_MAX_ITERATIONS) break;
         // The leaf: its triangles, in the loop of leaf_triangles.glsl, then the next entry.
         ++iteration;
         countNode();
@@ -195,7 +191,7 @@ Hit bvhTrace(vec3 origin, vec3 dir, float tmax, const bool anyHit) {
         if (top > 0) VKRAY_BVH_POP()
     }
 #undef VKRAY_BVH_POP
-    if (!done) {
+    if (haveRef || top > 0) {  // something was left: the walk did not end by itself
         if (iteration >= VKRAY_BVH_MAX_ITERATIONS) ++gCappedRays;
         else gLoopCutShort = true;
     }
