@@ -61,8 +61,8 @@ struct GpuAccelData {
     // Triangle-buffer slot k holds scene triangle triangleOrder[k] (leaf order, for locality);
     // empty = scene order. GpuTriangle.original keeps the identity for AOVs either way.
     std::vector<uint32_t> triangleOrder;
-    // Raw contents of the bindings VKRAY_BINDING_ACCEL_NODES, _ACCEL_INDICES, _ACCEL_EXTRA; an
-    // empty one is bound to a small dummy buffer.
+    // Raw contents of the texel views VKRAY_BINDING_NODE_TEXELS, _INDEX_TEXELS, _EXTRA_TEXELS (whole
+    // texels each); an empty one is bound to a one-texel dummy.
     std::vector<std::byte> nodes, indices, extra;
     // Bytes per texel of the nodes' texel view (VKRAY_BINDING_NODE_TEXELS): 16 (RGBA32UI), 8 (RG32UI)
     // or 4 (R32UI), the node size or a divisor of it, so one node is whole texels.

@@ -72,44 +72,58 @@ void OneShotCommands::submitAndWait() {
     }
 }
 
-TexelView::TexelView(const VulkanContext& ctx, const Buffer& buffer, vk::Format format, uint32_t texelBytes,
-                     const std::string& what) {
-    const vk::DeviceSize texels = buffer.size() / texelBytes;
-    const vk::DeviceSize limit = ctx.info().maxTexelBufferElements;
+void checkTexelArrayFits(const VulkanContext& ctx, uint64_t texels, const std::string& what) {
+    const uint64_t limit = ctx.info().maxTexelBufferElements;
     if (texels > limit)
         throw Error("the scene's " + what + " need " + std::to_string(texels) + " texels, more than the " +
                     std::to_string(limit) + " one texel buffer may hold on '" + ctx.info().name +
                     "' (maxTexelBufferElements)");
+}
+
+TexelView::TexelView(const VulkanContext& ctx, const Buffer& buffer, vk::Format format, uint32_t texelBytes,
+                     const std::string& what) {
+    const vk::DeviceSize texels = buffer.size() / texelBytes;
+    checkTexelArrayFits(ctx, texels, what);
     view_ = vk::raii::BufferView(ctx.device(), vk::BufferViewCreateInfo{.buffer = buffer.handle(), .format = format,
                                                                         .offset = 0, .range = texels * texelBytes});
 }
 
-void checkStorageBufferFits(const VulkanContext& ctx, size_t bytes, const std::string& what) {
-    const vk::DeviceSize range = ctx.info().maxStorageBufferRange;
-    if (bytes > range)
-        throw Error("the scene's " + what + " need " + mib(bytes) + ", more than the " + mib(range) +
-                    " one storage buffer may hold on '" + ctx.info().name +
-                    "' (maxStorageBufferRange)");
+namespace {
+
+// Copies `bytes` into the device-local `target` through one staging buffer of at most 64 MiB,
+// reused chunk by chunk: a 2 GiB array does not need 2 GiB of staging memory beside it.
+void uploadThroughStaging(const VulkanContext& ctx, const Buffer& target, const void* data, size_t bytes,
+                          const std::string& what) {
+    constexpr size_t kChunk = size_t(64) << 20;
+    const size_t chunk = std::min(bytes, kChunk);
+    const Buffer staging(ctx, chunk, vk::BufferUsageFlagBits::eTransferSrc, MemoryUse::Upload, what + " (staging)");
+    for (size_t offset = 0; offset < bytes; offset += chunk) {
+        const size_t n = std::min(chunk, bytes - offset);
+        std::memcpy(staging.mapped(), static_cast<const char*>(data) + offset, n);
+        OneShotCommands commands(ctx);
+        commands.begin().copyBuffer(staging.handle(), target.handle(),
+                                    vk::BufferCopy{.srcOffset = 0, .dstOffset = offset, .size = n});
+        commands.submitAndWait();
+    }
 }
 
-Buffer uploadStorageBuffer(const VulkanContext& ctx, const void* data, size_t bytes,
-                           const std::string& what) {
-    checkStorageBufferFits(ctx, bytes, what);
-    const vk::DeviceSize size = std::max<vk::DeviceSize>(bytes, 16);
+}  // namespace
+
+TexelArray uploadTexelArray(const VulkanContext& ctx, const void* data, size_t bytes, vk::Format format,
+                            uint32_t texelBytes, const std::string& what) {
+    if (bytes % texelBytes != 0)
+        throw Error("internal: " + what + " are " + std::to_string(bytes) + " bytes, not whole texels of " +
+                    std::to_string(texelBytes));
+    checkTexelArrayFits(ctx, bytes / texelBytes, what);
+    const vk::DeviceSize size = std::max<vk::DeviceSize>(bytes, texelBytes);
     using BU = vk::BufferUsageFlagBits;
-    Buffer target(ctx, size, BU::eStorageBuffer | BU::eUniformTexelBuffer | BU::eTransferDst, MemoryUse::DeviceLocal,
-                  what);
-    if (bytes == 0) return target;
-    if (target.hostVisible()) {
-        std::memcpy(target.mapped(), data, bytes);
-        return target;
+    Buffer target(ctx, size, BU::eUniformTexelBuffer | BU::eTransferDst, MemoryUse::DeviceLocal, what);
+    if (bytes > 0) {
+        if (target.hostVisible()) std::memcpy(target.mapped(), data, bytes);
+        else uploadThroughStaging(ctx, target, data, bytes, what);
     }
-    Buffer staging(ctx, size, BU::eTransferSrc, MemoryUse::Upload, what + " (staging)");
-    std::memcpy(staging.mapped(), data, bytes);
-    OneShotCommands commands(ctx);
-    commands.begin().copyBuffer(staging.handle(), target.handle(), vk::BufferCopy{.size = bytes});
-    commands.submitAndWait();
-    return target;
+    TexelView view(ctx, target, format, texelBytes, what);
+    return TexelArray{std::move(target), std::move(view)};
 }
 
 }  // namespace vkray::gpu

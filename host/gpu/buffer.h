@@ -1,4 +1,4 @@
-// A storage buffer and the memory behind it, owned together (RAII). Scene data lives in
+// A buffer and the memory behind it, owned together (RAII). Scene data lives in
 // device-local memory, filled through a staging copy unless the device-local memory is also
 // host-visible (lavapipe, resizable BAR), in which case it is written in place.
 #pragma once
@@ -64,12 +64,22 @@ private:
     vk::raii::BufferView view_{nullptr};
 };
 
-// Throws vkray::Error naming `what` when `bytes` exceed the device's maxStorageBufferRange.
-void checkStorageBufferFits(const VulkanContext& ctx, size_t bytes, const std::string& what);
+// Throws vkray::Error naming `what` when `texels` exceed the device's maxTexelBufferElements: the
+// limit on one array the kernels read (a texel view), checked before anything is allocated.
+void checkTexelArrayFits(const VulkanContext& ctx, uint64_t texels, const std::string& what);
 
-// A device-local storage buffer holding a copy of `bytes` (at least 16 bytes are allocated so an
-// empty array still binds). Throws as checkStorageBufferFits does.
-Buffer uploadStorageBuffer(const VulkanContext& ctx, const void* data, size_t bytes,
-                           const std::string& what);
+// A read-only array of the kernels in device-local memory, with its texel view. Read only through
+// the view, so its size is bounded by maxTexelBufferElements texels (2 GiB of 16-byte texels on
+// lavapipe and most GPUs), not by maxStorageBufferRange (128 MiB on lavapipe).
+struct TexelArray {
+    Buffer buffer;
+    TexelView view;
+};
+
+// Uploads `bytes` (a whole number of `texelBytes` texels; at least one texel is allocated so an empty
+// array still binds) and makes its view. Throws as checkTexelArrayFits does, or naming `what` when
+// the memory cannot be allocated.
+TexelArray uploadTexelArray(const VulkanContext& ctx, const void* data, size_t bytes, vk::Format format,
+                            uint32_t texelBytes, const std::string& what);
 
 }  // namespace vkray::gpu

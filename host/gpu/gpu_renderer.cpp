@@ -167,18 +167,14 @@ void recordBatch(const vk::raii::CommandBuffer& cmd, const ComputeKernel& kernel
 
 void bindBuffers(ComputeKernel& kernel, const SceneBuffers& scene, const AccelBuffers& accel, const Buffer& pixels) {
     std::array<ComputeKernel::Resource, VKRAY_BINDING_COUNT> r{};
-    r[VKRAY_BINDING_TRIANGLES].buffer = scene.triangles.handle();
     r[VKRAY_BINDING_PIXELS].buffer = pixels.handle();
-    r[VKRAY_BINDING_ACCEL_NODES].buffer = accel.nodes.handle();
-    r[VKRAY_BINDING_ACCEL_INDICES].buffer = accel.indices.handle();
-    r[VKRAY_BINDING_ACCEL_EXTRA].buffer = accel.extra.handle();
-    r[VKRAY_BINDING_TRIANGLE_TEXELS].view = scene.triangleTexels.handle();
-    r[VKRAY_BINDING_NODE_TEXELS].view = accel.nodeTexels.handle();
-    r[VKRAY_BINDING_INDEX_TEXELS].view = accel.indexTexels.handle();
-    r[VKRAY_BINDING_EXTRA_TEXELS].view = accel.extraTexels.handle();
-    r[VKRAY_BINDING_NORMAL_TEXELS].view = scene.normalTexels.handle();
-    r[VKRAY_BINDING_MATERIAL_TEXELS].view = scene.materialTexels.handle();
-    r[VKRAY_BINDING_LIGHT_TEXELS].view = scene.lightTexels.handle();
+    r[VKRAY_BINDING_TRIANGLE_TEXELS].view = scene.triangles.view.handle();
+    r[VKRAY_BINDING_NODE_TEXELS].view = accel.nodes.view.handle();
+    r[VKRAY_BINDING_INDEX_TEXELS].view = accel.indices.view.handle();
+    r[VKRAY_BINDING_EXTRA_TEXELS].view = accel.extra.view.handle();
+    r[VKRAY_BINDING_NORMAL_TEXELS].view = scene.normals.view.handle();
+    r[VKRAY_BINDING_MATERIAL_TEXELS].view = scene.materials.view.handle();
+    r[VKRAY_BINDING_LIGHT_TEXELS].view = scene.lights.view.handle();
     kernel.bind(r);
 }
 

@@ -8,9 +8,12 @@ namespace {
 
 vec4 withW(const glm::vec3& v, float w) { return vec4(v, w); }
 
+constexpr vk::Format kRgba32 = vk::Format::eR32G32B32A32Uint;
+
 template <class T>
-Buffer uploadVector(const VulkanContext& ctx, const std::vector<T>& v, const std::string& what) {
-    return uploadStorageBuffer(ctx, v.data(), v.size() * sizeof(T), what);
+TexelArray uploadVector(const VulkanContext& ctx, const std::vector<T>& v, vk::Format format, uint32_t texelBytes,
+                        const std::string& what) {
+    return uploadTexelArray(ctx, v.data(), v.size() * sizeof(T), format, texelBytes, what);
 }
 
 // An order must be a permutation of the scene's triangles: a builder bug must not become a
@@ -80,15 +83,10 @@ PackedScene packScene(const Scene& scene, const std::vector<uint32_t>& triangleO
 }
 
 SceneBuffers uploadScene(const VulkanContext& ctx, const PackedScene& packed) {
-    SceneBuffers b{uploadVector(ctx, packed.triangles, "triangles"),
-                   uploadVector(ctx, packed.normals, "vertex normals"),
-                   uploadVector(ctx, packed.materials, "materials"),
-                   uploadVector(ctx, packed.lights, "lights"), {}, {}, {}, {}};
-    constexpr vk::Format kRgba32 = vk::Format::eR32G32B32A32Uint;
-    b.triangleTexels = TexelView(ctx, b.triangles, kRgba32, 16, "triangles");
-    b.normalTexels = TexelView(ctx, b.normals, kRgba32, 16, "vertex normals");
-    b.materialTexels = TexelView(ctx, b.materials, kRgba32, 16, "materials");
-    b.lightTexels = TexelView(ctx, b.lights, kRgba32, 16, "lights");
+    SceneBuffers b{uploadVector(ctx, packed.triangles, kRgba32, 16, "triangles"),
+                   uploadVector(ctx, packed.normals, kRgba32, 16, "vertex normals"),
+                   uploadVector(ctx, packed.materials, kRgba32, 16, "materials"),
+                   uploadVector(ctx, packed.lights, kRgba32, 16, "lights"), 0};
     b.bytes = packed.triangles.size() * sizeof(GpuTriangle) +
               packed.normals.size() * sizeof(GpuTriangleNormals) +
               packed.materials.size() * sizeof(GpuMaterial) + packed.lights.size() * sizeof(GpuLight);
@@ -96,19 +94,15 @@ SceneBuffers uploadScene(const VulkanContext& ctx, const PackedScene& packed) {
 }
 
 void checkSceneFits(const VulkanContext& ctx, const Scene& scene) {
-    checkStorageBufferFits(ctx, scene.triangles.size() * sizeof(GpuTriangle), "triangles");
-    checkStorageBufferFits(ctx, scene.normals.size() * sizeof(GpuTriangleNormals), "vertex normals");
+    checkTexelArrayFits(ctx, uint64_t(scene.triangles.size()) * VKRAY_TRIANGLE_TEXELS, "triangles");
+    checkTexelArrayFits(ctx, uint64_t(scene.normals.size()) * VKRAY_NORMAL_TEXELS, "vertex normals");
 }
 
 AccelBuffers uploadAccel(const VulkanContext& ctx, const accel::GpuAccelData& data) {
-    AccelBuffers b{uploadVector(ctx, data.nodes, "acceleration-structure nodes"),
-                   uploadVector(ctx, data.indices, "acceleration-structure triangle indices"),
-                   uploadVector(ctx, data.extra, "acceleration-structure extra data"), TexelView{}, TexelView{},
-                   TexelView{}};
-    b.nodeTexels = TexelView(ctx, b.nodes, uintTexelFormat(data.nodeTexelBytes), data.nodeTexelBytes,
-                             "acceleration-structure nodes");
-    b.indexTexels = TexelView(ctx, b.indices, vk::Format::eR32Uint, 4, "acceleration-structure triangle indices");
-    b.extraTexels = TexelView(ctx, b.extra, vk::Format::eR32G32B32A32Uint, 16, "acceleration-structure extra data");
+    AccelBuffers b{uploadVector(ctx, data.nodes, uintTexelFormat(data.nodeTexelBytes), data.nodeTexelBytes,
+                                "acceleration-structure nodes"),
+                   uploadVector(ctx, data.indices, vk::Format::eR32Uint, 4, "acceleration-structure triangle indices"),
+                   uploadVector(ctx, data.extra, kRgba32, 16, "acceleration-structure extra data"), 0};
     b.bytes = data.bytes();
     return b;
 }

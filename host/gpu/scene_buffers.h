@@ -1,4 +1,4 @@
-// The scene in the GPU layouts of shared/gpu_layout.h, uploaded to storage buffers.
+// The scene in the GPU layouts of shared/gpu_layout.h, uploaded as the kernels' texel arrays.
 #pragma once
 
 #include <cstdint>
@@ -24,22 +24,20 @@ struct PackedScene {
 PackedScene packScene(const Scene& scene, const std::vector<uint32_t>& triangleOrder = {});
 
 struct SceneBuffers {
-    Buffer triangles, normals, materials, lights;
     // VKRAY_BINDING_TRIANGLE_TEXELS, _NORMAL_TEXELS, _MATERIAL_TEXELS, _LIGHT_TEXELS
-    TexelView triangleTexels, normalTexels, materialTexels, lightTexels;
+    TexelArray triangles, normals, materials, lights;
     uint64_t bytes = 0;  // uploaded, for --stats
 };
 
 SceneBuffers uploadScene(const VulkanContext& ctx, const PackedScene& packed);
 
-// Whether the scene's own buffers fit the device, checked before anything is built or packed: a
-// scene too large for one storage buffer fails in milliseconds, not after a long build.
+// Whether the scene's own arrays fit the device's texel views, checked before anything is built or
+// packed: a scene too large fails in milliseconds, not after a long build.
 void checkSceneFits(const VulkanContext& ctx, const Scene& scene);
 
-// The acceleration structure's arrays (accel::GpuAccelData), one buffer per binding.
+// The acceleration structure's arrays (accel::GpuAccelData), one texel view per binding.
 struct AccelBuffers {
-    Buffer nodes, indices, extra;
-    TexelView nodeTexels, indexTexels, extraTexels;  // VKRAY_BINDING_NODE_TEXELS, _INDEX_TEXELS, _EXTRA_TEXELS
+    TexelArray nodes, indices, extra;  // VKRAY_BINDING_NODE_TEXELS, _INDEX_TEXELS, _EXTRA_TEXELS
     uint64_t bytes = 0;
 };
 

@@ -4,7 +4,6 @@
 
 #include "shared/gpu_layout.h"
 
-// The triangles (VKRAY_BINDING_TRIANGLES) are read only through their texel view: loadTriangle().
 layout(std430, set = 0, binding = VKRAY_BINDING_PIXELS) writeonly buffer Pixels {
     GpuPixel pixels[];
 };

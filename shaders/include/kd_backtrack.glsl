@@ -1,6 +1,6 @@
 // kd-backtrack (Foley and Sugerman, "KD-Tree Acceleration Structures for a GPU Raytracer", Graphics
 // Hardware 2005, section 4.2): stackless, with a parent link and a box per node in a separate array
-// (VKRAY_BINDING_ACCEL_EXTRA) that only this kernel reads. After a leaf without an accepted hit,
+// (VKRAY_BINDING_EXTRA_TEXELS) that only this kernel reads. After a leaf without an accepted hit,
 // tmin becomes the leaf's exit and the search climbs the parent links to the nearest ancestor whose
 // box the remaining segment still crosses for a positive length (exit > tmin), then descends from
 // there. Climbing and descending steps share one loop and its cap. The passes around this walk are

@@ -34,9 +34,14 @@
 #include "trace_status.glsl"
 #include "triangle.glsl"
 
-layout(std430, set = 0, binding = VKRAY_BINDING_ACCEL_NODES) readonly buffer KdNodes {
-    KdTreeHeader kdTree;  // root box; the nodes that follow are read through their texel view
-};
+// The root box, from the KdTreeHeader in the first VKRAY_KD_HEADER_TEXELS texels of the nodes:
+// (lo.x, lo.y), (lo.z, nodeCount), (hi.x, hi.y), (hi.z, indexCount).
+void kdRootBox(out vec3 lo, out vec3 hi) {
+    const uvec2 a = texelFetch(nodeTexels, 0).xy, b = texelFetch(nodeTexels, 1).xy,
+                c = texelFetch(nodeTexels, 2).xy, d = texelFetch(nodeTexels, 3).xy;
+    lo = uintBitsToFloat(uvec3(a, b.x));
+    hi = uintBitsToFloat(uvec3(c, d.x));
+}
 
 // Node i (KdNode: (word0, word1), see kd_layout.h).
 uvec2 kdNode(uint i) { return texelFetch(nodeTexels, int(i) + VKRAY_KD_HEADER_TEXELS).xy; }
@@ -266,11 +271,13 @@ Hit kdTrace(vec3 origin, vec3 dir, float tmax, const bool anyHit) {
     uvec2 walked = uvec2(0u);
     int steps = 0;
     bool passDone = true;
+    vec3 rootLo, rootHi;
+    kdRootBox(rootLo, rootHi);
     for (uint passes = 0u; passes < 8u; ++passes) {
         // The root box clip in the pass too: its faces may tie with each other.
         float segMin = 0.0, segMax = tmax;
         uint minAxis = kKdHardBound, maxAxis = kKdHardBound;
-        passDone = !kdClipBox(r, kdTree.lo, kdTree.hi, segMin, minAxis, segMax, maxAxis, pass) ||
+        passDone = !kdClipBox(r, rootLo, rootHi, segMin, minAxis, segMax, maxAxis, pass) ||
                    kdWalkPass(r, w, anyHit, segMin, minAxis, segMax, maxAxis, pass, steps, best);
         // Another pass for an in-plane node or a tie met, or the end.
         if (!kdAnotherPass(passDone, anyHit, best, pass, walked)) break;

@@ -40,6 +40,12 @@ void testSlot(uint slot, uint end, WatertightRay ray, const bool anyHit, inout H
 // the driver ended the loop before either; the triangles counted are those the loop reached.
 bool testSlots(uint begin, uint end, WatertightRay ray, const bool anyHit, const uint perIteration, inout Hit best) {
     uint i = begin;
+    // Whether the loop ran to its end is told by an iteration count, not by testing its condition
+    // again: the compiler takes a loop to end only when its condition is false and folds such a
+    // test to true, while llvmpipe's budget ends the loop anyway (seen on lavapipe: cut-short
+    // brute-force loops went unflagged and returned a miss).
+    const uint needed = i < end ? (end - i + perIteration - 1u) / perIteration : 0u;
+    uint iterations = 0u;
     for (; i < end && !(anyHit && best.triangle >= 0); i += perIteration) {
         testSlot(i, end, ray, anyHit, best);
         if (perIteration == 4u) {
@@ -47,9 +53,10 @@ bool testSlots(uint begin, uint end, WatertightRay ray, const bool anyHit, const
             testSlot(i + 2u, end, ray, anyHit, best);
             testSlot(i + 3u, end, ray, anyHit, best);
         }
+        ++iterations;
     }
     countTriangles(min(i, end) - begin);
-    const bool complete = i >= end || (anyHit && best.triangle >= 0);
+    const bool complete = iterations >= needed || (anyHit && best.triangle >= 0);
     if (!complete) gLoopCutShort = true;
     return complete;
 }

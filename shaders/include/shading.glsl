@@ -97,13 +97,17 @@ vec3 localShading(SurfacePoint s, GpuMaterial m, vec3 V) {
     if (!HAS_POINT_LIGHTS && !HAS_DIRECTIONAL_LIGHTS) return color;
     const vec3 shadowOrigin = offsetRayOrigin(s.position, s.facing, s.offset);
     const uint lightCount = params.counts.y;
+    uint iterations = 0u;
     for (uint i = 0; i < lightCount; ++i) {
         const LightSample ls = sampleLight(loadLight(i), s.position, shadowOrigin);
         const vec3 term = blinnPhong(s, m, V, transmit, ls.L, ls.radiance);
         // Shadow rays only where the light would add something.
         if (any(greaterThan(term, vec3(0.0))) && !traceShadowRay(shadowOrigin, ls.shadowDir, ls.shadowTmax))
             color += term;
+        ++iterations;
     }
+    // Counted, as testSlots() counts (leaf_triangles.glsl): llvmpipe's budget may end this loop too.
+    if (iterations < lightCount) gLoopCutShort = true;
     return color;
 }
 

@@ -27,26 +27,25 @@ using uvec4 = glm::uvec4;
 #define VKRAY_TILE_SIZE 256
 
 // ---- Descriptor bindings (set 0) -------------------------------------------------------------
-#define VKRAY_BINDING_TRIANGLES 0  // GpuTriangle[]
-#define VKRAY_BINDING_PIXELS 1     // GpuPixel[], one batch of tiles
-// The acceleration structure, in the layout its own header defines (shared/bvh_layout.h,
-// shared/kd_layout.h); a binding the structure does not use holds a small dummy buffer.
-#define VKRAY_BINDING_ACCEL_NODES 2    // nodes
-#define VKRAY_BINDING_ACCEL_INDICES 3  // triangle-index lists of the leaves
-#define VKRAY_BINDING_ACCEL_EXTRA 4    // anything else (kd-backtrack: parent links and node boxes)
-#define VKRAY_STORAGE_BINDING_COUNT 5  // bindings 0-4 are storage buffers, the rest texel views
+#define VKRAY_BINDING_PIXELS 0         // GpuPixel[], one batch of tiles: the one storage buffer
+#define VKRAY_STORAGE_BINDING_COUNT 1  // binding 0 is a storage buffer, the rest texel views
 // Texel views: everything the kernels read, as uniform texel buffers. On llvmpipe (Mesa 22) a
 // storage-buffer load at a per-invocation address is a loop over the SIMD lanes with a
 // bounds-checked branch per 32-bit word, while a texel fetch loads one 16-byte texel per lane and
 // transposes (docs/benchmarks.md, "Faster kernels on lavapipe" and "Node steps apart from leaves").
-#define VKRAY_BINDING_TRIANGLE_TEXELS 5  // the triangles as RGBA32UI: texels 3k..3k+2 = GpuTriangle k
-#define VKRAY_BINDING_NODE_TEXELS 6      // the accelerator's nodes (GpuAccelData::nodeTexelBytes a texel)
-#define VKRAY_BINDING_INDEX_TEXELS 7     // the accelerator's triangle indices as R32UI
-#define VKRAY_BINDING_EXTRA_TEXELS 8     // the accelerator's extra data as RGBA32UI
-#define VKRAY_BINDING_NORMAL_TEXELS 9    // GpuTriangleNormals[] as RGBA32UI, 3 texels each (one dummy without smooth normals)
-#define VKRAY_BINDING_MATERIAL_TEXELS 10 // GpuMaterial[] as RGBA32UI, 6 texels each
-#define VKRAY_BINDING_LIGHT_TEXELS 11    // GpuLight[] as RGBA32UI, 2 texels each (one dummy without lights)
-#define VKRAY_BINDING_COUNT 12
+// Being read only through views, an array is bounded by maxTexelBufferElements texels (128 Mi on
+// lavapipe and most GPUs: 2 GiB of 16-byte texels), not by maxStorageBufferRange (128 MiB on
+// lavapipe).
+#define VKRAY_BINDING_TRIANGLE_TEXELS 1  // the triangles as RGBA32UI: texels 3k..3k+2 = GpuTriangle k
+// The acceleration structure, in the layout its own header defines (shared/bvh_layout.h,
+// shared/kd_layout.h); a view the structure does not use holds a one-texel dummy.
+#define VKRAY_BINDING_NODE_TEXELS 2      // the accelerator's nodes (GpuAccelData::nodeTexelBytes a texel)
+#define VKRAY_BINDING_INDEX_TEXELS 3     // the accelerator's triangle indices as R32UI
+#define VKRAY_BINDING_EXTRA_TEXELS 4     // the accelerator's extra data as RGBA32UI (kd-backtrack: parent links and node boxes)
+#define VKRAY_BINDING_NORMAL_TEXELS 5    // GpuTriangleNormals[] as RGBA32UI, 3 texels each (one dummy without smooth normals)
+#define VKRAY_BINDING_MATERIAL_TEXELS 6  // GpuMaterial[] as RGBA32UI, 6 texels each
+#define VKRAY_BINDING_LIGHT_TEXELS 7     // GpuLight[] as RGBA32UI, 2 texels each (one dummy without lights)
+#define VKRAY_BINDING_COUNT 8
 // Texels (16 bytes) per element of the texel views of the scene's structs below.
 #define VKRAY_TRIANGLE_TEXELS 3
 #define VKRAY_NORMAL_TEXELS 3

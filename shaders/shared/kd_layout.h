@@ -1,12 +1,12 @@
 // The one definition of the kd-tree's GPU layout, shared by the host (C++) and the kd kernels
 // (GLSL, shaders/include/kd_common.glsl). See docs/kdtree.md for the whole picture.
 //
-// Binding VKRAY_BINDING_ACCEL_NODES:   KdTreeHeader (32 bytes), then KdNode[nodeCount] (8 bytes each)
+// View VKRAY_BINDING_NODE_TEXELS (RG32UI): KdTreeHeader (32 bytes), then KdNode[nodeCount] (8 bytes each)
 //   in depth-first order: an inner node's first (below) child is the next node, its above child is
 //   named by index. The root is node 0.
-// Binding VKRAY_BINDING_ACCEL_INDICES: uint[] — the leaves' triangle-index lists, back to back;
+// View VKRAY_BINDING_INDEX_TEXELS (R32UI): uint[] — the leaves' triangle-index lists, back to back;
 //   an entry is an index into the triangles buffer.
-// Binding VKRAY_BINDING_ACCEL_EXTRA:   KdNodeExtra[nodeCount] (32 bytes each), kd-backtrack only:
+// View VKRAY_BINDING_EXTRA_TEXELS (RGBA32UI): KdNodeExtra[nodeCount] (32 bytes each), kd-backtrack only:
 //   parent link and node box (Foley and Sugerman 2005, section 4.2). Kept out of KdNode so that
 //   kd-stack and kd-restart read (and upload) 8 bytes per node, not 40.
 //

@@ -142,14 +142,16 @@ TEST(GpuRenderer, FeaturesFollowTheScene) {
     EXPECT_FALSE(f.reflection);
 }
 
-TEST(GpuRenderer, DataBeyondMaxStorageBufferRangeIsAnError) {
+TEST(GpuRenderer, DataBeyondMaxTexelBufferElementsIsAnErrorBeforeAllocating) {
     const auto& ctx = test::gpuContext();
-    const size_t tooBig = size_t(ctx.info().maxStorageBufferRange) + 1;
+    const size_t tooBig = (size_t(ctx.info().maxTexelBufferElements) + 1) * 16;
     try {
-        gpu::uploadStorageBuffer(ctx, nullptr, tooBig, "triangles");
+        // No data behind the pointer: the limit must be checked before anything is read or allocated.
+        gpu::uploadTexelArray(ctx, nullptr, tooBig, vk::Format::eR32G32B32A32Uint, 16, "triangles");
         FAIL() << "expected an error";
     } catch (const Error& e) {
-        EXPECT_NE(std::string(e.what()).find("maxStorageBufferRange"), std::string::npos) << e.what();
+        EXPECT_NE(std::string(e.what()).find("maxTexelBufferElements"), std::string::npos) << e.what();
+        EXPECT_NE(std::string(e.what()).find("triangles"), std::string::npos) << e.what();
     }
 }
 
