@@ -49,6 +49,22 @@ std::vector<Tile> splitIntoTiles(uint32_t width, uint32_t height) {
     return tiles;
 }
 
+// A tile as strips of at most `rows` rows (each dispatched as a tile of its own).
+std::vector<Tile> splitIntoStrips(const Tile& tile, uint32_t rows) {
+    std::vector<Tile> strips;
+    for (uint32_t y = 0; y < tile.height; y += rows)
+        strips.push_back({tile.x, tile.y + y, tile.width, std::min(rows, tile.height - y)});
+    return strips;
+}
+
+// Pixels of `tile` (its GpuPixels at `src`) with `flag` set.
+uint32_t countFlagged(const GpuPixel* src, const Tile& tile, uint32_t flag) {
+    uint32_t n = 0;
+    for (uint32_t y = 0; y < tile.height; ++y)
+        for (uint32_t x = 0; x < tile.width; ++x) n += (src[y * VKRAY_TILE_SIZE + x].flags & flag) != 0;
+    return n;
+}
+
 GpuFrameParams frameParams(const Scene& scene, const RenderOptions& options) {
     const CameraFrame cam = makeCameraFrame(scene.camera, options.width, options.height);
     GpuFrameParams p{};
@@ -165,9 +181,24 @@ void recordBatch(const vk::raii::CommandBuffer& cmd, const ComputeKernel& kernel
                         nullptr, nullptr);
 }
 
-void bindBuffers(ComputeKernel& kernel, const SceneBuffers& scene, const AccelBuffers& accel, const Buffer& pixels) {
+// The resumable variant's records (VKRAY_BINDING_RESUME, _RESUME_RAYS): for `pixels` pixels of
+// `maxDepth` pending rays each, or one-element dummies for the plain kernel.
+struct ResumeBuffers {
+    Buffer records, rays;
+    ResumeBuffers(const VulkanContext& ctx, uint64_t pixels, uint64_t maxDepth)
+        : records(ctx, std::max<uint64_t>(pixels, 1) * sizeof(GpuPixelResume),
+                  vk::BufferUsageFlagBits::eStorageBuffer | vk::BufferUsageFlagBits::eTransferDst,
+                  MemoryUse::DeviceLocal, "resumable pixels"),
+          rays(ctx, std::max<uint64_t>(pixels * maxDepth, 1) * sizeof(GpuPendingRay),
+               vk::BufferUsageFlagBits::eStorageBuffer, MemoryUse::DeviceLocal, "resumable pixels' rays") {}
+};
+
+void bindBuffers(ComputeKernel& kernel, const SceneBuffers& scene, const AccelBuffers& accel, const Buffer& pixels,
+                 const ResumeBuffers& resume) {
     std::array<ComputeKernel::Resource, VKRAY_BINDING_COUNT> r{};
     r[VKRAY_BINDING_PIXELS].buffer = pixels.handle();
+    r[VKRAY_BINDING_RESUME].buffer = resume.records.handle();
+    r[VKRAY_BINDING_RESUME_RAYS].buffer = resume.rays.handle();
     r[VKRAY_BINDING_TRIANGLE_TEXELS].view = scene.triangles.view.handle();
     r[VKRAY_BINDING_NODE_TEXELS].view = accel.nodes.view.handle();
     r[VKRAY_BINDING_INDEX_TEXELS].view = accel.indices.view.handle();
@@ -179,9 +210,11 @@ void bindBuffers(ComputeKernel& kernel, const SceneBuffers& scene, const AccelBu
 }
 
 // Dispatches the tiles, `perSubmission` at a time into `pixels`, and reads each batch into `frame`.
+// A tile with pixels the driver's loop budget cut short is left for the resumable variant
+// (renderResumable) and added to `unfinished`.
 void renderTiles(const VulkanContext& ctx, const ComputeKernel& kernel, const Buffer& pixels,
                  std::span<const Tile> tiles, uint32_t perSubmission, const GpuFrameParams& base, Frame& frame,
-                 GpuRenderReport& rep, const TileProgress& progress) {
+                 GpuRenderReport& rep, const TileProgress& progress, std::vector<Tile>& unfinished) {
     const BatchTimer timer(ctx);
     rep.tiles = uint32_t(tiles.size());
     rep.gpuMs = timer.enabled() ? 0.0 : -1.0;
@@ -196,9 +229,64 @@ void renderTiles(const VulkanContext& ctx, const ComputeKernel& kernel, const Bu
         ++rep.submissions;
         rep.gpuMs += timer.batchMs();
         const auto* src = static_cast<const GpuPixel*>(pixels.mapped());
-        for (size_t k = 0; k < batch.size(); ++k) readTile(src + k * kTilePixels, batch[k], frame, rep);
+        for (size_t k = 0; k < batch.size(); ++k) {
+            if (countFlagged(src + k * kTilePixels, batch[k], VKRAY_PIXEL_CUT_SHORT) > 0) unfinished.push_back(batch[k]);
+            else readTile(src + k * kTilePixels, batch[k], frame, rep);
+        }
         if (progress) progress(uint32_t(first + batch.size()), uint32_t(tiles.size()));
     }
+}
+
+// Rows of a strip of the resumable variant: its records and pending-ray stacks must fit one storage
+// buffer (VKRAY_TILE_SIZE pixels a row), in whole workgroup rows.
+uint32_t resumeStripRows(const VulkanContext& ctx, int maxDepth) {
+    const uint64_t perRow = uint64_t(VKRAY_TILE_SIZE) *
+                            std::max<uint64_t>(sizeof(GpuPixelResume), uint64_t(maxDepth) * sizeof(GpuPendingRay));
+    const uint64_t rows = ctx.info().maxStorageBufferRange / perRow / VKRAY_WORKGROUP_Y * VKRAY_WORKGROUP_Y;
+    return uint32_t(std::clamp<uint64_t>(rows, VKRAY_WORKGROUP_Y, VKRAY_TILE_SIZE));
+}
+
+// Dispatches one strip with the resumable variant until none of its pixels is unfinished. Every
+// dispatch either gets each unfinished pixel further or flags it cut short, so the loop ends.
+void resumeStrip(const VulkanContext& ctx, const ComputeKernel& kernel, const ResumeBuffers& resume,
+                 const Buffer& pixels, const Tile& strip, const GpuFrameParams& base, GpuRenderReport& rep) {
+    const BatchTimer timer(ctx);
+    for (bool fresh = true;; fresh = false) {
+        OneShotCommands commands(ctx);
+        const vk::raii::CommandBuffer& cmd = commands.begin();
+        if (fresh) {  // every record VKRAY_RESUME_FRESH
+            cmd.fillBuffer(resume.records.handle(), 0, VK_WHOLE_SIZE, 0u);
+            const vk::MemoryBarrier filled{
+                .srcAccessMask = vk::AccessFlagBits::eTransferWrite,
+                .dstAccessMask = vk::AccessFlagBits::eShaderRead | vk::AccessFlagBits::eShaderWrite};
+            cmd.pipelineBarrier(vk::PipelineStageFlagBits::eTransfer, vk::PipelineStageFlagBits::eComputeShader, {},
+                                filled, nullptr, nullptr);
+        }
+        timer.begin(cmd);
+        recordBatch(cmd, kernel, std::span<const Tile>(&strip, 1), base);
+        timer.end(cmd);
+        commands.submitAndWait();
+        ++rep.resumeDispatches;
+        if (rep.gpuMs >= 0.0) rep.gpuMs += timer.batchMs();
+        if (countFlagged(static_cast<const GpuPixel*>(pixels.mapped()), strip, VKRAY_PIXEL_UNFINISHED) == 0) return;
+    }
+}
+
+// Renders `tiles` again with the resumable variant (render_main.glsl, "Resumable pixels"), strip by
+// strip, into `frame`.
+void renderResumable(const VulkanContext& ctx, ComputeKernel& kernel, const SceneBuffers& scene,
+                     const AccelBuffers& accel, const Buffer& pixels, std::span<const Tile> tiles, int maxDepth,
+                     const GpuFrameParams& base, Frame& frame, GpuRenderReport& rep) {
+    const uint32_t rows = resumeStripRows(ctx, maxDepth);
+    const ResumeBuffers resume(ctx, uint64_t(rows) * VKRAY_TILE_SIZE, uint64_t(maxDepth));
+    bindBuffers(kernel, scene, accel, pixels, resume);
+    rep.resumedTiles = uint32_t(tiles.size());
+    rep.resumeRows = rows;
+    for (const Tile& tile : tiles)
+        for (const Tile& strip : splitIntoStrips(tile, rows)) {
+            resumeStrip(ctx, kernel, resume, pixels, strip, base, rep);  // the strip as a tile of its own
+            readTile(static_cast<const GpuPixel*>(pixels.mapped()), strip, frame, rep);
+        }
 }
 
 // llvmpipe ends all loops of an invocation after 65535 iterations in total; the kernel flags such
@@ -289,13 +377,22 @@ Frame renderOnGpu(const VulkanContext& ctx, const Scene& scene, const RenderOpti
     const uint32_t perSubmission = tilesPerSubmission(ctx, tiles.size());
     Buffer pixels(ctx, uint64_t(perSubmission) * kTilePixels * sizeof(GpuPixel),
                   vk::BufferUsageFlagBits::eStorageBuffer, MemoryUse::Readback, "pixels");
-    bindBuffers(kernel, sceneBuffers, accelBuffers, pixels);
+    const ResumeBuffers noResume(ctx, 0, 0);
+    bindBuffers(kernel, sceneBuffers, accelBuffers, pixels, noResume);
 
     Frame frame;
     frame.resize(options.width, options.height);
     if (options.countTraversal) rep.nodesPerPixel.assign(frame.color.size(), 0u);
     start = Clock::now();
-    renderTiles(ctx, kernel, pixels, tiles, perSubmission, baseParams, frame, rep, progress);
+    std::vector<Tile> unfinished;
+    renderTiles(ctx, kernel, pixels, tiles, perSubmission, baseParams, frame, rep, progress, unfinished);
+    if (!unfinished.empty()) {
+        ShaderFeatures resumable = rep.features;
+        resumable.resumable = true;
+        ComputeKernel& again = kernels->kernel(rep.kernel, spirv, resumable.specialization());
+        renderResumable(ctx, again, sceneBuffers, accelBuffers, pixels, unfinished, options.maxDepth, baseParams,
+                        frame, rep);
+    }
     rep.renderMs = msSince(start);
     ctx.checkValidation();
     throwIfCutShort(ctx, scene, accel.kernel, rep.pixelsCutShort);

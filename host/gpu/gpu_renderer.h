@@ -36,6 +36,9 @@ struct GpuRenderReport {
     uint64_t shadowRays = 0;     // any-hit rays
     uint64_t cappedRays = 0;     // rays a traversal ended at its iteration cap (reported, not hidden)
     uint64_t pixelsCutShort = 0; // pixels whose loops the driver cut short (then renderOnGpu throws)
+    // Tiles the plain kernel could not finish within the driver's loop budget, rendered again by the
+    // resumable variant in strips of resumeRows rows, and that variant's dispatches.
+    uint32_t resumedTiles = 0, resumeRows = 0, resumeDispatches = 0;
     // Traversal work over all rays; filled only with RenderOptions::countTraversal.
     uint64_t nodesVisited = 0, leavesVisited = 0, trianglesTested = 0, restarts = 0;
     // Nodes visited by all rays of each pixel, top row first (a traversal-cost heatmap); filled

@@ -35,6 +35,7 @@ Specialization ShaderFeatures::specialization() const {
     s.set(VKRAY_SPEC_HAS_SMOOTH_NORMALS, smoothNormals);
     s.set(VKRAY_SPEC_COUNT_TRAVERSAL, countTraversal);
     s.set(VKRAY_SPEC_LEAF_SLOTS, singleSlotLeaves ? 1u : 4u);
+    s.set(VKRAY_SPEC_RESUMABLE, resumable);
     return s;
 }
 

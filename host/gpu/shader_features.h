@@ -24,11 +24,14 @@ struct ShaderFeatures {
     // Leaf loop: one triangle per iteration unless a leaf holds more than
     // VKRAY_SINGLE_SLOT_LEAF_LIMIT (then four, for lavapipe's loop budget).
     bool singleSlotLeaves = true;
+    // Resumable pixels (VKRAY_SPEC_RESUMABLE): specialised only for tiles the plain kernel could not
+    // finish within the driver's loop budget.
+    bool resumable = false;
 
     static ShaderFeatures forScene(const Scene& scene, int maxDepth);
     void setMaxLeafTriangles(uint32_t triangles) { singleSlotLeaves = triangles <= VKRAY_SINGLE_SLOT_LEAF_LIMIT; }
     Specialization specialization() const;
-    // (name, compiled in) for --stats.
+    // (name, compiled in) for --stats, of the plain kernel (resumed tiles are reported apart).
     std::vector<std::pair<std::string, bool>> list() const;
 };
 

@@ -4,7 +4,8 @@
 
 #include "shared/gpu_layout.h"
 
-layout(std430, set = 0, binding = VKRAY_BINDING_PIXELS) writeonly buffer Pixels {
+// Written by every kernel; read back only by the resumable variant (render_main.glsl).
+layout(std430, set = 0, binding = VKRAY_BINDING_PIXELS) buffer Pixels {
     GpuPixel pixels[];
 };
 // Everything the kernels read, through texel views (gpu_layout.h, "Texel views").

@@ -13,9 +13,23 @@ uint slotTriangle(uint slot) { return slot; }
 
 // Closest hit, or with anyHit the first hit found, in (0, tmax). Ties in t go to the lowest
 // triangle identity (beats(), triangle.glsl), as on the CPU and in every other kernel.
+// The resumable variant goes on from where the saved traversal stopped, and saves where this one
+// stops: brute force alone can need more iterations for one ray than the driver's whole budget.
 Hit bruteTrace(vec3 origin, vec3 dir, float tmax, const bool anyHit) {
     Hit best = noHit(tmax);
-    testSlots(0u, params.counts.x, makeWatertightRay(origin, dir), anyHit, kBruteSlotsPerIteration, best);
+    uint slot = 0u;
+    if (RESUMABLE && gBruteResumeSlot > 0u) {
+        slot = gBruteResumeSlot;
+        best = gBruteResumeBest;
+    }
+    const uint begin = slot;
+    const bool complete =
+        testSlotsFrom(slot, params.counts.x, makeWatertightRay(origin, dir), anyHit, kBruteSlotsPerIteration, best);
+    if (RESUMABLE) {
+        gBruteResumeSlot = complete ? 0u : slot;
+        gBruteResumeBest = best;
+        if (slot > begin) gProgress = true;
+    }
     return best;
 }
 

@@ -141,11 +141,11 @@ Hit bvhTrace(vec3 origin, vec3 dir, float tmax, const bool anyHit) {
         ref = stackRef[top];                                                       \
         haveRef = anyHit || !(stackEnter[top] > best.t * kRoundingSlack);          \
     }
-    while (iteration < VKRAY_BVH_MAX_ITERATIONS) {
+    while (budgetLeft() && iteration < VKRAY_BVH_MAX_ITERATIONS) {
         // Node steps while `ref` is an inner node or a dropped entry, and something is left. The
         // loop's exits are all in its condition: a `break` in its body made llvmpipe's masked
         // loop measurably slower.
-        for (; iteration < VKRAY_BVH_MAX_ITERATIONS && (haveRef || top > 0) && !(haveRef && isLeafRef(ref));
+        for (; budgetLeft() && iteration < VKRAY_BVH_MAX_ITERATIONS && (haveRef || top > 0) && !(haveRef && isLeafRef(ref));
              ++iteration) {
             if (haveRef) {
                 countNode();

@@ -44,11 +44,11 @@ bool kdWalkPass(KdRay r, WatertightRay w, const bool anyHit, float segMin, uint 
     uint node = 0u;
     bool climbing = false;
     bool passDone = false;
-    while (!passDone && steps < VKRAY_KD_MAX_STEPS) {
+    while (budgetLeft() && !passDone && steps < VKRAY_KD_MAX_STEPS) {
         // Up to an ancestor the segment still crosses (after a leaf), then down to the next leaf:
         // two loops, so that a descending step does not pay for the box clip of a climbing step
         // (kd_common.glsl, "Loops"). Both count against the one step cap.
-        for (; climbing && node != VKRAY_KD_NO_PARENT && steps < VKRAY_KD_MAX_STEPS; ++steps) {
+        for (; budgetLeft() && climbing && node != VKRAY_KD_NO_PARENT && steps < VKRAY_KD_MAX_STEPS; ++steps) {
             countNode();
             climbing = !kdClimbStep(r, node, segMin, minAxis, segMax, maxAxis, globalMax, globalMaxAxis, pass);
         }
@@ -59,7 +59,7 @@ bool kdWalkPass(KdRay r, WatertightRay w, const bool anyHit, float segMin, uint 
             break;
         }
         uvec2 n = kdNode(node);
-        for (; !climbing && !kdIsLeaf(n) && steps < VKRAY_KD_MAX_STEPS; ++steps) {
+        for (; budgetLeft() && !climbing && !kdIsLeaf(n) && steps < VKRAY_KD_MAX_STEPS; ++steps) {
             countNode();
             uint first, second;
             float thit;

@@ -273,7 +273,7 @@ Hit kdTrace(vec3 origin, vec3 dir, float tmax, const bool anyHit) {
     bool passDone = true;
     vec3 rootLo, rootHi;
     kdRootBox(rootLo, rootHi);
-    for (uint passes = 0u; passes < 8u; ++passes) {
+    for (uint passes = 0u; budgetLeft() && passes < 8u; ++passes) {
         // The root box clip in the pass too: its faces may tie with each other.
         float segMin = 0.0, segMax = tmax;
         uint minAxis = kKdHardBound, maxAxis = kKdHardBound;

@@ -18,10 +18,10 @@ bool kdWalkPass(KdRay r, WatertightRay w, const bool anyHit, float segMin, uint 
     const uint globalMaxAxis = maxAxis;
     uint node = 0u;
     bool passDone = false;
-    while (!passDone && steps < VKRAY_KD_MAX_STEPS) {
+    while (budgetLeft() && !passDone && steps < VKRAY_KD_MAX_STEPS) {
         // Down to the next leaf (kd_common.glsl, "Loops").
         uvec2 n = kdNode(node);
-        for (; !kdIsLeaf(n) && steps < VKRAY_KD_MAX_STEPS; ++steps) {
+        for (; budgetLeft() && !kdIsLeaf(n) && steps < VKRAY_KD_MAX_STEPS; ++steps) {
             countNode();
             uint first, second;
             float thit;

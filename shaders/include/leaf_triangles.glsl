@@ -33,20 +33,23 @@ void testSlot(uint slot, uint end, WatertightRay ray, const bool anyHit, inout H
     }
 }
 
-// Tests slots [begin, end) on (0, best.t) and keeps every hit that beats `best` (beats(),
+// Tests slots [i, end) on (0, best.t) and keeps every hit that beats `best` (beats(),
 // triangle.glsl). With anyHit the loop ends at the first hit: best.triangle >= 0, best.t unchanged.
 // anyHit and perIteration (kBruteSlotsPerIteration or LEAF_SLOTS, 1 or 4) are constants at every
-// call, so the compiler folds every test of them. Returns false, with the pixel flagged, if
-// the driver ended the loop before either; the triangles counted are those the loop reached.
-bool testSlots(uint begin, uint end, WatertightRay ray, const bool anyHit, const uint perIteration, inout Hit best) {
-    uint i = begin;
+// call, so the compiler folds every test of them. Returns false, with the pixel flagged, if the
+// loop ended before either (the driver's budget, or the resumable variant's own: budgetLeft());
+// `i` is then the first slot not tested (brute force resumes there: render_main.glsl, "Resumable
+// pixels"). The triangles counted are those the loop reached.
+bool testSlotsFrom(inout uint i, uint end, WatertightRay ray, const bool anyHit, const uint perIteration,
+                   inout Hit best) {
+    const uint begin = i;
     // Whether the loop ran to its end is told by an iteration count, not by testing its condition
     // again: the compiler takes a loop to end only when its condition is false and folds such a
     // test to true, while llvmpipe's budget ends the loop anyway (seen on lavapipe: cut-short
     // brute-force loops went unflagged and returned a miss).
     const uint needed = i < end ? (end - i + perIteration - 1u) / perIteration : 0u;
     uint iterations = 0u;
-    for (; i < end && !(anyHit && best.triangle >= 0); i += perIteration) {
+    for (; budgetLeft() && i < end && !(anyHit && best.triangle >= 0); i += perIteration) {
         testSlot(i, end, ray, anyHit, best);
         if (perIteration == 4u) {
             testSlot(i + 1u, end, ray, anyHit, best);
@@ -59,6 +62,11 @@ bool testSlots(uint begin, uint end, WatertightRay ray, const bool anyHit, const
     const bool complete = iterations >= needed || (anyHit && best.triangle >= 0);
     if (!complete) gLoopCutShort = true;
     return complete;
+}
+
+bool testSlots(uint begin, uint end, WatertightRay ray, const bool anyHit, const uint perIteration, inout Hit best) {
+    uint i = begin;
+    return testSlotsFrom(i, end, ray, anyHit, perIteration, best);
 }
 
 #endif

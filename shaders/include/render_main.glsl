@@ -1,6 +1,6 @@
 // The body of every render kernel (shaders/render_<accel>.comp): one invocation per pixel of one
 // tile. Camera ray, closest hit, iterative Whitted shading over a small stack of pending rays (GLSL
-// has no recursion), primary-hit AOVs. The kernel file also includes one accelerator, which
+// has no recursion), primary-hit AOVs; in the resumable variant, across several dispatches. The kernel file also includes one accelerator, which
 // defines traceClosest and traceAny (accelerator.glsl), before or after this file.
 #ifndef VKRAY_RENDER_MAIN_GLSL
 #define VKRAY_RENDER_MAIN_GLSL
@@ -22,6 +22,53 @@ struct PendingRay {
     vec3 dir;
     vec3 weight;
     int depth;  // primary rays have depth 1
+};
+
+// Resumable pixels. llvmpipe ends every loop of an invocation once its loops together ran 65535
+// iterations (trace_status.glsl): brute force over many triangles, or a BVH over heavily
+// overlapping ones, needs more for one pixel. The resumable variant (RESUMABLE, specialised by the
+// host only for tiles the plain kernel could not finish) keeps its pending rays in a buffer
+// instead of registers, counts its loops' passes itself (budgetLeft(), trace_status.glsl) and,
+// when its own budget is spent, before the driver's, saves where the pixel is: the rays still to
+// trace, or the hit whose lights are being shaded and the next light, and brute force's next
+// triangle and best hit. The host dispatches the tile again until every pixel is done; a pixel
+// that got nothing done in a whole dispatch is flagged cut short, as the plain kernel does.
+layout(std430, set = 0, binding = VKRAY_BINDING_RESUME) buffer Resume {
+    GpuPixelResume resume[];
+};
+layout(std430, set = 0, binding = VKRAY_BINDING_RESUME_RAYS) buffer ResumeRays {
+    GpuPendingRay resumeRays[];
+};
+
+// The pending rays: in registers, or in the resumable variant in this pixel's part of resumeRays
+// (saving them then needs no loop of its own).
+PendingRay gStack[MAX_DEPTH];
+uint gRayBase = 0u;  // first resumeRays entry of this pixel
+
+void storeRay(int i, PendingRay r) {
+    if (RESUMABLE) resumeRays[gRayBase + uint(i)] = GpuPendingRay(r.origin, r.depth, r.dir, 0.0, r.weight, 0.0);
+    else gStack[i] = r;
+}
+
+PendingRay loadRay(int i) {
+    if (!RESUMABLE) return gStack[i];
+    const GpuPendingRay g = resumeRays[gRayBase + uint(i)];
+    return PendingRay(g.origin, g.dir, g.weight, g.depth);
+}
+
+// What a pixel carries from ray to ray, and across dispatches in the resumable variant.
+struct PixelTrace {
+    vec3 radiance;
+    float depth;  // AOVs of the primary hit
+    vec3 normal;
+    int primId;
+    int stackTop;
+    int rays;     // closest-hit rays traced
+    // The hit being shaded when the budget ran out (stage VKRAY_RESUME_LIGHTS): the ray is
+    // stack[stackTop], its lights from `light` on are still to add to `color`.
+    Hit hit;
+    uint light;
+    vec3 color;
 };
 
 // Below this weight in every channel a secondary ray is not traced (docs/shading.md).
@@ -62,6 +109,90 @@ uvec2 pixelInTile() {
     return uvec2(gl_GlobalInvocationID.x, blockRow * VKRAY_WORKGROUP_Y + gl_LocalInvocationID.y);
 }
 
+// Shades the hit pt.hit of `ray` from light pt.light on (pt.color holds the lights before it) and
+// pushes the ray's children. False when the lights could not all be added (the budget ran out):
+// pt keeps where it stopped.
+bool shadeAndSpawn(inout PixelTrace pt, PendingRay ray, SurfacePoint s, GpuMaterial m) {
+    if (!addLights(s, m, -ray.dir, pt.light, pt.color)) return false;
+    pt.radiance += ray.weight * pt.color;
+    if ((HAS_REFLECTION || HAS_REFRACTION) && ray.depth < MAX_DEPTH) {
+        PendingRay reflected, refracted;
+        secondaryRays(ray, s, m, reflected, refracted);
+        if (worthTracing(refracted.weight)) storeRay(pt.stackTop++, refracted);
+        if (worthTracing(reflected.weight)) storeRay(pt.stackTop++, reflected);
+    }
+    return true;
+}
+
+// Traces the pending rays, depth-first: each ray pushes at most two children one level deeper and
+// only below MAX_DEPTH, so at most MAX_DEPTH rays are ever pending. Returns VKRAY_RESUME_DONE when
+// none is left, else the stage to go on at (the plain kernel flags the pixel instead).
+uint traceRays(inout PixelTrace pt) {
+    for (; budgetLeft() && pt.stackTop > 0 && pt.rays < kMaxRaysPerPixel; ++pt.rays) {
+        const PendingRay ray = loadRay(pt.stackTop - 1);
+        const Hit hit = traceClosest(ray.origin, ray.dir, kInfinity);
+        if (RESUMABLE && gLoopCutShort) return VKRAY_RESUME_RAYS;  // the ray stays pending
+        gProgress = true;
+        --pt.stackTop;
+        if (hit.triangle < 0) continue;  // no background: a miss adds nothing
+        const SurfacePoint s = surfaceAt(hit, ray.dir);
+        if (pt.rays == 0) {
+            pt.depth = hit.t;
+            pt.normal = s.normal;
+            pt.primId = s.original;
+        }
+        const GpuMaterial m = loadMaterial(s.material);
+        pt.hit = hit;
+        pt.light = 0u;
+        pt.color = unlitShading(m);
+        if (!shadeAndSpawn(pt, ray, s, m)) {
+            if (RESUMABLE) {
+                ++pt.rays;
+                return VKRAY_RESUME_LIGHTS;
+            }
+            gLoopCutShort = true;
+        }
+    }
+    return pt.stackTop > 0 ? VKRAY_RESUME_RAYS : VKRAY_RESUME_DONE;
+}
+
+// A pixel from its camera ray.
+PixelTrace freshPixel(uvec2 pixel, uvec2 imageSize) {
+    PixelTrace pt;
+    pt.radiance = vec3(0.0);
+    pt.depth = kInfinity;
+    pt.normal = vec3(0.0);
+    pt.primId = -1;
+    pt.stackTop = 1;
+    pt.rays = 0;
+    pt.hit = noHit(kInfinity);
+    pt.light = 0u;
+    pt.color = vec3(0.0);
+    storeRay(0, PendingRay(params.eye.xyz, primaryDirection(pixel, imageSize), vec3(1.0), 1));
+    return pt;
+}
+
+// Resumable variant: the pixel where the last dispatch left it; returns its stage.
+uint resumePixel(uint resumeIndex, uint outIndex, uvec2 pixel, uvec2 imageSize, out PixelTrace pt) {
+    const GpuPixelResume r = resume[resumeIndex];
+    if (r.stage == VKRAY_RESUME_FRESH) {
+        pt = freshPixel(pixel, imageSize);
+        return VKRAY_RESUME_RAYS;
+    }
+    const GpuPixel px = pixels[outIndex];
+    pt = PixelTrace(px.color, px.depth, px.normal, px.primId, int(r.stackTop), int(r.rays),
+                    Hit(r.hitTuv.x, r.hitTuv.yz, r.hitTriangle, r.hitOriginal), r.light, r.color);
+    gShadowRays = px.shadowRays;
+    gNodesVisited = px.nodes;
+    gLeavesVisited = px.leaves;
+    gTrianglesTested = px.triangles;
+    gRestarts = px.restarts;
+    gCappedRays = px.capped;
+    gBruteResumeSlot = r.bruteSlot;
+    gBruteResumeBest = Hit(r.bruteTuv.x, r.bruteTuv.yz, r.bruteTriangle, r.bruteOriginal);
+    return r.stage;
+}
+
 void main() {
     const uvec2 local = pixelInTile();
     const uvec2 imageSize = params.imageTile.xy;
@@ -70,44 +201,42 @@ void main() {
         any(greaterThanEqual(pixel, imageSize)))
         return;
     const uint outIndex = params.counts.z + local.y * params.counts.w + local.x;
+    const uint resumeIndex = local.y * VKRAY_TILE_SIZE + local.x;
 
-    float depthAov = kInfinity;
-    vec3 normalAov = vec3(0.0);
-    int primAov = -1;
-    vec3 radiance = vec3(0.0);
-
-    // Depth-first: each ray pushes at most two children one level deeper and only below
-    // MAX_DEPTH, so at most MAX_DEPTH rays are ever pending.
-    PendingRay stack[MAX_DEPTH];
-    stack[0] = PendingRay(params.eye.xyz, primaryDirection(pixel, imageSize), vec3(1.0), 1);
-    int stackTop = 1;
-    int rays = 0;
-    for (; stackTop > 0 && rays < kMaxRaysPerPixel; ++rays) {
-        --stackTop;
-        const PendingRay ray = stack[stackTop];
-        const Hit hit = traceClosest(ray.origin, ray.dir, kInfinity);
-        if (hit.triangle < 0) continue;  // no background: a miss adds nothing
-        const SurfacePoint s = surfaceAt(hit, ray.dir);
-        if (rays == 0) {
-            depthAov = hit.t;
-            normalAov = s.normal;
-            primAov = s.original;
+    startLoopBudget();
+    PixelTrace pt;
+    uint stage = VKRAY_RESUME_RAYS;
+    if (RESUMABLE) {
+        gRayBase = resumeIndex * uint(MAX_DEPTH);
+        stage = resumePixel(resumeIndex, outIndex, pixel, imageSize, pt);
+        if (stage == VKRAY_RESUME_DONE) return;
+        if (stage == VKRAY_RESUME_LIGHTS) {  // the interrupted hit first
+            const PendingRay ray = loadRay(pt.stackTop);
+            const SurfacePoint s = surfaceAt(pt.hit, ray.dir);
+            if (shadeAndSpawn(pt, ray, s, loadMaterial(s.material))) stage = VKRAY_RESUME_RAYS;
         }
-        const GpuMaterial m = loadMaterial(s.material);
-        radiance += ray.weight * localShading(s, m, -ray.dir);
-        if ((HAS_REFLECTION || HAS_REFRACTION) && ray.depth < MAX_DEPTH) {
-            PendingRay reflected, refracted;
-            secondaryRays(ray, s, m, reflected, refracted);
-            if (worthTracing(refracted.weight)) stack[stackTop++] = refracted;
-            if (worthTracing(reflected.weight)) stack[stackTop++] = reflected;
-        }
+    } else {
+        pt = freshPixel(pixel, imageSize);
     }
+    if (stage == VKRAY_RESUME_RAYS) stage = traceRays(pt);
 
-    const bool cutShort = gLoopCutShort || stackTop > 0;
-    pixels[outIndex] = GpuPixel(radiance, depthAov, normalAov, primAov,
-                                cutShort ? VKRAY_PIXEL_CUT_SHORT : 0u, uint(rays), gShadowRays,
-                                gNodesVisited, gLeavesVisited, gTrianglesTested, gRestarts,
-                                gCappedRays);
+    // Unfinished: the plain kernel flags the pixel; the resumable one goes on in the next dispatch
+    // unless it got nothing done in this one, or the pixel reached its ray cap. Either flags it when
+    // the driver's budget ran out (the resumable variant's own budget keeps it from doing so).
+    const bool unfinished = stage != VKRAY_RESUME_DONE;
+    const bool cutShort = loopBudgetRanOut() ||
+                          (RESUMABLE ? unfinished && (!gProgress || pt.rays >= kMaxRaysPerPixel)
+                                     : gLoopCutShort || unfinished);
+    const uint flags = cutShort ? VKRAY_PIXEL_CUT_SHORT : unfinished ? VKRAY_PIXEL_UNFINISHED : 0u;
+    pixels[outIndex] = GpuPixel(pt.radiance, pt.depth, pt.normal, pt.primId, flags, uint(pt.rays), gShadowRays,
+                                gNodesVisited, gLeavesVisited, gTrianglesTested, gRestarts, gCappedRays);
+    if (RESUMABLE)
+        resume[resumeIndex] = GpuPixelResume(pt.color, cutShort ? VKRAY_RESUME_DONE : stage,
+                                             vec3(pt.hit.t, pt.hit.uv), pt.hit.triangle,
+                                             vec3(gBruteResumeBest.t, gBruteResumeBest.uv),
+                                             gBruteResumeBest.triangle, uint(pt.stackTop), uint(pt.rays),
+                                             pt.light, gBruteResumeSlot, gBruteResumeBest.original,
+                                             pt.hit.original, 0u, 0u);
 }
 
 #endif

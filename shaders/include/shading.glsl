@@ -84,31 +84,42 @@ LightSample sampleLight(GpuLight light, vec3 position, vec3 shadowOrigin) {
     return ls;
 }
 
-// Any-hit query of the accelerator's traceAny(), counted per pixel.
+// Any-hit query of the accelerator's traceAny(), counted per pixel once it is done (a query cut
+// short is traced again by the resumable variant, and counted then).
 bool traceShadowRay(vec3 origin, vec3 dir, float tmax) {
-    ++gShadowRays;
-    return traceAny(origin, dir, tmax);
+    const bool blocked = traceAny(origin, dir, tmax);
+    if (!gLoopCutShort) ++gShadowRays;
+    return blocked;
 }
 
-// Emitted light, ambient and every light with its shadow ray (docs/shading.md, "Local shading").
-vec3 localShading(SurfacePoint s, GpuMaterial m, vec3 V) {
-    const vec3 transmit = m.transmit.rgb;
-    vec3 color = m.emission.rgb + (1.0 - transmit) * m.ambient;
-    if (!HAS_POINT_LIGHTS && !HAS_DIRECTIONAL_LIGHTS) return color;
+// Emitted light and ambient: the local shading before any light (docs/shading.md, "Local shading").
+vec3 unlitShading(GpuMaterial m) { return m.emission.rgb + (1.0 - m.transmit.rgb) * m.ambient; }
+
+// Adds lights [light, lightCount) with their shadow rays to `color` (docs/shading.md, "Local
+// shading"). Returns false when the loop stopped early: the driver's loop budget ran out, and in
+// the resumable variant a shadow ray was cut short; `light` is then the light to go on with (the
+// lights before it are in `color`).
+bool addLights(SurfacePoint s, GpuMaterial m, vec3 V, inout uint light, inout vec3 color) {
+    if (!HAS_POINT_LIGHTS && !HAS_DIRECTIONAL_LIGHTS) return true;
     const vec3 shadowOrigin = offsetRayOrigin(s.position, s.facing, s.offset);
     const uint lightCount = params.counts.y;
+    // Counted apart from `light`, as testSlotsFrom() counts (leaf_triangles.glsl): a test of the
+    // loop's own condition after it would be folded to true.
+    const uint needed = light < lightCount ? lightCount - light : 0u;
     uint iterations = 0u;
-    for (uint i = 0; i < lightCount; ++i) {
-        const LightSample ls = sampleLight(loadLight(i), s.position, shadowOrigin);
-        const vec3 term = blinnPhong(s, m, V, transmit, ls.L, ls.radiance);
+    for (; budgetLeft() && light < lightCount; ++light) {
+        const LightSample ls = sampleLight(loadLight(light), s.position, shadowOrigin);
+        const vec3 term = blinnPhong(s, m, V, m.transmit.rgb, ls.L, ls.radiance);
         // Shadow rays only where the light would add something.
-        if (any(greaterThan(term, vec3(0.0))) && !traceShadowRay(shadowOrigin, ls.shadowDir, ls.shadowTmax))
-            color += term;
+        if (any(greaterThan(term, vec3(0.0)))) {
+            const bool blocked = traceShadowRay(shadowOrigin, ls.shadowDir, ls.shadowTmax);
+            if (RESUMABLE && gLoopCutShort) return false;
+            if (!blocked) color += term;
+        }
+        gProgress = true;
         ++iterations;
     }
-    // Counted, as testSlots() counts (leaf_triangles.glsl): llvmpipe's budget may end this loop too.
-    if (iterations < lightCount) gLoopCutShort = true;
-    return color;
+    return iterations >= needed;
 }
 
 // Unpolarised Fresnel reflectance of a dielectric; eta = n_incident / n_transmitted.

@@ -10,10 +10,55 @@
 #define VKRAY_TRACE_STATUS_GLSL
 
 #include "bindings.glsl"
+#include "triangle.glsl"
 
 layout(constant_id = VKRAY_SPEC_COUNT_TRAVERSAL) const bool COUNT_TRAVERSAL = false;
+// The resumable variant (render_main.glsl, "Resumable pixels"): a traversal cut short is taken up
+// again in the next dispatch instead of flagging the pixel.
+layout(constant_id = VKRAY_SPEC_RESUMABLE) const bool RESUMABLE = false;
 
 bool gLoopCutShort = false;
+// Resumable variant: brute force's interrupted traversal (the next slot, 0 = none, and the best hit
+// so far), saved with the pixel and handed to the first traversal of the next dispatch.
+uint gBruteResumeSlot = 0u;
+Hit gBruteResumeBest;
+// Resumable variant: some work of this dispatch is kept (a traversal ended, or brute force got on).
+bool gProgress = false;
+
+// The resumable variant's own loop budget. llvmpipe counts the iterations of all loops of a
+// subgroup (its SIMD width of lanes run in lockstep) and ends every loop once they reach 65535 —
+// without the exits the compiler knows of, so values leaving such a loop can be stale (its phi
+// copies sit on the exits it knows; seen: a pixel kept the pending ray but lost the radiance added
+// in the same iteration). So the resumable variant counts the same iterations itself, once per
+// subgroup in workgroup memory, and every loop of the kernel ends through its own condition once
+// kLoopBudget is spent: all values stay exact, and the pixel saves where it is.
+const uint kLoopBudget = 60000u;  // below 65535: room for the few fixed-count loops not counted
+shared uint sLoopIterations[VKRAY_WORKGROUP_X * VKRAY_WORKGROUP_Y];  // per subgroup
+
+// Whether llvmpipe's loop budget ran out anywhere in this invocation: from then on every loop ends
+// after one pass, so a loop that needs two is cut. Checked at the end of every pixel, so a loop ended
+// by the driver flags the pixel even where the values leaving that loop were stale and looked
+// complete. The trip count comes from the push constants (always 2) so the compiler cannot unroll it.
+bool loopBudgetRanOut() {
+    const uint needed = 2u + (params.counts.x >> 31);
+    uint passes = 0u;
+    for (uint k = 0u; k < needed; ++k) ++passes;
+    return passes < needed;
+}
+
+void startLoopBudget() {
+    if (RESUMABLE && subgroupElect()) sLoopIterations[gl_SubgroupID] = 0u;
+    if (RESUMABLE) subgroupMemoryBarrierShared();
+}
+
+// Called first in the condition of every loop, once per pass of the subgroup through the loop's
+// header: counts the pass and says whether the budget allows it. Always true in the plain kernel.
+bool budgetLeft() {
+    if (!RESUMABLE) return true;
+    if (subgroupElect()) sLoopIterations[gl_SubgroupID] += 1u;
+    subgroupMemoryBarrierShared();
+    return sLoopIterations[gl_SubgroupID] <= kLoopBudget;
+}
 uint gCappedRays = 0;
 uint gShadowRays = 0;
 uint gNodesVisited = 0;

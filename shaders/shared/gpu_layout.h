@@ -27,8 +27,11 @@ using uvec4 = glm::uvec4;
 #define VKRAY_TILE_SIZE 256
 
 // ---- Descriptor bindings (set 0) -------------------------------------------------------------
-#define VKRAY_BINDING_PIXELS 0         // GpuPixel[], one batch of tiles: the one storage buffer
-#define VKRAY_STORAGE_BINDING_COUNT 1  // binding 0 is a storage buffer, the rest texel views
+#define VKRAY_BINDING_PIXELS 0       // GpuPixel[], one batch of tiles
+// The resumable variant's saved pixels (VKRAY_SPEC_RESUMABLE; a one-element dummy otherwise):
+#define VKRAY_BINDING_RESUME 1       // GpuPixelResume[], one per pixel of the dispatch
+#define VKRAY_BINDING_RESUME_RAYS 2  // GpuPendingRay[], MAX_DEPTH per pixel: the pending-ray stacks
+#define VKRAY_STORAGE_BINDING_COUNT 3  // bindings 0-2 are storage buffers, the rest texel views
 // Texel views: everything the kernels read, as uniform texel buffers. On llvmpipe (Mesa 22) a
 // storage-buffer load at a per-invocation address is a loop over the SIMD lanes with a
 // bounds-checked branch per 32-bit word, while a texel fetch loads one 16-byte texel per lane and
@@ -36,16 +39,16 @@ using uvec4 = glm::uvec4;
 // Being read only through views, an array is bounded by maxTexelBufferElements texels (128 Mi on
 // lavapipe and most GPUs: 2 GiB of 16-byte texels), not by maxStorageBufferRange (128 MiB on
 // lavapipe).
-#define VKRAY_BINDING_TRIANGLE_TEXELS 1  // the triangles as RGBA32UI: texels 3k..3k+2 = GpuTriangle k
+#define VKRAY_BINDING_TRIANGLE_TEXELS 3  // the triangles as RGBA32UI: texels 3k..3k+2 = GpuTriangle k
 // The acceleration structure, in the layout its own header defines (shared/bvh_layout.h,
 // shared/kd_layout.h); a view the structure does not use holds a one-texel dummy.
-#define VKRAY_BINDING_NODE_TEXELS 2      // the accelerator's nodes (GpuAccelData::nodeTexelBytes a texel)
-#define VKRAY_BINDING_INDEX_TEXELS 3     // the accelerator's triangle indices as R32UI
-#define VKRAY_BINDING_EXTRA_TEXELS 4     // the accelerator's extra data as RGBA32UI (kd-backtrack: parent links and node boxes)
-#define VKRAY_BINDING_NORMAL_TEXELS 5    // GpuTriangleNormals[] as RGBA32UI, 3 texels each (one dummy without smooth normals)
-#define VKRAY_BINDING_MATERIAL_TEXELS 6  // GpuMaterial[] as RGBA32UI, 6 texels each
-#define VKRAY_BINDING_LIGHT_TEXELS 7     // GpuLight[] as RGBA32UI, 2 texels each (one dummy without lights)
-#define VKRAY_BINDING_COUNT 8
+#define VKRAY_BINDING_NODE_TEXELS 4      // the accelerator's nodes (GpuAccelData::nodeTexelBytes a texel)
+#define VKRAY_BINDING_INDEX_TEXELS 5     // the accelerator's triangle indices as R32UI
+#define VKRAY_BINDING_EXTRA_TEXELS 6     // the accelerator's extra data as RGBA32UI (kd-backtrack: parent links and node boxes)
+#define VKRAY_BINDING_NORMAL_TEXELS 7    // GpuTriangleNormals[] as RGBA32UI, 3 texels each (one dummy without smooth normals)
+#define VKRAY_BINDING_MATERIAL_TEXELS 8  // GpuMaterial[] as RGBA32UI, 6 texels each
+#define VKRAY_BINDING_LIGHT_TEXELS 9     // GpuLight[] as RGBA32UI, 2 texels each (one dummy without lights)
+#define VKRAY_BINDING_COUNT 10
 // Texels (16 bytes) per element of the texel views of the scene's structs below.
 #define VKRAY_TRIANGLE_TEXELS 3
 #define VKRAY_NORMAL_TEXELS 3
@@ -65,7 +68,11 @@ using uvec4 = glm::uvec4;
 // uint: triangles a leaf loop tests per iteration, 1 or 4 (leaf_triangles.glsl): 1 unless the
 // structure has a leaf of more than VKRAY_SINGLE_SLOT_LEAF_LIMIT triangles.
 #define VKRAY_SPEC_LEAF_SLOTS 7
-#define VKRAY_SPEC_COUNT 8
+// bool: the resumable variant (render_main.glsl, "Resumable pixels"): a pixel whose loops run out of
+// the driver's loop budget saves where it is (VKRAY_BINDING_RESUME, _RESUME_RAYS) and goes on in the
+// next dispatch. Off, the saving is compiled out and such a pixel is flagged VKRAY_PIXEL_CUT_SHORT.
+#define VKRAY_SPEC_RESUMABLE 8
+#define VKRAY_SPEC_COUNT 9
 #define VKRAY_SINGLE_SLOT_LEAF_LIMIT 128
 
 // ---- GpuPixel.flags ------------------------------------------------------------------------------
@@ -73,6 +80,14 @@ using uvec4 = glm::uvec4;
 // every loop of an invocation once all its loops together ran 65535 iterations), or the
 // per-pixel ray cap was reached. The pixel is wrong; the host reports it instead of writing it.
 #define VKRAY_PIXEL_CUT_SHORT 1u
+// Resumable variant: the pixel ran out of loop budget and saved where it is; dispatch it again.
+#define VKRAY_PIXEL_UNFINISHED 2u
+
+// ---- GpuPixelResume.stage -------------------------------------------------------------------------
+#define VKRAY_RESUME_FRESH 0u   // nothing done yet (the host zero-fills the records)
+#define VKRAY_RESUME_RAYS 1u    // the pending rays are saved; the top one is traced next
+#define VKRAY_RESUME_LIGHTS 2u  // the ray at stack[stackTop] hit; its lights from `light` on are next
+#define VKRAY_RESUME_DONE 3u    // the pixel's GpuPixel is final
 
 // ---- Light types (GpuLight.type) -------------------------------------------------------
 #define VKRAY_LIGHT_POINT 0
@@ -122,6 +137,33 @@ VKRAY_STRUCT(GpuLight) {  // 32 bytes
     float pad0;
 };
 
+// Where a pixel of the resumable variant stopped (render_main.glsl, "Resumable pixels").
+VKRAY_STRUCT(GpuPixelResume) {  // 80 bytes
+    vec3 color;         // stage LIGHTS: the interrupted hit's shading so far
+    uint stage;         // VKRAY_RESUME_*
+    vec3 hitTuv;        // stage LIGHTS: the hit (t, u, v) being shaded
+    int hitTriangle;
+    vec3 bruteTuv;      // brute force: best hit so far of the interrupted traversal
+    int bruteTriangle;
+    uint stackTop;      // pending rays (GpuPendingRay, VKRAY_BINDING_RESUME_RAYS)
+    uint rays;          // closest-hit rays traced so far
+    uint light;         // stage LIGHTS: the next light
+    uint bruteSlot;     // brute force: the interrupted traversal's next triangle; 0 = none
+    uint bruteOriginal;
+    uint hitOriginal;
+    uint pad0;
+    uint pad1;
+};
+
+VKRAY_STRUCT(GpuPendingRay) {  // 48 bytes
+    vec3 origin;
+    int depth;  // primary rays have depth 1
+    vec3 dir;
+    float pad0;
+    vec3 weight;  // product of the weights along the path
+    float pad1;
+};
+
 VKRAY_STRUCT(GpuPixel) {  // 64 bytes
     vec3 color;   // radiance
     float depth;  // primary-hit t, +inf on a miss
@@ -165,6 +207,12 @@ static_assert(sizeof(GpuPixel) == 64 && offsetof(GpuPixel, depth) == 12 &&
               offsetof(GpuPixel, normal) == 16 && offsetof(GpuPixel, primId) == 28 &&
               offsetof(GpuPixel, flags) == 32 && offsetof(GpuPixel, shadowRays) == 40 &&
               offsetof(GpuPixel, nodes) == 44 && offsetof(GpuPixel, capped) == 60);
+static_assert(sizeof(GpuPixelResume) == 80 && offsetof(GpuPixelResume, stage) == 12 &&
+              offsetof(GpuPixelResume, hitTriangle) == 28 && offsetof(GpuPixelResume, bruteTriangle) == 44 &&
+              offsetof(GpuPixelResume, stackTop) == 48 && offsetof(GpuPixelResume, bruteSlot) == 60 &&
+              offsetof(GpuPixelResume, bruteOriginal) == 64);
+static_assert(sizeof(GpuPendingRay) == 48 && offsetof(GpuPendingRay, depth) == 12 &&
+              offsetof(GpuPendingRay, dir) == 16 && offsetof(GpuPendingRay, weight) == 32);
 static_assert(sizeof(GpuFrameParams) == 112 && offsetof(GpuFrameParams, imageTile) == 80 &&
               offsetof(GpuFrameParams, counts) == 96);
 }  // namespace vkray::gpu
