@@ -49,6 +49,7 @@ accel::GpuAccelData cyclicBvh() {
 accel::GpuAccelData cyclicKd(accel::Kernel kernel) {
     accel::GpuAccelData data;
     data.kernel = kernel;
+    data.nodeTexelBytes = VKRAY_KD_NODE_TEXEL_BYTES;  // as the kd-tree's own gpuData() says
     const gpu::KdTreeHeader header{.lo = kLo, .nodeCount = 2, .hi = kHi, .indexCount = 1};
     // Root: split z = 0.5, below child = node 1 (a leaf), above child = the root itself. A ray coming
     // down from z = 3 enters the above side first, forever.
