@@ -2,6 +2,7 @@
 // iterations than lavapipe allows one invocation render across several dispatches, to the same
 // image, bit for bit, as an accelerator that needs no resuming.
 #include <string>
+#include <string_view>
 
 #include <gtest/gtest.h>
 
@@ -56,38 +57,32 @@ void expectSameFrames(const Frame& a, const Frame& b) {
 
 bool onLlvmpipe() { return test::gpuContext().info().name.find("llvmpipe") != std::string::npos; }
 
-TEST(ResumablePixels, BruteForceBeyondTheLoopBudgetMatchesTheBvhBitForBit) {
-    const Scene s = parseSceneText(kHeavyScene, "heavy.scene", ".");
+// Renders `sceneText` with `resumed`, which must run out of llvmpipe's budget and be resumed there,
+// and with `reference`, which must not, and expects the same frames and ray counts.
+void expectResumedLikeReference(const char* sceneText, std::string_view resumed, std::string_view reference) {
+    const Scene s = parseSceneText(sceneText, "test.scene", ".");
     const RenderOptions o{.width = s.width, .height = s.height, .maxDepth = s.maxDepth};
-    gpu::GpuRenderReport brute, bvh;
-    const Frame a = test::renderGpu(s, o, &brute, "brute");
-    const Frame b = test::renderGpu(s, o, &bvh, "bvh");
+    gpu::GpuRenderReport a, b;
+    const Frame fa = test::renderGpu(s, o, &a, resumed);
+    const Frame fb = test::renderGpu(s, o, &b, reference);
     if (onLlvmpipe()) {
-        // The case this test is for: the plain kernel could not finish, the resumable one did.
-        EXPECT_EQ(brute.resumedTiles, 1u);
-        EXPECT_GT(brute.resumeDispatches, 1u);
-        EXPECT_EQ(bvh.resumedTiles, 0u);
+        // The case these tests are for: the plain kernel could not finish, the resumable one did.
+        EXPECT_EQ(a.resumedTiles, 1u);
+        EXPECT_GT(a.resumeDispatches, 1u);
+        EXPECT_EQ(b.resumedTiles, 0u);
     }
-    EXPECT_EQ(brute.pixelsCutShort, 0u);
-    EXPECT_EQ(brute.raysTraced, bvh.raysTraced);
-    EXPECT_EQ(brute.shadowRays, bvh.shadowRays);
-    expectSameFrames(a, b);
+    EXPECT_EQ(a.pixelsCutShort, 0u);
+    EXPECT_EQ(a.raysTraced, b.raysTraced);
+    EXPECT_EQ(a.shadowRays, b.shadowRays);
+    expectSameFrames(fa, fb);
+}
+
+TEST(ResumablePixels, BruteForceBeyondTheLoopBudgetMatchesTheBvhBitForBit) {
+    expectResumedLikeReference(kHeavyScene, "brute", "bvh");
 }
 
 TEST(ResumablePixels, BvhOverOverlappingTrianglesBeyondTheLoopBudgetMatchesTheKdTree) {
-    const Scene s = parseSceneText(kBurstScene, "burst.scene", ".");
-    const RenderOptions o{.width = s.width, .height = s.height, .maxDepth = s.maxDepth};
-    gpu::GpuRenderReport bvh, kd;
-    const Frame a = test::renderGpu(s, o, &bvh, "bvh");
-    const Frame b = test::renderGpu(s, o, &kd, "kd-stack");
-    if (onLlvmpipe()) {
-        EXPECT_EQ(bvh.resumedTiles, 1u);
-        EXPECT_GT(bvh.resumeDispatches, 1u);
-    }
-    EXPECT_EQ(bvh.pixelsCutShort, 0u);
-    EXPECT_EQ(bvh.raysTraced, kd.raysTraced);
-    EXPECT_EQ(bvh.shadowRays, kd.shadowRays);
-    expectSameFrames(a, b);
+    expectResumedLikeReference(kBurstScene, "bvh", "kd-stack");
 }
 
 }  // namespace
