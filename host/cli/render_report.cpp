@@ -37,7 +37,8 @@ nlohmann::json gpuJson(const gpu::GpuRenderReport& g) {
                         {"upload_ms", g.uploadMs}, {"pipeline_ms", g.pipelineMs}, {"gpu_ms", g.gpuMs},
                         {"dispatch_ms", g.renderMs}, {"rays", g.raysTraced}, {"shadow_rays", g.shadowRays},
                         {"capped_rays", g.cappedRays}, {"features", features},
-                        {"resumed", {{"tiles", g.resumedTiles}, {"strip_rows", g.resumeRows},
+                        {"resumed", {{"tiles", g.resumedTiles}, {"from_start", g.resumedFromStart},
+                                     {"strip_rows", g.resumeRows},
                                      {"dispatches", g.resumeDispatches}}}};
     if (g.features.countTraversal)
         j["traversal"] = {{"nodes", g.nodesVisited}, {"leaves", g.leavesVisited},
@@ -53,8 +54,9 @@ void printGpuStats(const gpu::GpuRenderReport& g) {
                 g.kernel.c_str(), g.tiles, g.submissions, double(g.bytesUploaded) / (1 << 20),
                 double(g.accelBytes) / (1 << 20));
     if (g.resumedTiles > 0)
-        std::printf("resumed:     %u tiles beyond the driver's loop budget, in strips of %u rows, %u dispatches\n",
-                    g.resumedTiles, g.resumeRows, g.resumeDispatches);
+        std::printf("resumed:     %u tiles beyond the driver's loop budget%s, in strips of %u rows, %u dispatches\n",
+                    g.resumedTiles, g.resumedFromStart ? " (from the start)" : "", g.resumeRows,
+                    g.resumeDispatches);
     std::printf("rays:        %llu camera and secondary, %llu shadow, %llu capped\n",
                 (unsigned long long)g.raysTraced, (unsigned long long)g.shadowRays,
                 (unsigned long long)g.cappedRays);

@@ -216,8 +216,6 @@ void renderTiles(const VulkanContext& ctx, const ComputeKernel& kernel, const Bu
                  std::span<const Tile> tiles, uint32_t perSubmission, const GpuFrameParams& base, Frame& frame,
                  GpuRenderReport& rep, const TileProgress& progress, std::vector<Tile>& unfinished) {
     const BatchTimer timer(ctx);
-    rep.tiles = uint32_t(tiles.size());
-    rep.gpuMs = timer.enabled() ? 0.0 : -1.0;
     for (size_t first = 0; first < tiles.size(); first += perSubmission) {
         const std::span<const Tile> batch = tiles.subspan(first, std::min<size_t>(perSubmission, tiles.size() - first));
         OneShotCommands commands(ctx);
@@ -235,6 +233,14 @@ void renderTiles(const VulkanContext& ctx, const ComputeKernel& kernel, const Bu
         }
         if (progress) progress(uint32_t(first + batch.size()), uint32_t(tiles.size()));
     }
+}
+
+// Brute force over more triangles than one budget covers for a camera ray and its shadow rays (four
+// triangles per loop pass) would run out on every tile of llvmpipe: such a render is resumable from
+// the start, without a plain pass whose every tile would be rendered again.
+bool resumableFromStart(const VulkanContext& ctx, const Scene& scene, accel::Kernel kernel) {
+    const uint64_t passes = uint64_t(scene.triangles.size()) * (1 + scene.lights.size()) / 4;
+    return ctx.info().loopBudget && kernel == accel::Kernel::Brute && passes > VKRAY_RESUMABLE_LOOP_BUDGET;
 }
 
 // Rows of a strip of the resumable variant: its records and pending-ray stacks must fit one storage
@@ -276,17 +282,19 @@ void resumeStrip(const VulkanContext& ctx, const ComputeKernel& kernel, const Re
 // strip, into `frame`.
 void renderResumable(const VulkanContext& ctx, ComputeKernel& kernel, const SceneBuffers& scene,
                      const AccelBuffers& accel, const Buffer& pixels, std::span<const Tile> tiles, int maxDepth,
-                     const GpuFrameParams& base, Frame& frame, GpuRenderReport& rep) {
+                     const GpuFrameParams& base, Frame& frame, GpuRenderReport& rep, const TileProgress& progress) {
     const uint32_t rows = resumeStripRows(ctx, maxDepth);
     const ResumeBuffers resume(ctx, uint64_t(rows) * VKRAY_TILE_SIZE, uint64_t(maxDepth));
     bindBuffers(kernel, scene, accel, pixels, resume);
     rep.resumedTiles = uint32_t(tiles.size());
     rep.resumeRows = rows;
-    for (const Tile& tile : tiles)
-        for (const Tile& strip : splitIntoStrips(tile, rows)) {
+    for (size_t t = 0; t < tiles.size(); ++t) {
+        for (const Tile& strip : splitIntoStrips(tiles[t], rows)) {
             resumeStrip(ctx, kernel, resume, pixels, strip, base, rep);  // the strip as a tile of its own
             readTile(static_cast<const GpuPixel*>(pixels.mapped()), strip, frame, rep);
         }
+        if (progress) progress(uint32_t(t + 1), uint32_t(tiles.size()));
+    }
 }
 
 // llvmpipe ends all loops of an invocation after 65535 iterations in total; the kernel flags such
@@ -384,14 +392,18 @@ Frame renderOnGpu(const VulkanContext& ctx, const Scene& scene, const RenderOpti
     frame.resize(options.width, options.height);
     if (options.countTraversal) rep.nodesPerPixel.assign(frame.color.size(), 0u);
     start = Clock::now();
+    rep.tiles = uint32_t(tiles.size());
+    rep.gpuMs = ctx.timestampValidBits() > 0 ? 0.0 : -1.0;
     std::vector<Tile> unfinished;
-    renderTiles(ctx, kernel, pixels, tiles, perSubmission, baseParams, frame, rep, progress, unfinished);
+    rep.resumedFromStart = resumableFromStart(ctx, scene, accel.kernel);
+    if (rep.resumedFromStart) unfinished = tiles;
+    else renderTiles(ctx, kernel, pixels, tiles, perSubmission, baseParams, frame, rep, progress, unfinished);
     if (!unfinished.empty()) {
         ShaderFeatures resumable = rep.features;
         resumable.resumable = true;
         ComputeKernel& again = kernels->kernel(rep.kernel, spirv, resumable.specialization());
         renderResumable(ctx, again, sceneBuffers, accelBuffers, pixels, unfinished, options.maxDepth, baseParams,
-                        frame, rep);
+                        frame, rep, progress);
     }
     rep.renderMs = msSince(start);
     ctx.checkValidation();

@@ -39,6 +39,7 @@ struct GpuRenderReport {
     // Tiles the plain kernel could not finish within the driver's loop budget, rendered again by the
     // resumable variant in strips of resumeRows rows, and that variant's dispatches.
     uint32_t resumedTiles = 0, resumeRows = 0, resumeDispatches = 0;
+    bool resumedFromStart = false;  // every tile resumable at once (brute force beyond one budget)
     // Traversal work over all rays; filled only with RenderOptions::countTraversal.
     uint64_t nodesVisited = 0, leavesVisited = 0, trianglesTested = 0, restarts = 0;
     // Nodes visited by all rays of each pixel, top row first (a traversal-cost heatmap); filled

@@ -64,6 +64,7 @@ DeviceInfo describe(const vk::raii::PhysicalDevice& pd, uint32_t index) {
     d.driver = std::string(drv.driverName.data());
     if (drv.driverInfo[0] != '\0') d.driver += " / " + std::string(drv.driverInfo.data());
     d.apiVersion = versionString(props.apiVersion);
+    d.loopBudget = drv.driverID == vk::DriverId::eMesaLlvmpipe;
     d.maxStorageBufferRange = props.limits.maxStorageBufferRange;
     d.maxTexelBufferElements = props.limits.maxTexelBufferElements;
     d.timestampPeriodNs = props.limits.timestampPeriod;

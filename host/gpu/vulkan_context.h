@@ -26,6 +26,9 @@ struct DeviceInfo {
     uint64_t deviceLocalBytes = 0;
     float timestampPeriodNs = 0.0f;
     bool hasCompute = false;
+    // llvmpipe (lavapipe): all loops of an invocation end once they ran 65535 iterations together
+    // (Mesa's LP_MAX_TGSI_LOOP_ITERATIONS); render_main.glsl, "Resumable pixels".
+    bool loopBudget = false;
 };
 
 struct ContextOptions {

@@ -31,8 +31,7 @@ bool gProgress = false;
 // copies sit on the exits it knows; seen: a pixel kept the pending ray but lost the radiance added
 // in the same iteration). So the resumable variant counts the same iterations itself, once per
 // subgroup in workgroup memory, and every loop of the kernel ends through its own condition once
-// kLoopBudget is spent: all values stay exact, and the pixel saves where it is.
-const uint kLoopBudget = 60000u;  // below 65535: room for the few fixed-count loops not counted
+// VKRAY_RESUMABLE_LOOP_BUDGET is spent: all values stay exact, and the pixel saves where it is.
 shared uint sLoopIterations[VKRAY_WORKGROUP_X * VKRAY_WORKGROUP_Y];  // per subgroup
 
 // Whether llvmpipe's loop budget ran out anywhere in this invocation: from then on every loop ends
@@ -57,7 +56,7 @@ bool budgetLeft() {
     if (!RESUMABLE) return true;
     if (subgroupElect()) sLoopIterations[gl_SubgroupID] += 1u;
     subgroupMemoryBarrierShared();
-    return sLoopIterations[gl_SubgroupID] <= kLoopBudget;
+    return sLoopIterations[gl_SubgroupID] <= VKRAY_RESUMABLE_LOOP_BUDGET;
 }
 uint gCappedRays = 0;
 uint gShadowRays = 0;

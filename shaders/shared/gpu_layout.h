@@ -72,6 +72,9 @@ using uvec4 = glm::uvec4;
 // the driver's loop budget saves where it is (VKRAY_BINDING_RESUME, _RESUME_RAYS) and goes on in the
 // next dispatch. Off, the saving is compiled out and such a pixel is flagged VKRAY_PIXEL_CUT_SHORT.
 #define VKRAY_SPEC_RESUMABLE 8
+// The resumable variant's own loop budget: passes of a subgroup through its loops' headers per
+// dispatch, below llvmpipe's 65535 to leave room for the few fixed-count loops it does not count.
+#define VKRAY_RESUMABLE_LOOP_BUDGET 60000u
 #define VKRAY_SPEC_COUNT 9
 #define VKRAY_SINGLE_SLOT_LEAF_LIMIT 128
 

@@ -12,9 +12,10 @@
 namespace vkray {
 namespace {
 
-// 60,000 triangles, three lights and mirror reflections: brute force tests 4 triangles per loop
-// iteration, so one pixel's camera ray and shadow rays alone need about 60,000 iterations, its
-// reflected rays as many again, beyond llvmpipe's 65,535 per invocation.
+// 50,000 triangles, three lights and mirror reflections: brute force tests 4 triangles per loop
+// iteration, so one pixel's camera ray and shadow rays need about 50,000 iterations (within one
+// budget: the plain kernel runs first), its reflected rays as many again, beyond llvmpipe's 65,535
+// per invocation.
 constexpr const char* kHeavyScene = R"(
 size 24 16
 maxdepth 3
@@ -26,7 +27,21 @@ ambient 0.05 0.04 0.04
 diffuse 0.75 0.35 0.2
 specular 0.4 0.4 0.4
 shininess 60
-generate spheres 60000 1
+generate spheres 50000 1
+)";
+
+// 100,000 triangles and two lights: a camera ray and its shadow rays need 75,000 loop passes of
+// brute force, beyond one budget, so on llvmpipe every tile is resumable from the start.
+constexpr const char* kBruteFromStartScene = R"(
+size 8 8
+maxdepth 2
+camera 0 1.7 3.2  0 0.25 0  0 1 0  20
+directional 0.4 1 0.7  0.5 0.5 0.48
+point -2.5 3 2.5  0.5 0.5 0.55
+ambient 0.05 0.04 0.04
+diffuse 0.75 0.35 0.2
+specular 0.4 0.4 0.4
+generate spheres 100000 1
 )";
 
 // 40,000 triangles sharing one centroid seen from close by, four lights, mirrors: every ray crosses
@@ -59,7 +74,8 @@ bool onLlvmpipe() { return test::gpuContext().info().name.find("llvmpipe") != st
 
 // Renders `sceneText` with `resumed`, which must run out of llvmpipe's budget and be resumed there,
 // and with `reference`, which must not, and expects the same frames and ray counts.
-void expectResumedLikeReference(const char* sceneText, std::string_view resumed, std::string_view reference) {
+void expectResumedLikeReference(const char* sceneText, std::string_view resumed, std::string_view reference,
+                                bool fromStart = false) {
     const Scene s = parseSceneText(sceneText, "test.scene", ".");
     const RenderOptions o{.width = s.width, .height = s.height, .maxDepth = s.maxDepth};
     gpu::GpuRenderReport a, b;
@@ -69,6 +85,7 @@ void expectResumedLikeReference(const char* sceneText, std::string_view resumed,
         // The case these tests are for: the plain kernel could not finish, the resumable one did.
         EXPECT_EQ(a.resumedTiles, 1u);
         EXPECT_GT(a.resumeDispatches, 1u);
+        EXPECT_EQ(a.resumedFromStart, fromStart);
         EXPECT_EQ(b.resumedTiles, 0u);
     }
     EXPECT_EQ(a.pixelsCutShort, 0u);
@@ -79,6 +96,10 @@ void expectResumedLikeReference(const char* sceneText, std::string_view resumed,
 
 TEST(ResumablePixels, BruteForceBeyondTheLoopBudgetMatchesTheBvhBitForBit) {
     expectResumedLikeReference(kHeavyScene, "brute", "bvh");
+}
+
+TEST(ResumablePixels, BruteForceOverManyTrianglesIsResumableFromTheStart) {
+    expectResumedLikeReference(kBruteFromStartScene, "brute", "bvh", true);
 }
 
 TEST(ResumablePixels, BvhOverOverlappingTrianglesBeyondTheLoopBudgetMatchesTheKdTree) {
