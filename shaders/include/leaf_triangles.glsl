@@ -36,17 +36,18 @@ void testSlot(uint slot, uint end, WatertightRay ray, const bool anyHit, inout H
 // Tests slots [i, end) on (0, best.t) and keeps every hit that beats `best` (beats(),
 // triangle.glsl). With anyHit the loop ends at the first hit: best.triangle >= 0, best.t unchanged.
 // anyHit and perIteration (kBruteSlotsPerIteration or LEAF_SLOTS, 1 or 4) are constants at every
-// call, so the compiler folds every test of them. Returns false, with the pixel flagged, if the
-// loop ended before either (the driver's budget, or the resumable variant's own: budgetLeft());
-// `i` is then the first slot not tested (brute force resumes there: render_main.glsl, "Resumable
+// call, so the compiler folds every test of them. In the resumable variant, returns false, with
+// the pixel flagged, if the loop ended before either (its budget: budgetLeft()); `i` is then the
+// first slot not tested (brute force resumes there: render_main.glsl, "Resumable
 // pixels"). The triangles counted are those the loop reached.
 bool testSlotsFrom(inout uint i, uint end, WatertightRay ray, const bool anyHit, const uint perIteration,
                    inout Hit best) {
     const uint begin = i;
-    // Whether the loop ran to its end is told by an iteration count, not by testing its condition
-    // again: the compiler takes a loop to end only when its condition is false and folds such a
-    // test to true, while llvmpipe's budget ends the loop anyway (seen on lavapipe: cut-short
-    // brute-force loops went unflagged and returned a miss).
+    // The resumable variant tells whether the loop ran to its end by an iteration count, not by
+    // testing its condition again: the compiler takes a loop to end only when its condition is
+    // false and folds such a test to true (seen on lavapipe: cut-short brute-force loops went
+    // unflagged and returned a miss). The plain kernel counts nothing here: a loop llvmpipe's
+    // budget ended is caught for the whole pixel by loopBudgetRanOut() (trace_status.glsl).
     const uint needed = i < end ? (end - i + perIteration - 1u) / perIteration : 0u;
     uint iterations = 0u;
     for (; budgetLeft() && i < end && !(anyHit && best.triangle >= 0); i += perIteration) {
@@ -56,10 +57,10 @@ bool testSlotsFrom(inout uint i, uint end, WatertightRay ray, const bool anyHit,
             testSlot(i + 2u, end, ray, anyHit, best);
             testSlot(i + 3u, end, ray, anyHit, best);
         }
-        ++iterations;
+        if (RESUMABLE) ++iterations;
     }
     countTriangles(min(i, end) - begin);
-    const bool complete = iterations >= needed || (anyHit && best.triangle >= 0);
+    const bool complete = !RESUMABLE || iterations >= needed || (anyHit && best.triangle >= 0);
     if (!complete) gLoopCutShort = true;
     return complete;
 }

@@ -145,12 +145,9 @@ uint traceRays(inout PixelTrace pt) {
         pt.hit = hit;
         pt.light = 0u;
         pt.color = unlitShading(m);
-        if (!shadeAndSpawn(pt, ray, s, m)) {
-            if (RESUMABLE) {
-                ++pt.rays;
-                return VKRAY_RESUME_LIGHTS;
-            }
-            gLoopCutShort = true;
+        if (!shadeAndSpawn(pt, ray, s, m)) {  // the resumable variant only
+            ++pt.rays;
+            return VKRAY_RESUME_LIGHTS;
         }
     }
     return pt.stackTop > 0 ? VKRAY_RESUME_RAYS : VKRAY_RESUME_DONE;

@@ -96,15 +96,16 @@ bool traceShadowRay(vec3 origin, vec3 dir, float tmax) {
 vec3 unlitShading(GpuMaterial m) { return m.emission.rgb + (1.0 - m.transmit.rgb) * m.ambient; }
 
 // Adds lights [light, lightCount) with their shadow rays to `color` (docs/shading.md, "Local
-// shading"). Returns false when the loop stopped early: the driver's loop budget ran out, and in
-// the resumable variant a shadow ray was cut short; `light` is then the light to go on with (the
-// lights before it are in `color`).
+// shading"). In the resumable variant, returns false when the loop stopped early (its budget ran
+// out, or a shadow ray was cut short); `light` is then the light to go on with (the lights before
+// it are in `color`). The plain kernel always returns true: there a loop ended by the driver is
+// caught by loopBudgetRanOut() (trace_status.glsl).
 bool addLights(SurfacePoint s, GpuMaterial m, vec3 V, inout uint light, inout vec3 color) {
     if (!HAS_POINT_LIGHTS && !HAS_DIRECTIONAL_LIGHTS) return true;
     const vec3 shadowOrigin = offsetRayOrigin(s.position, s.facing, s.offset);
     const uint lightCount = params.counts.y;
-    // Counted apart from `light`, as testSlotsFrom() counts (leaf_triangles.glsl): a test of the
-    // loop's own condition after it would be folded to true.
+    // Counted apart from `light` in the resumable variant, as testSlotsFrom() counts
+    // (leaf_triangles.glsl): a test of the loop's own condition after it would be folded to true.
     const uint needed = light < lightCount ? lightCount - light : 0u;
     uint iterations = 0u;
     for (; budgetLeft() && light < lightCount; ++light) {
@@ -117,9 +118,9 @@ bool addLights(SurfacePoint s, GpuMaterial m, vec3 V, inout uint light, inout ve
             if (!blocked) color += term;
         }
         gProgress = true;
-        ++iterations;
+        if (RESUMABLE) ++iterations;
     }
-    return iterations >= needed;
+    return !RESUMABLE || iterations >= needed;
 }
 
 // Unpolarised Fresnel reflectance of a dielectric; eta = n_incident / n_transmitted.
