@@ -98,10 +98,15 @@ void checkAccel(const Json& a, int width, int height) {
     ASSERT_EQ(a["ray_kinds"].size(), 3u) << where;
     EXPECT_EQ(a["ray_kinds"][0]["rays"].get<uint64_t>(), uint64_t(width) * uint64_t(height)) << where;
     for (const Json& k : a["ray_kinds"]) {
-        // cornell has every kind of ray: each must have been traced and timed.
+        // cornell has every kind of ray: each must have been traced. Its rate is a difference of
+        // two medians, which on a loaded machine can vanish into the noise: then the figure is
+        // empty and the report says why, never a negative or made-up rate.
         const std::string kind = where + " " + k["kind"].get<std::string>();
         EXPECT_GT(k["rays"].get<uint64_t>(), 0u) << kind;
-        expectPositive(k, "mrays_per_s", kind);
+        if (k["mrays_per_s"].is_null())
+            EXPECT_EQ(k.value("note", ""), "time difference within the noise") << kind;
+        else
+            expectPositive(k, "mrays_per_s", kind);
     }
     for (const char* key : {"nodes", "leaves", "triangles"}) expectPositive(a["per_ray"], key, where + ".per_ray");
     expectPositive(a["per_primary_ray"], "nodes", where + ".per_primary_ray");
