@@ -59,6 +59,9 @@ const TuningOption kTuning[] = {
      [](AccelSpec& s, double v) { s.kd.emptyBonus = v; }},
     {"--kd-max-depth", "kd-tree: maximum depth (default 8 + 1.3 log2 N)", isKd, 1, kd::KdConfig::kMaxDepthLimit,
      false, true, "", [](AccelSpec& s, double v) { s.kd.maxDepth = int(v); }},
+    {"--kd-max-duplication", "kd-tree: most references per triangle in the whole tree (default 8)", isKd, 1.0,
+     1e9, false, false, "--kd-max-duplication must be a number of references per triangle, 1 or more",
+     [](AccelSpec& s, double v) { s.kd.maxDuplication = v; }},
 };
 
 bool accepts(const TuningOption& o, double v) {
@@ -131,7 +134,8 @@ std::string structureKey(const AccelSpec& spec) {
     case Family::Brute: return "brute";
     case Family::Bvh: return "bvh " + spec.bvh.describe();
     case Family::Kd:
-        return "kd " + spec.kd.describe() + " depth " + (spec.kd.maxDepth ? std::to_string(*spec.kd.maxDepth) : "auto");
+        return "kd " + spec.kd.describe() + " depth " + (spec.kd.maxDepth ? std::to_string(*spec.kd.maxDepth) : "auto") +
+               " duplication " + shortNumber(spec.kd.maxDuplication);
     }
     return spec.name;
 }

@@ -5,6 +5,7 @@
 
 #include "accel/kd/kd_traversal.h"
 #include "accel/kd/sah_kd_builder.h"
+#include "core/format.h"
 #include "geometry/brute_force.h"
 
 namespace vkray::accel {
@@ -61,6 +62,8 @@ public:
             {"max_depth", double(f.maxDepth), "limit " + std::to_string(config_.resolvedMaxDepth(f.indexedTriangles))},
             {"mean_triangles_per_leaf", f.meanTrianglesPerLeaf(), "references / leaves"},
             {"duplicated_references", double(f.duplicatedReferences()), "references beyond one per triangle"},
+            {"references_per_triangle", f.indexedTriangles ? double(f.references) / double(f.indexedTriangles) : 0.0,
+             "budget " + shortNumber(config_.maxDuplication)},
             {"sah_cost", f.sahCost, config_.describe()},
             {"gpu_bytes", double(data.bytes()), "bytes"},
         };

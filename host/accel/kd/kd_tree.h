@@ -36,6 +36,13 @@ struct KdConfig {
     // Deepest level a node may sit at (the root is level 0), at most kMaxDepthLimit; unset: pbrt's
     // 8 + 1.3 log2 N, rounded, and capped at kMaxDepthLimit.
     std::optional<int> maxDepth;
+    // At most this many references per triangle in the whole tree: along any path from the root the
+    // splits' duplications ((nBelow + nAbove) / n) multiply to at most this (sah_kd_builder.cpp).
+    // The SAH alone keeps cutting a region crossed by many large overlapping triangles down to the
+    // depth limit, each cut referencing most of them on both sides: 100,000 random overlapping
+    // triangles made 30 references and 84 nodes per triangle without it. The meshes of scenes/ stay
+    // below it (docs/kdtree.md, "A budget of references").
+    double maxDuplication = 8.0;
     // The kd-stack kernel's stack holds one entry per level.
     static constexpr int kMaxDepthLimit = VKRAY_KD_MAX_DEPTH;
 

@@ -2,18 +2,22 @@
 
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <atomic>
 #include <cmath>
 #include <limits>
 #include <memory>
 #include <mutex>
 #include <optional>
+#include <string>
 
 #include <tbb/enumerable_thread_specific.h>
+#include <tbb/parallel_for.h>
 #include <tbb/parallel_invoke.h>
 #include <tbb/parallel_sort.h>
 #include <tbb/task_arena.h>
 
+#include "core/error.h"
 #include "core/fork_join.h"
 #include "core/timing.h"
 #include "geometry/ray_triangle.h"
@@ -24,22 +28,50 @@ namespace {
 // Nodes with at least this many events build their two subtrees as parallel tasks; below it the
 // task overhead outweighs the work.
 constexpr size_t kParallelEvents = 1 << 13;
+// Nodes with at least this many events also sweep and distribute their three axes as parallel tasks.
+constexpr size_t kParallelAxesEvents = 1 << 16;
+
+// f(0), f(1), f(2): as three oneTBB tasks when `parallel`.
+template <class F>
+void forEachAxis(bool parallel, const F& f) {
+    if (parallel) tbb::parallel_invoke([&] { f(0); }, [&] { f(1); }, [&] { f(2); });
+    else for (int k = 0; k < 3; ++k) f(k);
+}
 
 // Wald and Havran 2006, section 4.2: at equal positions, ends sort before planars before starts,
 // which is the order the sweep needs to count each side.
 enum class EventType : uint8_t { End = 0, Planar = 1, Start = 2 };
 
-struct Event {
-    float pos;
-    uint32_t triangle;
-    EventType type;
-};
+// An event in 8 bytes that are also its sort key: the position's bits turned to sort like the float
+// (top 32), the type (2 bits), the triangle (30 bits). Integer order is the sweep's order: position,
+// then ends < planars < starts, then triangle, a total order, so the sort, hence the tree, is
+// deterministic. 8 bytes instead of the 12 of the fields side by side, in lists that are most of
+// the build's memory traffic.
+class Event {
+public:
+    static constexpr uint32_t kMaxTriangles = 1u << 30;
 
-bool operator<(const Event& a, const Event& b) {
-    if (a.pos != b.pos) return a.pos < b.pos;
-    if (a.type != b.type) return a.type < b.type;
-    return a.triangle < b.triangle;  // a total order: the sort, hence the tree, is deterministic
-}
+    Event(float pos, uint32_t triangle, EventType type)
+        : key_(uint64_t(orderedBits(pos)) << 32 | uint64_t(type) << 30 | triangle) {}
+
+    float pos() const {
+        const uint32_t u = uint32_t(key_ >> 32);
+        return std::bit_cast<float>(u & 0x80000000u ? u & 0x7fffffffu : ~u);
+    }
+    EventType type() const { return EventType((key_ >> 30) & 3u); }
+    uint32_t triangle() const { return uint32_t(key_) & (kMaxTriangles - 1); }
+    bool operator<(const Event& o) const { return key_ < o.key_; }
+
+private:
+    // Positive floats above negative ones, each in numeric order; -0 is made +0 first, so equal
+    // positions have equal bits.
+    static uint32_t orderedBits(float f) {
+        const uint32_t u = std::bit_cast<uint32_t>(f + 0.0f);
+        return u & 0x80000000u ? ~u : u | 0x80000000u;
+    }
+
+    uint64_t key_;
+};
 
 using AxisEvents = std::vector<Event>;
 using NodeEvents = std::array<AxisEvents, 3>;
@@ -51,6 +83,7 @@ struct SplitChoice {
     float pos = 0.0f;
     bool planarBelow = true;  // where triangles lying in the plane go
     double cost = std::numeric_limits<double>::infinity();
+    size_t below = 0, above = 0;  // triangles on each side
 };
 
 struct BuildNode {
@@ -138,14 +171,14 @@ void appendEvents(uint32_t triangle, const Box& b, NodeEvents& out) {
 
 // How many triangles the node holds: each has exactly one start or planar event on every axis.
 size_t triangleCount(const NodeEvents& ev) {
-    return size_t(std::count_if(ev[0].begin(), ev[0].end(), [](const Event& e) { return e.type != EventType::End; }));
+    return size_t(std::count_if(ev[0].begin(), ev[0].end(), [](const Event& e) { return e.type() != EventType::End; }));
 }
 
 // The node's triangles, ascending.
 std::vector<uint32_t> trianglesOf(const NodeEvents& ev) {
     std::vector<uint32_t> tris;
     for (const Event& e : ev[0])
-        if (e.type != EventType::End) tris.push_back(e.triangle);
+        if (e.type() != EventType::End) tris.push_back(e.triangle());
     std::sort(tris.begin(), tris.end());
     return tris;
 }
@@ -163,20 +196,37 @@ bool usableSplit(const Box& box, int axis, float pos) {
     return pos > box.lo[axis] && pos < box.hi[axis] && (pos == 0.0f || std::abs(pos) >= std::numeric_limits<float>::min());
 }
 
+// The children's surface areas along one axis are linear in the split position: the two faces
+// across the axis (`caps`) plus the four along it (`sides` per unit of length). Set once per sweep,
+// so each candidate costs a few multiplications instead of two boxes' areas.
+struct AxisAreas {
+    double lo, hi, caps, sides, invArea;
+
+    AxisAreas(const Box& box, int axis) {
+        const glm::dvec3 e = glm::dvec3(box.hi) - glm::dvec3(box.lo);
+        const double a = e[(axis + 1) % 3], b = e[(axis + 2) % 3];
+        lo = box.lo[axis];
+        hi = box.hi[axis];
+        caps = 2.0 * a * b;
+        sides = 2.0 * (a + b);
+        invArea = 1.0 / box.surfaceArea();
+    }
+};
+
 class Builder {
 public:
     Builder(const std::vector<Triangle>& tris, const KdConfig& config, const BuildProgress& progress)
         : tris_(tris), config_(config), progress_(progress) {}
 
-    std::unique_ptr<BuildNode> build(NodeEvents ev, const Box& box, int depth);
+    std::unique_ptr<BuildNode> build(NodeEvents ev, const Box& box, int depth, size_t n, double budget);
     void setMaxDepth(int d) { maxDepth_ = d; }
 
 private:
-    double splitCost(const Box& box, int axis, float pos, size_t nBelow, size_t nAbove) const;
-    void sweepAxis(int axis, const AxisEvents& ev, const Box& box, size_t n, SplitChoice& best) const;
-    SplitChoice findBestSplit(const NodeEvents& ev, const Box& box, size_t n) const;
+    double splitCost(const AxisAreas& areas, float pos, size_t nBelow, size_t nAbove) const;
+    void sweepAxis(int axis, const AxisEvents& ev, const Box& box, size_t n, double budget, SplitChoice& best) const;
+    SplitChoice findBestSplit(const NodeEvents& ev, const Box& box, size_t n, double budget, bool parallel) const;
     std::pair<NodeEvents, NodeEvents> splitEvents(NodeEvents ev, const SplitChoice& s, const Box& below,
-                                                  const Box& above);
+                                                  const Box& above, bool parallel);
     std::unique_ptr<BuildNode> makeLeaf(const NodeEvents& ev, int depth);
 
     const std::vector<Triangle>& tris_;
@@ -194,43 +244,56 @@ private:
     double reported_ = 0.0;
 };
 
-double Builder::splitCost(const Box& box, int axis, float pos, size_t nBelow, size_t nAbove) const {
-    const auto [below, above] = splitBox(box, axis, pos);
-    const double invArea = 1.0 / box.surfaceArea();
+
+double Builder::splitCost(const AxisAreas& areas, float pos, size_t nBelow, size_t nAbove) const {
+    const double below = areas.caps + areas.sides * (double(pos) - areas.lo);
+    const double above = areas.caps + areas.sides * (areas.hi - double(pos));
     const double bonus = (nBelow == 0 || nAbove == 0) ? 1.0 - config_.emptyBonus : 1.0;
-    return config_.traversalCost + config_.intersectionCost * bonus *
-                                       (below.surfaceArea() * invArea * double(nBelow) +
-                                        above.surfaceArea() * invArea * double(nAbove));
+    return config_.traversalCost +
+           config_.intersectionCost * bonus * areas.invArea * (below * double(nBelow) + above * double(nAbove));
 }
 
 // The plane sweep of Wald and Havran (section 4.2, Algorithm 4) with their classification: at plane
 // p, below = triangles starting before p (those ending at p touch it from below), above = triangles
 // ending after p (those starting at p touch it from above); triangles flat in p are tried on each side.
-void Builder::sweepAxis(int axis, const AxisEvents& ev, const Box& box, size_t n, SplitChoice& best) const {
+// A split whose two sides together hold more references than `budget` is not a candidate (the half
+// absorbs the rounding of budgets handed down in proportion: counts are whole).
+void Builder::sweepAxis(int axis, const AxisEvents& ev, const Box& box, size_t n, double budget,
+                        SplitChoice& best) const {
+    const AxisAreas areas(box, axis);
     size_t startedBefore = 0, endingAfter = n;
     for (size_t i = 0; i < ev.size();) {
-        const float p = ev[i].pos;
+        const float p = ev[i].pos();
         size_t ends = 0, planars = 0, starts = 0;
-        for (; i < ev.size() && ev[i].pos == p && ev[i].type == EventType::End; ++i) ++ends;
-        for (; i < ev.size() && ev[i].pos == p && ev[i].type == EventType::Planar; ++i) ++planars;
-        for (; i < ev.size() && ev[i].pos == p && ev[i].type == EventType::Start; ++i) ++starts;
+        for (; i < ev.size() && ev[i].pos() == p && ev[i].type() == EventType::End; ++i) ++ends;
+        for (; i < ev.size() && ev[i].pos() == p && ev[i].type() == EventType::Planar; ++i) ++planars;
+        for (; i < ev.size() && ev[i].pos() == p && ev[i].type() == EventType::Start; ++i) ++starts;
         endingAfter -= ends + planars;
-        if (usableSplit(box, axis, p)) {
+        if (usableSplit(box, axis, p) && double(startedBefore + endingAfter + planars) <= budget + 0.5) {
             const size_t below = startedBefore, above = endingAfter;
-            const double planarBelowCost = splitCost(box, axis, p, below + planars, above);
-            const double planarAboveCost = splitCost(box, axis, p, below, above + planars);
+            const double planarBelowCost = splitCost(areas, p, below + planars, above);
+            const double planarAboveCost = splitCost(areas, p, below, above + planars);
             const bool planarBelow = planarBelowCost <= planarAboveCost;
             const double cost = planarBelow ? planarBelowCost : planarAboveCost;
-            if (cost < best.cost) best = SplitChoice{axis, p, planarBelow, cost};
+            if (cost < best.cost)
+                best = SplitChoice{axis, p, planarBelow, cost, below + (planarBelow ? planars : 0),
+                                   above + (planarBelow ? 0 : planars)};
         }
         startedBefore += starts + planars;
     }
 }
 
-SplitChoice Builder::findBestSplit(const NodeEvents& ev, const Box& box, size_t n) const {
-    SplitChoice best;
-    if (!(box.surfaceArea() > 0.0)) return best;
-    for (int axis = 0; axis < 3; ++axis) sweepAxis(axis, ev[axis], box, n, best);
+// The three axes' sweeps are independent: a big node sweeps them as parallel tasks (the top levels
+// would otherwise run on one thread while the others wait), then takes the best in axis order with
+// the same strict comparison as one sweep after the other, so the choice is the same either way.
+SplitChoice Builder::findBestSplit(const NodeEvents& ev, const Box& box, size_t n, double budget,
+                                   bool parallel) const {
+    if (!(box.surfaceArea() > 0.0)) return {};
+    std::array<SplitChoice, 3> perAxis;
+    forEachAxis(parallel, [&](int axis) { sweepAxis(axis, ev[axis], box, n, budget, perAxis[axis]); });
+    SplitChoice best = perAxis[0];
+    for (int axis = 1; axis < 3; ++axis)
+        if (perAxis[axis].cost < best.cost) best = perAxis[axis];
     return best;
 }
 
@@ -238,48 +301,61 @@ SplitChoice Builder::findBestSplit(const NodeEvents& ev, const Box& box, size_t 
 // one-sided triangle's events to its side in order, clip the straddling triangles to both children,
 // sort their few new events and merge them in. Everything stays sorted without a full sort.
 std::pair<NodeEvents, NodeEvents> Builder::splitEvents(NodeEvents ev, const SplitChoice& s, const Box& below,
-                                                       const Box& above) {
+                                                       const Box& above, bool parallel) {
     std::vector<Side>& side = sides_.local();
     if (side.size() < tris_.size()) side.resize(tris_.size());
     const AxisEvents& ek = ev[s.axis];
-    for (const Event& e : ek) side[e.triangle] = Side::Both;
+    for (const Event& e : ek) side[e.triangle()] = Side::Both;
     for (const Event& e : ek) {
         // Wald and Havran 5.1: ending at the plane = below only, starting at it = above only.
-        if (e.type == EventType::End && e.pos <= s.pos) side[e.triangle] = Side::BelowOnly;
-        if (e.type == EventType::Start && e.pos >= s.pos) side[e.triangle] = Side::AboveOnly;
-        if (e.type == EventType::Planar) {
-            const bool goesBelow = e.pos < s.pos || (e.pos == s.pos && s.planarBelow);
-            side[e.triangle] = goesBelow ? Side::BelowOnly : Side::AboveOnly;
+        if (e.type() == EventType::End && e.pos() <= s.pos) side[e.triangle()] = Side::BelowOnly;
+        if (e.type() == EventType::Start && e.pos() >= s.pos) side[e.triangle()] = Side::AboveOnly;
+        if (e.type() == EventType::Planar) {
+            const bool goesBelow = e.pos() < s.pos || (e.pos() == s.pos && s.planarBelow);
+            side[e.triangle()] = goesBelow ? Side::BelowOnly : Side::AboveOnly;
         }
     }
     std::vector<uint32_t> straddling;
     for (const Event& e : ek)
-        if (e.type == EventType::Start && side[e.triangle] == Side::Both) straddling.push_back(e.triangle);
+        if (e.type() == EventType::Start && side[e.triangle()] == Side::Both) straddling.push_back(e.triangle());
 
+    // Each axis's lists are distributed on their own, in parallel for a big node. The tasks read this
+    // thread's side marks, so the wait is isolated: this thread runs no other node's task (which
+    // would overwrite the marks) until the three are done.
     NodeEvents belowEv, aboveEv;
-    for (int k = 0; k < 3; ++k) {
+    const auto distribute = [&](int k) {
+        size_t nBelow = 0, nAbove = 0;
         for (const Event& e : ev[k]) {
-            if (side[e.triangle] == Side::BelowOnly) belowEv[k].push_back(e);
-            else if (side[e.triangle] == Side::AboveOnly) aboveEv[k].push_back(e);
+            nBelow += side[e.triangle()] == Side::BelowOnly;
+            nAbove += side[e.triangle()] == Side::AboveOnly;
+        }
+        // Room for the straddlers' new events too (at most two per axis): no reallocation below.
+        belowEv[k].reserve(nBelow + 2 * straddling.size());
+        aboveEv[k].reserve(nAbove + 2 * straddling.size());
+        for (const Event& e : ev[k]) {
+            if (side[e.triangle()] == Side::BelowOnly) belowEv[k].push_back(e);
+            else if (side[e.triangle()] == Side::AboveOnly) aboveEv[k].push_back(e);
         }
         AxisEvents().swap(ev[k]);  // free the parent's lists before the children grow theirs
-    }
+    };
+    tbb::this_task_arena::isolate([&] { forEachAxis(parallel, distribute); });
     NodeEvents newBelow, newAbove;
     for (uint32_t t : straddling) {
         appendEvents(t, clippedBounds(tris_[t], below), newBelow);
         appendEvents(t, clippedBounds(tris_[t], above), newAbove);
     }
+    // In place, in the room reserved above: the merge buffers only the few new events.
     const auto mergeIn = [](AxisEvents& kept, AxisEvents& fresh) {
+        if (fresh.empty()) return;
         std::sort(fresh.begin(), fresh.end());
-        AxisEvents merged;
-        merged.reserve(kept.size() + fresh.size());
-        std::merge(kept.begin(), kept.end(), fresh.begin(), fresh.end(), std::back_inserter(merged));
-        kept.swap(merged);
+        const size_t old = kept.size();
+        kept.insert(kept.end(), fresh.begin(), fresh.end());
+        std::inplace_merge(kept.begin(), kept.begin() + ptrdiff_t(old), kept.end());
     };
-    for (int k = 0; k < 3; ++k) {
+    forEachAxis(parallel, [&](int k) {
         mergeIn(belowEv[k], newBelow[k]);
         mergeIn(aboveEv[k], newAbove[k]);
-    }
+    });
     return {std::move(belowEv), std::move(aboveEv)};
 }
 
@@ -298,10 +374,16 @@ std::unique_ptr<BuildNode> Builder::makeLeaf(const NodeEvents& ev, int depth) {
     return leaf;
 }
 
-std::unique_ptr<BuildNode> Builder::build(NodeEvents ev, const Box& box, int depth) {
-    const size_t n = triangleCount(ev);
+// `budget`: the most references this subtree's leaves may hold together (KdConfig::maxDuplication).
+// A split hands it on in proportion to the two sides' counts, so a child's budget over its count is
+// the parent's divided by the split's duplication (nBelow + nAbove) / n: along any path the
+// duplications multiply to at most maxDuplication, and the whole tree holds at most that many
+// references per triangle, whatever the geometry.
+// `n`: the node's triangles (the split that made it counted them).
+std::unique_ptr<BuildNode> Builder::build(NodeEvents ev, const Box& box, int depth, size_t n, double budget) {
     if (n == 0 || depth >= maxDepth_) return makeLeaf(ev, depth);
-    const SplitChoice s = findBestSplit(ev, box, n);
+    const bool parallel = ev[0].size() >= kParallelEvents, parallelAxes = ev[0].size() >= kParallelAxesEvents;
+    const SplitChoice s = findBestSplit(ev, box, n, budget, parallelAxes);
     // SAH termination (Wald and Havran, section 3): split only when it is cheaper than a leaf.
     if (s.axis < 0 || s.cost >= config_.intersectionCost * double(n)) return makeLeaf(ev, depth);
 
@@ -309,10 +391,14 @@ std::unique_ptr<BuildNode> Builder::build(NodeEvents ev, const Box& box, int dep
     node->axis = s.axis;
     node->split = s.pos;
     const auto [belowBox, aboveBox] = splitBox(box, s.axis, s.pos);
-    const bool parallel = ev[0].size() >= kParallelEvents;
-    auto [belowEv, aboveEv] = splitEvents(std::move(ev), s, belowBox, aboveBox);
-    const auto buildBelow = [&, &bEv = belowEv, &bBox = belowBox] { node->below = build(std::move(bEv), bBox, depth + 1); };
-    const auto buildAbove = [&, &aEv = aboveEv, &aBox = aboveBox] { node->above = build(std::move(aEv), aBox, depth + 1); };
+    auto [belowEv, aboveEv] = splitEvents(std::move(ev), s, belowBox, aboveBox, parallelAxes);
+    const double share = budget / double(s.below + s.above);
+    const auto buildBelow = [&, &bEv = belowEv, &bBox = belowBox] {
+        node->below = build(std::move(bEv), bBox, depth + 1, s.below, share * double(s.below));
+    };
+    const auto buildAbove = [&, &aEv = aboveEv, &aBox = aboveBox] {
+        node->above = build(std::move(aEv), aBox, depth + 1, s.above, share * double(s.above));
+    };
     forkJoin(parallel, buildBelow, buildAbove);
     return node;
 }
@@ -343,13 +429,24 @@ KdBuildResult buildSahKdTree(const std::vector<Triangle>& triangles, const KdCon
     tbb::task_arena arena(threads > 0 ? threads : tbb::task_arena::automatic);
     arena.execute([&] {
         if (progress) progress("kd-tree: events", 0.0);
+        if (triangles.size() > Event::kMaxTriangles)
+            throw Error("the kd-tree builder takes at most " + std::to_string(Event::kMaxTriangles) +
+                        " triangles (the scene has " + std::to_string(triangles.size()) + ")");
+        // Which triangles are degenerate, in parallel (double-precision cross products).
+        std::vector<uint8_t> degenerate(triangles.size());
+        tbb::parallel_for(tbb::blocked_range<size_t>(0, triangles.size(), 1 << 14), [&](const auto& r) {
+            for (size_t t = r.begin(); t != r.end(); ++t) {
+                const Triangle& tri = triangles[t];
+                degenerate[t] = geometry::isDegenerate({glm::dvec3(tri.p0), glm::dvec3(tri.p1), glm::dvec3(tri.p2)});
+            }
+        });
         NodeEvents ev;
+        for (AxisEvents& e : ev) e.reserve(2 * triangles.size());
         Box root;
         bool any = false;
         for (uint32_t t = 0; t < triangles.size(); ++t) {
-            const Triangle& tri = triangles[t];
-            if (geometry::isDegenerate({glm::dvec3(tri.p0), glm::dvec3(tri.p1), glm::dvec3(tri.p2)})) continue;
-            const Box b = boundsOf(tri);
+            if (degenerate[t]) continue;
+            const Box b = boundsOf(triangles[t]);
             root = any ? Box{glm::min(root.lo, b.lo), glm::max(root.hi, b.hi)} : b;
             any = true;
             appendEvents(t, b, ev);
@@ -363,7 +460,7 @@ KdBuildResult buildSahKdTree(const std::vector<Triangle>& triangles, const KdCon
         const Clock::time_point treeStart = Clock::now();
         Builder builder(triangles, config, progress);
         builder.setMaxDepth(config.resolvedMaxDepth(n));
-        const std::unique_ptr<BuildNode> tree = builder.build(std::move(ev), root, 0);
+        const std::unique_ptr<BuildNode> tree = builder.build(std::move(ev), root, 0, n, config.maxDuplication * double(n));
         result.times.treeMs = msSince(treeStart);
 
         const Clock::time_point flattenStart = Clock::now();

@@ -4,6 +4,7 @@
 // tree whatever the thread count.
 #include <algorithm>
 #include <cmath>
+#include <random>
 #include <set>
 #include <string>
 #include <vector>
@@ -195,6 +196,51 @@ TEST(KdBuilder, SameTreeForAnyThreadCount) {
         const KdTree many = build(s, threads);
         EXPECT_TRUE(many == one) << threads << " threads built another tree";
     }
+}
+
+// Big random triangles crossing each other everywhere: the SAH alone would cut the space between
+// them down to the depth limit, referencing most triangles in most cells.
+Scene denseSoup(uint32_t seed, int count) {
+    std::mt19937 rng(seed);
+    std::uniform_real_distribution<float> inBox(0.0f, 1.0f), corner(-0.4f, 0.4f);
+    Scene s;
+    for (int k = 0; k < count; ++k) {
+        const glm::vec3 c(inBox(rng), inBox(rng), inBox(rng));
+        const auto vertex = [&] { return c + glm::vec3(corner(rng), corner(rng), corner(rng)); };
+        s.triangles.push_back({vertex(), vertex(), vertex(), 0});
+    }
+    return s;
+}
+
+// The reference budget: at most maxDuplication references per triangle over the whole tree, and the
+// tree still correct (a budget of 1 allows only splits that duplicate nothing: none in this soup).
+TEST(KdBuilder, ReferenceBudgetBoundsTheTree) {
+    const Scene s = denseSoup(17, 1500);
+    KdConfig unbounded;
+    unbounded.maxDuplication = 1e6;
+    const KdTreeFigures free = measureTree(build(s, 1, unbounded), unbounded);
+    EXPECT_GT(double(free.references), 8.0 * double(free.indexedTriangles))
+        << "the soup should need the budget, or this test checks nothing";
+    for (double budget : {1.0, 2.5, 8.0}) {
+        KdConfig c;
+        c.maxDuplication = budget;
+        const KdTree t = build(s, 1, c);
+        const KdTreeFigures f = measureTree(t, c);
+        EXPECT_EQ(f.indexedTriangles, s.triangles.size());
+        EXPECT_LE(double(f.references), budget * double(f.indexedTriangles)) << "budget " << budget;
+        if (budget == 1.0) EXPECT_EQ(f.references, f.indexedTriangles);
+        else EXPECT_GT(f.leaves, 1u) << "budget " << budget << ": splits that duplicate little are still made";
+        expectPartition(t);
+        expectConservative(s, t);
+    }
+}
+
+// Nodes big enough to sweep and distribute their three axes as parallel tasks (more than 2^16
+// events) build the same tree as one thread.
+TEST(KdBuilder, SameTreeWithParallelAxes) {
+    Scene s = test::randomSoup(9, 40000);
+    const KdTree one = build(s, 1);
+    EXPECT_TRUE(build(s, 2) == one);
 }
 
 TEST(KdBuilder, ProgressReachesTheEnd) {
