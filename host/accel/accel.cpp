@@ -33,6 +33,15 @@ std::unique_ptr<BuiltAccel> buildAccel(const Scene& scene, const AccelSpec& spec
     throw Error("accelerator '" + spec.name + "': unknown family");
 }
 
+Kernel kernelOf(const AccelSpec& spec) {
+    switch (spec.family) {
+    case Family::Brute: return Kernel::Brute;
+    case Family::Bvh: return Kernel::Bvh;
+    case Family::Kd: return kdKernel(spec.kdTraversal);
+    }
+    throw Error("accelerator '" + spec.name + "': unknown family");
+}
+
 std::vector<std::unique_ptr<BuiltAccel>> buildAccelsConcurrently(const Scene& scene,
                                                                  const std::vector<AccelSpec>& specs,
                                                                  const BuildOptions& options) {

@@ -91,6 +91,9 @@ public:
 std::unique_ptr<BuiltAccel> buildAccel(const Scene& scene, const AccelSpec& spec,
                                        const BuildOptions& options = {});
 
+// The kernel that traces what `spec` builds (GpuAccelData::kernel), known without building it.
+Kernel kernelOf(const AccelSpec& spec);
+
 // Builds several structures at the same time, each on its own thread with options.threads workers,
 // so that a run that needs the BVH and the kd-tree waits for the slower build instead of the sum.
 // Results are in the order of `specs`; the first failure is rethrown after every build has ended.

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "accel/accel.h"
+#include "accel/accel_file.h"
 #include "cli/cli_options.h"
 #include "cli/commands.h"
 #include "cli/render_report.h"
@@ -43,6 +44,7 @@ struct RenderArgs {
     std::vector<std::string> aovs;
     bool stats = false;
     bool json = false;
+    std::string saveAccel, loadAccel;  // structure files (accel/accel_file.h)
 };
 
 // "depth=d.pfm" -> {"depth", "d.pfm"}, names and file names checked by image_io's rules.
@@ -109,31 +111,91 @@ void printRowProgress(int done, int total) {
     if (done == total) std::fprintf(stderr, "\r%*s\r", 40, "");
 }
 
-// Builds the structure `spec` names and renders with it: on the GPU of `ctx`, or on the CPU reference
-// when there is none. Fills the build and render parts of `report`.
-Frame renderFrame(const Scene& scene, const RenderOptions& options, const accel::AccelSpec& spec,
-                  const gpu::VulkanContext* ctx, bool showProgress, RenderReport& report) {
+// --save-accel / --load-accel, checked against the rest of the command line before any work.
+struct AccelFiles {
+    std::string save;
+    std::optional<accel::AccelFileReader> load;  // header read, spec checked; the arrays come later
+    double loadMs = 0.0;                          // spent on `load` so far
+};
+
+AccelFiles openAccelFiles(const RenderArgs& args, const accel::AccelSpec& spec) {
+    AccelFiles files;
+    if (!args.saveAccel.empty() && !args.loadAccel.empty())
+        throw Error("--save-accel and --load-accel: give one (a loaded structure is already in its file)");
+    const bool brute = spec.family == accel::Family::Brute;
+    if (!args.saveAccel.empty()) {
+        if (brute) throw Error("--save-accel: --accel brute builds no structure to save");
+        accel::checkAccelFileTarget(args.saveAccel);
+        files.save = args.saveAccel;
+    }
+    if (!args.loadAccel.empty()) {
+        if (brute) throw Error("--load-accel: --accel brute uses no structure to load");
+        // The file holds only what the GPU kernel reads; the CPU renderer walks the builder's own
+        // tree. Refusing says so, where rebuilding silently would spend the time the flag was to save.
+        if (args.cpu)
+            throw Error("--load-accel " + args.loadAccel + ": the file holds the GPU's arrays only; --cpu "
+                        "builds its own structure (drop --load-accel)");
+        const Clock::time_point t0 = Clock::now();
+        files.load.emplace(args.loadAccel);
+        files.load->checkSpec(spec);
+        files.loadMs = msSince(t0);
+    }
+    return files;
+}
+
+struct Structure {
+    std::unique_ptr<accel::BuiltAccel> built;  // none when loaded from a file
+    std::unique_ptr<geometry::Tracer> tracer;  // CPU renders; walks *built, so is destroyed first
+    std::optional<accel::GpuAccelData> data;   // GPU renders, and what --save-accel writes
+};
+
+// The structure of a render, read from --load-accel's file or built (and written to --save-accel's).
+Structure prepareStructure(const Scene& scene, const RenderOptions& options, const accel::AccelSpec& spec,
+                           AccelFiles& files, bool gpu, bool showProgress, RenderReport& report) {
+    Structure s;
     Clock::time_point t0 = Clock::now();
-    const auto built = accel::buildAccel(
+    if (files.load) {
+        accel::LoadedAccel loaded = files.load->readArrays();
+        report.accelFile =
+            AccelFileReport{.path = files.load->path().string(), .loaded = true, .ms = files.loadMs + msSince(t0)};
+        report.accelStats = std::move(loaded.stats);
+        s.data = std::move(loaded.data);
+        return s;
+    }
+    s.built = accel::buildAccel(
         scene, spec,
         accel::BuildOptions{.threads = options.threads,
                             .progress = showProgress ? BuildProgress(printBuildProgress) : BuildProgress()});
     // The CPU's tracer is part of its build; a GPU render needs none.
-    const std::unique_ptr<geometry::Tracer> tracer = ctx ? nullptr : built->makeTracer(scene);
+    if (!gpu) s.tracer = s.built->makeTracer(scene);
     report.buildMs = msSince(t0);
     if (showProgress && spec.family != accel::Family::Brute) clearProgressLine();
-    report.accelStats = built->stats();
+    report.accelStats = s.built->stats();
+    if (gpu || !files.save.empty()) s.data = s.built->gpuData();
+    if (!files.save.empty()) {
+        t0 = Clock::now();
+        accel::saveAccelFile(files.save, spec, scene, *s.data, report.accelStats);
+        report.accelFile = AccelFileReport{.path = files.save, .loaded = false, .ms = msSince(t0)};
+    }
+    return s;
+}
+
+// Renders with the structure `spec` names: on the GPU of `ctx`, or on the CPU reference when there
+// is none. Fills the build and render parts of `report`.
+Frame renderFrame(const Scene& scene, const RenderOptions& options, const accel::AccelSpec& spec,
+                  const gpu::VulkanContext* ctx, AccelFiles& files, bool showProgress, RenderReport& report) {
+    const Structure structure = prepareStructure(scene, options, spec, files, ctx != nullptr, showProgress, report);
 
     Frame frame;
-    t0 = Clock::now();
-    if (tracer) {
-        frame = renderReference(scene, options, *tracer,
+    const Clock::time_point t0 = Clock::now();
+    if (structure.tracer) {
+        frame = renderReference(scene, options, *structure.tracer,
                                 showProgress ? RenderProgress(printRowProgress) : RenderProgress());
         report.renderMs = msSince(t0);
         return frame;
     }
     gpu::GpuRenderReport& rep = report.gpu.emplace();
-    frame = gpu::renderOnGpu(*ctx, scene, options, built->gpuData(), &rep,
+    frame = gpu::renderOnGpu(*ctx, scene, options, *structure.data, &rep,
                              showProgress ? gpu::TileProgress(printTileProgress) : gpu::TileProgress());
     report.renderMs = msSince(t0);
     if (rep.cappedRays > 0)
@@ -146,6 +208,8 @@ Frame renderFrame(const Scene& scene, const RenderOptions& options, const accel:
 void runRender(const RenderArgs& args) {
     const auto aovFiles = parseAovs(args.aovs);
     const accel::AccelSpec spec = accel::resolveAccel(args.accel, args.tuning);
+    // A wrong structure file fails here, in milliseconds, before a big scene loads.
+    AccelFiles accelFiles = openAccelFiles(args, spec);
 
     const Clock::time_point t0 = Clock::now();
     Scene scene = loadScene(args.scene);
@@ -156,6 +220,11 @@ void runRender(const RenderArgs& args) {
     const RenderOptions options = resolveOptions(args, scene);
     const std::filesystem::path out = outputPath(args, scene);
     checkColorImagePath(out);  // refuse a bad output before spending minutes on the render
+    if (accelFiles.load) {  // and a structure file for another scene
+        const Clock::time_point t1 = Clock::now();
+        accelFiles.load->checkScene(scene);
+        accelFiles.loadMs += msSince(t1);
+    }
 
     // The device first: a missing or unknown device fails before a long build.
     std::optional<gpu::VulkanContext> ctx;
@@ -168,7 +237,7 @@ void runRender(const RenderArgs& args) {
     }
 
     const bool showProgress = !args.json && isatty(STDERR_FILENO);
-    const Frame frame = renderFrame(scene, options, spec, ctx ? &*ctx : nullptr, showProgress, report);
+    const Frame frame = renderFrame(scene, options, spec, ctx ? &*ctx : nullptr, accelFiles, showProgress, report);
     writeColorImage(out, frame.width, frame.height, frame.color);
     for (const auto& [name, file] : aovFiles) writeAov(file, frame, name);
 
@@ -208,6 +277,13 @@ void registerRenderCommand(CLI::App& app, int& exitCode) {
     cmd->add_option("--maxdepth", args->maxDepth, "Ray depth, primary rays count as 1 (overrides the scene's)");
     cmd->add_option("--threads", args->threads, "CPU threads (0 = all cores)");
     cmd->add_option("--aov", args->aovs, "Write an AOV: depth=F.pfm, primid=F.pfm, normal=F.pfm (repeatable)");
+    cmd->add_option("--save-accel", args->saveAccel,
+                    "Write the built structure to FILE, for --load-accel in later renders of the same scene")
+        ->type_name("FILE");
+    cmd->add_option("--load-accel", args->loadAccel,
+                    "Read the structure from FILE (written by --save-accel for this scene and --accel) "
+                    "instead of building it; GPU only")
+        ->type_name("FILE");
     cmd->add_flag("--stats", args->stats, "Print scene, kernel-feature and timing statistics");
     cmd->add_flag("--json", args->json, "Print the report as JSON");
     cmd->callback([args, &exitCode] {

@@ -74,8 +74,14 @@ void printGpuStats(const gpu::GpuRenderReport& g) {
 
 std::string reportJson(const RenderReport& r) {
     nlohmann::json j;
-    j["accel"] = {{"name", r.accel}, {"build_ms", r.buildMs}};
+    j["accel"] = {{"name", r.accel}};
+    const bool loaded = r.accelFile && r.accelFile->loaded;
+    if (!loaded) j["accel"]["build_ms"] = r.buildMs;  // a loaded structure was not built: no time to give
     for (const accel::AccelStat& st : r.accelStats) j["accel"][st.key] = st.value;
+    if (r.accelFile) {
+        j["accel"][loaded ? "loaded_from" : "saved_to"] = r.accelFile->path;
+        j["accel"][loaded ? "load_ms" : "save_ms"] = r.accelFile->ms;
+    }
     if (r.gpu) j["gpu"] = gpuJson(*r.gpu);
     j["scene"] = r.scene;
     j["device"] = r.device;
@@ -99,10 +105,17 @@ void printReport(const RenderReport& r, bool stats) {
     std::printf("render time: %.1f ms\n", r.renderMs);
     std::printf("output:      %s\n", r.output.c_str());
     for (const auto& [name, file] : r.aovs) std::printf("aov %-7s  %s\n", name.c_str(), file.c_str());
+    if (r.accelFile)
+        std::printf("accel file:  %s %s in %.1f ms\n", r.accelFile->loaded ? "loaded from" : "saved to",
+                    r.accelFile->path.c_str(), r.accelFile->ms);
     if (!stats) return;
     std::printf("scene:       %zu triangles, %zu materials, %zu lights (loaded in %.1f ms)\n", r.triangles,
                 r.materials, r.lights, r.loadMs);
-    std::printf("accel:       %s, built in %.1f ms\n", r.accel.c_str(), builtMs(r));
+    if (r.accelFile && r.accelFile->loaded)
+        std::printf("accel:       %s, loaded from %s in %.1f ms (not built)\n", r.accel.c_str(),
+                    r.accelFile->path.c_str(), r.accelFile->ms);
+    else
+        std::printf("accel:       %s, built in %.1f ms\n", r.accel.c_str(), builtMs(r));
     for (const accel::AccelStat& st : r.accelStats)
         std::printf("  %-24s %.6g %s\n", st.key.c_str(), st.value, st.unit.c_str());
     if (r.gpu) printGpuStats(*r.gpu);

@@ -13,6 +13,13 @@
 
 namespace vkray::cli {
 
+// A structure file the render read (--load-accel) or wrote (--save-accel), and how long that took.
+struct AccelFileReport {
+    std::string path;
+    bool loaded = false;  // else saved
+    double ms = 0.0;
+};
+
 struct RenderReport {
     std::string scene;   // the scene file as given
     std::string device;  // "llvmpipe (...) (Mesa ...)" or the CPU reference
@@ -20,7 +27,8 @@ struct RenderReport {
     std::map<std::string, std::string> aovs;  // AOV name -> file written
     RenderOptions options;
     std::string accel;   // the accelerator's name
-    double buildMs = 0.0;
+    double buildMs = 0.0;  // none when the structure was loaded from a file
+    std::optional<AccelFileReport> accelFile;
     std::vector<accel::AccelStat> accelStats;
     size_t triangles = 0, materials = 0, lights = 0;
     double loadMs = 0.0, renderMs = 0.0;

@@ -192,3 +192,61 @@ vkray_expect_error(threads_flag_huge "--threads must be 0 \\(all cores\\) or 1\\
 # Larger than any device: refused by its count before anything is generated (a scene that grows
 # past 2^26 triangles line by line is refused at the line that would cross it: tests/scene).
 vkray_expect_error(generate_huge "generate_huge\\.scene:3:15: triangle count 50000000 is outside 1\\.\\.33554432" render ${CLI_DATA}/generate_huge.scene)
+
+# Structure files: a render that saves its structure (--save-accel) and one that loads it
+# (--load-accel) write the same image byte for byte; `bvh` has a triangle order and nodes,
+# `kd-backtrack` nodes, indices and extra arrays. Files for another scene, accelerator or the CPU
+# renderer are refused before anything is rendered.
+foreach(accel bvh kd-backtrack)
+  set(file ${CLI_OUT}/default-${accel}.vkacc)
+  add_test(NAME cli.accel_file.save.${accel}
+           COMMAND ${CLI_DIR}/expect_output.sh "accel file: +saved to .*default-${accel}\\.vkacc in"
+                   $<TARGET_FILE:vkray> render ${CMAKE_SOURCE_DIR}/scenes/default.scene --size 96x96 --accel ${accel}
+                   -o ${CLI_OUT}/accel-file-built-${accel}.png --save-accel ${file})
+  set_tests_properties(cli.accel_file.save.${accel} PROPERTIES TIMEOUT 300 ENVIRONMENT "VKRAY_VALIDATION=1"
+    FIXTURES_SETUP accel_file_${accel})
+  add_test(NAME cli.accel_file.load.${accel}
+           COMMAND ${CLI_DIR}/expect_output.sh "accel: +${accel}, loaded from .*default-${accel}\\.vkacc in .* \\(not built\\)"
+                   $<TARGET_FILE:vkray> render ${CMAKE_SOURCE_DIR}/scenes/default.scene --size 96x96 --accel ${accel}
+                   -o ${CLI_OUT}/accel-file-loaded-${accel}.png --load-accel ${file} --stats)
+  set_tests_properties(cli.accel_file.load.${accel} PROPERTIES TIMEOUT 300 ENVIRONMENT "VKRAY_VALIDATION=1"
+    FIXTURES_REQUIRED accel_file_${accel} FIXTURES_SETUP accel_file_loaded_${accel})
+  add_test(NAME cli.accel_file.same_image.${accel}
+           COMMAND ${CMAKE_COMMAND} -E compare_files ${CLI_OUT}/accel-file-built-${accel}.png
+                   ${CLI_OUT}/accel-file-loaded-${accel}.png)
+  set_tests_properties(cli.accel_file.same_image.${accel} PROPERTIES FIXTURES_REQUIRED accel_file_loaded_${accel})
+endforeach()
+add_test(NAME cli.accel_file.json
+         COMMAND ${CLI_DIR}/expect_output.sh "\"loaded_from\": \".*default-bvh\\.vkacc\""
+                 $<TARGET_FILE:vkray> render ${CMAKE_SOURCE_DIR}/scenes/default.scene --size 32x32
+                 -o ${CLI_OUT}/accel-file-json.png --load-accel ${CLI_OUT}/default-bvh.vkacc --json)
+set_tests_properties(cli.accel_file.json PROPERTIES TIMEOUT 300 FIXTURES_REQUIRED accel_file_bvh)
+# A file made for one_triangle.scene, then read for the same triangle moved (same count).
+add_test(NAME cli.accel_file.save_one_triangle
+         COMMAND $<TARGET_FILE:vkray> render ${CLI_DATA}/one_triangle.scene -o ${CLI_OUT}/accel-file-one.png
+                 --save-accel ${CLI_OUT}/one-triangle.vkacc)
+set_tests_properties(cli.accel_file.save_one_triangle PROPERTIES TIMEOUT 180 FIXTURES_SETUP accel_file_one)
+function(vkray_expect_accel_file_error name fixture pattern)
+  vkray_expect_error(${name} "${pattern}" ${ARGN})
+  set_tests_properties(cli.error.${name} PROPERTIES FIXTURES_REQUIRED ${fixture})
+endfunction()
+vkray_expect_accel_file_error(accel_file_moved_geometry accel_file_one
+  "one-triangle\\.vkacc: built for another scene \\(geometry hash differs\\); rebuild it with --save-accel"
+  render ${CLI_DATA}/one_triangle_moved.scene --load-accel ${CLI_OUT}/one-triangle.vkacc -o ${CLI_OUT}/x.png)
+vkray_expect_accel_file_error(accel_file_other_scene accel_file_bvh
+  "default-bvh\\.vkacc: built for another scene \\([0-9]+ triangles, this one has 1\\)"
+  render ${CLI_DATA}/one_triangle.scene --load-accel ${CLI_OUT}/default-bvh.vkacc -o ${CLI_OUT}/x.png)
+vkray_expect_accel_file_error(accel_file_other_accel accel_file_bvh
+  "default-bvh\\.vkacc: built for --accel bvh, not kd-stack; rebuild it with --save-accel"
+  render ${CMAKE_SOURCE_DIR}/scenes/default.scene --accel kd-stack --load-accel ${CLI_OUT}/default-bvh.vkacc -o ${CLI_OUT}/x.png)
+vkray_expect_accel_file_error(accel_file_cpu accel_file_bvh
+  "--load-accel .*default-bvh\\.vkacc: the file holds the GPU's arrays only; --cpu builds its own structure"
+  render ${CMAKE_SOURCE_DIR}/scenes/default.scene --cpu --load-accel ${CLI_OUT}/default-bvh.vkacc -o ${CLI_OUT}/x.png)
+vkray_expect_error(accel_file_brute "--load-accel: --accel brute uses no structure to load"
+  render ${CLI_DATA}/one_triangle.scene --accel brute --load-accel ${CLI_OUT}/x.vkacc -o ${CLI_OUT}/x.png)
+vkray_expect_error(accel_file_not_one "one_triangle\\.scene: not a vkray structure file"
+  render ${CLI_DATA}/one_triangle.scene --load-accel ${CLI_DATA}/one_triangle.scene -o ${CLI_OUT}/x.png)
+vkray_expect_error(accel_file_missing "no-such\\.vkacc: cannot open structure file: No such file"
+  render ${CLI_DATA}/one_triangle.scene --load-accel ${CLI_OUT}/no-such.vkacc -o ${CLI_OUT}/x.png)
+vkray_expect_error(accel_file_unwritable "no/such/dir/s\\.vkacc: cannot write: directory .* does not exist"
+  render ${CLI_DATA}/one_triangle.scene --save-accel ${CLI_OUT}/no/such/dir/s.vkacc -o ${CLI_OUT}/x.png)

@@ -11,15 +11,6 @@
 namespace vkray::accel {
 namespace {
 
-Kernel kernelFor(kd::Traversal t) {
-    switch (t) {
-    case kd::Traversal::Stack: return Kernel::KdStack;
-    case kd::Traversal::Restart: return Kernel::KdRestart;
-    case kd::Traversal::Backtrack: return Kernel::KdBacktrack;
-    }
-    return Kernel::KdRestart;
-}
-
 // The kd family's BuiltAccel: one SAH tree, walked by one traversal on the CPU and the GPU.
 class KdAccel final : public BuiltAccel {
 public:
@@ -33,7 +24,7 @@ public:
 
     GpuAccelData gpuData() const override {
         GpuAccelData data;
-        data.kernel = kernelFor(traversal_);
+        data.kernel = kdKernel(traversal_);
         data.nodeTexelBytes = VKRAY_KD_NODE_TEXEL_BYTES;
         const kd::KdTree& t = build_.tree;
         for (const gpu::KdNode& n : t.nodes)
@@ -76,6 +67,15 @@ private:
 };
 
 }  // namespace
+
+Kernel kdKernel(kd::Traversal traversal) {
+    switch (traversal) {
+    case kd::Traversal::Stack: return Kernel::KdStack;
+    case kd::Traversal::Restart: return Kernel::KdRestart;
+    case kd::Traversal::Backtrack: return Kernel::KdBacktrack;
+    }
+    return Kernel::KdRestart;
+}
 
 std::unique_ptr<BuiltAccel> buildKdAccel(const Scene& scene, const kd::KdConfig& config, kd::Traversal traversal,
                                          const BuildOptions& options) {

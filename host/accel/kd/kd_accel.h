@@ -10,6 +10,9 @@
 
 namespace vkray::accel {
 
+// The GPU kernel that walks the tree with `traversal`.
+Kernel kdKernel(kd::Traversal traversal);
+
 std::unique_ptr<BuiltAccel> buildKdAccel(const Scene& scene, const kd::KdConfig& config, kd::Traversal traversal,
                                          const BuildOptions& options);
 
