@@ -10,7 +10,7 @@ packages=(
   cmake make g++ pkg-config
   libvulkan-dev mesa-vulkan-drivers vulkan-validationlayers glslang-tools
   libglm-dev libtinyobjloader-dev libstb-dev
-  libtbb-dev libcli11-dev nlohmann-json3-dev libgtest-dev
+  libtbb-dev libcli11-dev nlohmann-json3-dev libgtest-dev libxxhash-dev
   libembree-dev
 )
 for extra in "$@"; do
