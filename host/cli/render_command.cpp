@@ -105,6 +105,10 @@ void printBuildProgress(const std::string& phase, double fraction) {
 
 void clearProgressLine() { std::fprintf(stderr, "\r%*s\r", 48, ""); }
 
+void printLoadProgress(const std::string& step) {
+    std::fprintf(stderr, "\r%*s\rloading: %s", 48, "", step.c_str());
+}
+
 void printRowProgress(int done, int total) {
     if (done % 16 != 0 && done != total) return;
     std::fprintf(stderr, "\rrendering: row %d/%d", done, total);
@@ -211,8 +215,12 @@ void runRender(const RenderArgs& args) {
     // A wrong structure file fails here, in milliseconds, before a big scene loads.
     AccelFiles accelFiles = openAccelFiles(args, spec);
 
+    const bool showProgress = !args.json && isatty(STDERR_FILENO);
     const Clock::time_point t0 = Clock::now();
-    Scene scene = loadScene(args.scene);
+    ParseOptions parse;
+    if (showProgress) parse.progress = printLoadProgress;
+    Scene scene = loadScene(args.scene, parse);
+    if (showProgress) clearProgressLine();
     RenderReport report;
     report.loadMs = msSince(t0);
     checkRenderable(scene, args.scene);
@@ -236,7 +244,6 @@ void runRender(const RenderArgs& args) {
         report.device = "CPU reference (double precision)";
     }
 
-    const bool showProgress = !args.json && isatty(STDERR_FILENO);
     const Frame frame = renderFrame(scene, options, spec, ctx ? &*ctx : nullptr, accelFiles, showProgress, report);
     writeColorImage(out, frame.width, frame.height, frame.color);
     for (const auto& [name, file] : aovFiles) writeAov(file, frame, name);

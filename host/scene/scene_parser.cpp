@@ -37,7 +37,8 @@ class Parser {
 public:
     Parser(Scene& scene, std::string file, std::filesystem::path baseDir, const ParseOptions& options)
         : file_(std::move(file)), baseDir_(std::move(baseDir)), out_(scene, options.maxTriangles),
-          readFile_(options.readFile ? options.readFile : fileSystemReader()), transforms_(1) {}
+          readFile_(options.readFile ? options.readFile : fileSystemReader()), progress_(options.progress),
+          transforms_(1) {}
 
     void parseLine(std::string_view text, int number);
 
@@ -92,6 +93,7 @@ private:
     std::filesystem::path baseDir_;
     SceneBuilder out_;
     FileReader readFile_;
+    std::function<void(const std::string&)> progress_;
     MaterialState material_;
     std::optional<uint32_t> materialIndex_;
     std::vector<Transform> transforms_;  // back() is current; the first entry is never popped
@@ -384,6 +386,7 @@ void Parser::geo(const SceneLine& line) {
     const std::filesystem::path file = baseDir_ / std::filesystem::path(std::string(line.text(1)));
     MeshRequest request{file, file.lexically_normal().string(), FileLoc{file_, line.number(), 0}, transform(),
                         material_.resolve(), readFile_};
+    if (progress_) progress_("mesh " + file.filename().string());
     loadMeshFile(request, out_);
 }
 
@@ -403,6 +406,7 @@ void Parser::generate(const SceneLine& line) {
     }
     const GeneratorSpec spec{*kind, n, uint64_t(seed)};
     checkRoom(uint64_t(generatedTriangleCount(spec)), line);
+    if (progress_) progress_("generate " + std::string(line.text(1)) + " " + std::to_string(n));
     added(generateMesh(spec, transform(), currentMaterial(), out_), line);
 }
 

@@ -20,6 +20,7 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <functional>
 #include <istream>
 #include <string>
 #include <string_view>
@@ -43,6 +44,9 @@ struct ParseOptions {
     int64_t maxTriangles = kMaxSceneTriangles;
     // Where geo/obj meshes and their MTL files are read from; empty: the file system.
     FileReader readFile;
+    // Told before each step that may take seconds (a mesh file read, a mesh generated), for a
+    // progress line: "mesh dragon.obj", "generate soup 16000000". May be empty.
+    std::function<void(const std::string& step)> progress;
 };
 
 // Reads `file`; relative paths in it (geo/obj) are resolved against its directory.

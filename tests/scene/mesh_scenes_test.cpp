@@ -95,7 +95,7 @@ TEST(ScalingScenes, LoadWithTheGeneratorsCountsAndAreFramed) {
         EXPECT_EQ(int64_t(s.triangles.size()), generatedTriangleCount({*kind, asked, 1}) + 2);
         expectFramed(s, objectBox(s));
     }
-    EXPECT_EQ(found, 15);  // spheres, soup, terrain x 10k, 100k, 1m, 2m, 4m
+    EXPECT_EQ(found, 18);  // spheres, soup, terrain x 10k, 100k, 1m, 2m, 4m, 16m
 }
 
 }  // namespace
