@@ -218,11 +218,13 @@ void main() {
     if (stage == VKRAY_RESUME_RAYS) stage = traceRays(pt);
 
     // Unfinished: the plain kernel flags the pixel; the resumable one goes on in the next dispatch
-    // unless it got nothing done in this one, or the pixel reached its ray cap. Either flags it when
-    // the driver's budget ran out (the resumable variant's own budget keeps it from doing so).
+    // unless its subgroup got nothing done in this one, or the pixel reached its ray cap. Either
+    // flags it when the driver's budget ran out (the resumable variant's own budget keeps it from
+    // doing so).
     const bool unfinished = stage != VKRAY_RESUME_DONE;
+    const bool progressed = RESUMABLE && subgroupProgress();  // every pixel of the subgroup says
     const bool cutShort = loopBudgetRanOut() ||
-                          (RESUMABLE ? unfinished && (!gProgress || pt.rays >= kMaxRaysPerPixel)
+                          (RESUMABLE ? unfinished && (!progressed || pt.rays >= kMaxRaysPerPixel)
                                      : gLoopCutShort || unfinished);
     const uint flags = cutShort ? VKRAY_PIXEL_CUT_SHORT : unfinished ? VKRAY_PIXEL_UNFINISHED : 0u;
     pixels[outIndex] = GpuPixel(pt.radiance, pt.depth, pt.normal, pt.primId, flags, uint(pt.rays), gShadowRays,

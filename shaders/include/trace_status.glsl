@@ -33,6 +33,8 @@ bool gProgress = false;
 // subgroup in workgroup memory, and every loop of the kernel ends through its own condition once
 // VKRAY_RESUMABLE_LOOP_BUDGET is spent: all values stay exact, and the pixel saves where it is.
 shared uint sLoopIterations[VKRAY_WORKGROUP_X * VKRAY_WORKGROUP_Y];  // per subgroup
+// Whether any pixel of the subgroup got work done in this dispatch (subgroupProgress()).
+shared uint sSubgroupProgress[VKRAY_WORKGROUP_X * VKRAY_WORKGROUP_Y];
 
 // Whether llvmpipe's loop budget ran out anywhere in this invocation: from then on every loop ends
 // after one pass, so a loop that needs two is cut. Checked at the end of every pixel, so a loop ended
@@ -46,8 +48,22 @@ bool loopBudgetRanOut() {
 }
 
 void startLoopBudget() {
-    if (RESUMABLE && subgroupElect()) sLoopIterations[gl_SubgroupID] = 0u;
+    if (RESUMABLE && subgroupElect()) {
+        sLoopIterations[gl_SubgroupID] = 0u;
+        sSubgroupProgress[gl_SubgroupID] = 0u;
+    }
     if (RESUMABLE) subgroupMemoryBarrierShared();
+}
+
+// Resumable variant, at the end of a pixel: whether its subgroup got anything done in this dispatch.
+// The subgroup shares one budget, so one pixel's long traversal can spend it all while another
+// pixel waits its turn with nothing done; that pixel is not stuck. Only a subgroup none of whose
+// pixels got on is (then every unfinished one is flagged): otherwise some pixel's remaining work
+// shrank, and once it is done the others have the budget to themselves.
+bool subgroupProgress() {
+    if (gProgress) sSubgroupProgress[gl_SubgroupID] = 1u;
+    subgroupMemoryBarrierShared();
+    return sSubgroupProgress[gl_SubgroupID] != 0u;
 }
 
 // Called first in the condition of every loop, once per pass of the subgroup through the loop's
