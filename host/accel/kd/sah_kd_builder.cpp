@@ -55,14 +55,15 @@ public:
         : key_(uint64_t(orderedBits(pos)) << 32 | uint64_t(type) << 30 | triangle) {}
 
     float pos() const {
-        const uint32_t u = uint32_t(key_ >> 32);
+        const uint32_t u = orderedPos();
         return std::bit_cast<float>(u & 0x80000000u ? u & 0x7fffffffu : ~u);
     }
+    // The position as orderedBits() made it: compares like the float, without decoding it.
+    uint32_t orderedPos() const { return uint32_t(key_ >> 32); }
     EventType type() const { return EventType((key_ >> 30) & 3u); }
     uint32_t triangle() const { return uint32_t(key_) & (kMaxTriangles - 1); }
     bool operator<(const Event& o) const { return key_ < o.key_; }
 
-private:
     // Positive floats above negative ones, each in numeric order; -0 is made +0 first, so equal
     // positions have equal bits.
     static uint32_t orderedBits(float f) {
@@ -70,6 +71,7 @@ private:
         return u & 0x80000000u ? ~u : u | 0x80000000u;
     }
 
+private:
     uint64_t key_;
 };
 
@@ -264,10 +266,11 @@ void Builder::sweepAxis(int axis, const AxisEvents& ev, const Box& box, size_t n
     size_t startedBefore = 0, endingAfter = n;
     for (size_t i = 0; i < ev.size();) {
         const float p = ev[i].pos();
+        const uint32_t at = ev[i].orderedPos();
         size_t ends = 0, planars = 0, starts = 0;
-        for (; i < ev.size() && ev[i].pos() == p && ev[i].type() == EventType::End; ++i) ++ends;
-        for (; i < ev.size() && ev[i].pos() == p && ev[i].type() == EventType::Planar; ++i) ++planars;
-        for (; i < ev.size() && ev[i].pos() == p && ev[i].type() == EventType::Start; ++i) ++starts;
+        for (; i < ev.size() && ev[i].orderedPos() == at && ev[i].type() == EventType::End; ++i) ++ends;
+        for (; i < ev.size() && ev[i].orderedPos() == at && ev[i].type() == EventType::Planar; ++i) ++planars;
+        for (; i < ev.size() && ev[i].orderedPos() == at && ev[i].type() == EventType::Start; ++i) ++starts;
         endingAfter -= ends + planars;
         if (usableSplit(box, axis, p) && double(startedBefore + endingAfter + planars) <= budget + 0.5) {
             const size_t below = startedBefore, above = endingAfter;
@@ -306,12 +309,14 @@ std::pair<NodeEvents, NodeEvents> Builder::splitEvents(NodeEvents ev, const Spli
     if (side.size() < tris_.size()) side.resize(tris_.size());
     const AxisEvents& ek = ev[s.axis];
     for (const Event& e : ek) side[e.triangle()] = Side::Both;
+    const uint32_t split = Event::orderedBits(s.pos);
     for (const Event& e : ek) {
         // Wald and Havran 5.1: ending at the plane = below only, starting at it = above only.
-        if (e.type() == EventType::End && e.pos() <= s.pos) side[e.triangle()] = Side::BelowOnly;
-        if (e.type() == EventType::Start && e.pos() >= s.pos) side[e.triangle()] = Side::AboveOnly;
+        const uint32_t at = e.orderedPos();
+        if (e.type() == EventType::End && at <= split) side[e.triangle()] = Side::BelowOnly;
+        if (e.type() == EventType::Start && at >= split) side[e.triangle()] = Side::AboveOnly;
         if (e.type() == EventType::Planar) {
-            const bool goesBelow = e.pos() < s.pos || (e.pos() == s.pos && s.planarBelow);
+            const bool goesBelow = at < split || (at == split && s.planarBelow);
             side[e.triangle()] = goesBelow ? Side::BelowOnly : Side::AboveOnly;
         }
     }
