@@ -7,13 +7,13 @@
 #include <fstream>
 #include <functional>
 #include <iterator>
-#include <random>
 #include <string>
 #include <vector>
 
 #include <gtest/gtest.h>
 
 #include "accel/accel.h"
+#include "soup_test_util.h"
 #include "accel/accel_file.h"
 #include "core/error.h"
 #include "core/hash64.h"
@@ -29,19 +29,6 @@ fs::path outDir() {
     return dir;
 }
 
-Scene randomSoup(int count, unsigned seed) {
-    Scene s;
-    s.materials.push_back(Material{});
-    std::mt19937 rng(seed);
-    std::uniform_real_distribution<float> pos(-1.0f, 1.0f), off(-0.2f, 0.2f);
-    for (int k = 0; k < count; ++k) {
-        const glm::vec3 c{pos(rng), pos(rng), pos(rng)};
-        s.triangles.push_back({c + glm::vec3(off(rng), off(rng), off(rng)),
-                               c + glm::vec3(off(rng), off(rng), off(rng)),
-                               c + glm::vec3(off(rng), off(rng), off(rng)), 0});
-    }
-    return s;
-}
 
 std::vector<char> readAll(const fs::path& path) {
     std::ifstream in(path, std::ios::binary);
@@ -90,7 +77,7 @@ TEST(Hash64, MatchesTheXxh64ReferenceAndIgnoresHowTheBytesAreSplit) {
 }
 
 TEST(SceneGeometryHash, SeesPositionsAndCountButNotMaterials) {
-    const Scene a = randomSoup(100, 1);
+    const Scene a = test::smallSoup(100, 1);
     Scene b = a;
     b.triangles[57].material = 3;
     b.materials.resize(4);
@@ -107,7 +94,7 @@ TEST(SceneGeometryHash, SeesPositionsAndCountButNotMaterials) {
 class EveryStructure : public ::testing::TestWithParam<std::string> {};
 
 TEST_P(EveryStructure, LoadsByteForByteWhatWasBuilt) {
-    const Scene scene = randomSoup(700, 5);
+    const Scene scene = test::smallSoup(700, 5);
     const fs::path file = outDir() / (GetParam() + ".vkacc");
     const AccelSpec spec = resolveAccel(GetParam());
     const auto built = buildAccel(scene, spec, BuildOptions{.threads = 2, .progress = {}});
@@ -144,7 +131,7 @@ INSTANTIATE_TEST_SUITE_P(Names, EveryStructure,
                          });
 
 TEST(AccelFile, TheSameStructureWritesTheSameBytesWhateverTheThreads) {
-    const Scene scene = randomSoup(500, 9);
+    const Scene scene = test::smallSoup(500, 9);
     const fs::path a = outDir() / "threads-1.vkacc", b = outDir() / "threads-2.vkacc";
     buildAndSave(scene, "bvh", a, 1);
     buildAndSave(scene, "bvh", b, 2);
@@ -152,14 +139,14 @@ TEST(AccelFile, TheSameStructureWritesTheSameBytesWhateverTheThreads) {
 }
 
 TEST(AccelFile, RefusesAnotherScene) {
-    const Scene scene = randomSoup(400, 2);
+    const Scene scene = test::smallSoup(400, 2);
     const fs::path file = outDir() / "scene.vkacc";
     buildAndSave(scene, "bvh", file);
     const AccelSpec spec = resolveAccel("bvh");
-    const Scene other = randomSoup(400, 3);
+    const Scene other = test::smallSoup(400, 3);
     expectRefused([&] { loadAccelFile(file, spec, other); }, file,
                   "built for another scene (geometry hash differs); rebuild it with --save-accel");
-    const Scene fewer = randomSoup(399, 2);
+    const Scene fewer = test::smallSoup(399, 2);
     expectRefused([&] { loadAccelFile(file, spec, fewer); }, file,
                   "built for another scene (400 triangles, this one has 399)");
     Scene recoloured = scene;  // materials are not part of the structure
@@ -169,7 +156,7 @@ TEST(AccelFile, RefusesAnotherScene) {
 }
 
 TEST(AccelFile, RefusesAnotherAcceleratorOrTuning) {
-    const Scene scene = randomSoup(300, 4);
+    const Scene scene = test::smallSoup(300, 4);
     const fs::path bvhFile = outDir() / "bvh.vkacc", kdFile = outDir() / "kd-stack.vkacc";
     buildAndSave(scene, "bvh", bvhFile);
     buildAndSave(scene, "kd-stack", kdFile);
@@ -204,7 +191,7 @@ protected:
     }
     size_t payloadStart() const { return 16 + metaBytes_ + 8; }
 
-    Scene scene_ = randomSoup(300, 6);
+    Scene scene_ = test::smallSoup(300, 6);
     fs::path good_, bad_;
     std::vector<char> bytes_;
     uint32_t metaBytes_ = 0;
@@ -250,7 +237,7 @@ TEST_F(DamagedFile, NotAStructureFileOrAnotherVersion) {
 // A checksum is no defence against a file made on purpose; an index that would send the triangle
 // upload out of bounds is refused anyway.
 TEST(AccelFile, RefusesATriangleOrderOutOfRange) {
-    const Scene scene = randomSoup(200, 8);
+    const Scene scene = test::smallSoup(200, 8);
     const fs::path file = outDir() / "order.vkacc";
     buildAndSave(scene, "bvh", file);
     std::vector<char> bytes = readAll(file);
@@ -267,7 +254,7 @@ TEST(AccelFile, RefusesATriangleOrderOutOfRange) {
 }
 
 TEST(AccelFile, WritingFailsWithThePathAndLeavesNothingBehind) {
-    const Scene scene = randomSoup(50, 1);
+    const Scene scene = test::smallSoup(50, 1);
     const fs::path nowhere = outDir() / "no" / "such" / "dir" / "s.vkacc";
     expectRefused([&] { buildAndSave(scene, "bvh", nowhere); }, nowhere, "directory");
     expectRefused([&] { buildAndSave(scene, "bvh", outDir()); }, outDir(), "is a directory");

@@ -10,6 +10,7 @@
 #include <gtest/gtest.h>
 
 #include "accel/accel.h"
+#include "soup_test_util.h"
 #include "core/error.h"
 #include "geometry/brute_force.h"
 
@@ -96,29 +97,17 @@ TEST(AccelSpec, StructureKeysTellWhichBuildsAreShared) {
     EXPECT_NE(structureKey(resolveAccel("kd-stack")),
               structureKey(resolveAccel("kd-stack", {{"--kd-intersection-cost", 5}})));
     EXPECT_NE(structureKey(resolveAccel("kd-stack")), structureKey(resolveAccel("kd-stack", {{"--kd-max-depth", 9}})));
+    EXPECT_NE(structureKey(resolveAccel("kd-stack")),
+              structureKey(resolveAccel("kd-stack", {{"--kd-max-duplication", 4}})));
 }
 
-// A random soup of small triangles in the unit cube, one material.
-Scene randomSoup(int count, unsigned seed) {
-    Scene s;
-    s.materials.push_back(Material{});
-    std::mt19937 rng(seed);
-    std::uniform_real_distribution<float> pos(-1.0f, 1.0f), off(-0.2f, 0.2f);
-    for (int k = 0; k < count; ++k) {
-        const glm::vec3 c{pos(rng), pos(rng), pos(rng)};
-        s.triangles.push_back({c + glm::vec3(off(rng), off(rng), off(rng)),
-                               c + glm::vec3(off(rng), off(rng), off(rng)),
-                               c + glm::vec3(off(rng), off(rng), off(rng)), 0});
-    }
-    return s;
-}
 
 // Every accelerator through the one interface the renderers use: same closest triangle and t as
 // brute force, same any-hit answer, and a triangle order that is a permutation when given.
 class EveryAccel : public ::testing::TestWithParam<std::string> {};
 
 TEST_P(EveryAccel, AnswersLikeBruteForce) {
-    const Scene scene = randomSoup(600, 7);
+    const Scene scene = test::smallSoup(600, 7);
     const auto built = buildAccel(scene, resolveAccel(GetParam()), BuildOptions{.threads = 2, .progress = {}});
     const auto tracer = built->makeTracer(scene);
     const geometry::BruteForceTracer brute(scene);
