@@ -329,14 +329,10 @@ std::pair<NodeEvents, NodeEvents> Builder::splitEvents(NodeEvents ev, const Spli
     // would overwrite the marks) until the three are done.
     NodeEvents belowEv, aboveEv;
     const auto distribute = [&](int k) {
-        size_t nBelow = 0, nAbove = 0;
-        for (const Event& e : ev[k]) {
-            nBelow += side[e.triangle()] == Side::BelowOnly;
-            nAbove += side[e.triangle()] == Side::AboveOnly;
-        }
-        // Room for the straddlers' new events too (at most two per axis): no reallocation below.
-        belowEv[k].reserve(nBelow + 2 * straddling.size());
-        aboveEv[k].reserve(nAbove + 2 * straddling.size());
+        // A triangle has at most two events per axis, so twice a side's count (straddlers included)
+        // holds its kept events and the straddlers' new ones: no reallocation below.
+        belowEv[k].reserve(2 * s.below);
+        aboveEv[k].reserve(2 * s.above);
         for (const Event& e : ev[k]) {
             if (side[e.triangle()] == Side::BelowOnly) belowEv[k].push_back(e);
             else if (side[e.triangle()] == Side::AboveOnly) aboveEv[k].push_back(e);
