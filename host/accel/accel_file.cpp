@@ -12,6 +12,7 @@
 #include <utility>
 
 #include "core/error.h"
+#include "core/file_output.h"
 #include "core/hash64.h"
 
 #ifndef VKRAY_GPU_LAYOUT_HASH
@@ -142,53 +143,14 @@ Header decodeMeta(std::span<const char> bytes, const fs::path& path) {
 
 // ---- writing ----------------------------------------------------------------------------------
 
-// PATH.tmp while it is written; renamed to PATH by commit(), removed if anything fails before.
-class TempFile {
-public:
-    explicit TempFile(const fs::path& path) : path_(path), temp_(path.string() + ".tmp") {
-        file_ = std::fopen(temp_.c_str(), "wb");
-        if (!file_) throw failure("cannot open " + temp_.string() + " for writing", errno);
+// Writes `bytes` in chunks, each hashed into `hash` just before it is written.
+void writeHashed(StreamedFileWriter& out, std::span<const std::byte> bytes, Hash64& hash) {
+    for (size_t at = 0; at < bytes.size(); at += kChunkBytes) {
+        const size_t n = std::min(kChunkBytes, bytes.size() - at);
+        hash.update(bytes.data() + at, n);
+        out.write(bytes.data() + at, n);
     }
-    ~TempFile() {
-        if (file_) std::fclose(file_);
-        if (!committed_) {
-            std::error_code ignored;
-            fs::remove(temp_, ignored);
-        }
-    }
-    TempFile(const TempFile&) = delete;
-    TempFile& operator=(const TempFile&) = delete;
-
-    void write(const void* data, size_t size) {
-        if (size > 0 && std::fwrite(data, 1, size, file_) != size)
-            throw failure("cannot write " + temp_.string(), errno);
-    }
-    // Writes `bytes` in chunks, each hashed into `hash` just before it is written.
-    void writeHashed(std::span<const std::byte> bytes, Hash64& hash) {
-        for (size_t at = 0; at < bytes.size(); at += kChunkBytes) {
-            const size_t n = std::min(kChunkBytes, bytes.size() - at);
-            hash.update(bytes.data() + at, n);
-            write(bytes.data() + at, n);
-        }
-    }
-    void commit() {
-        const int closed = std::fclose(file_);
-        file_ = nullptr;
-        if (closed != 0) throw failure("cannot write " + temp_.string(), errno);
-        std::error_code ec;
-        fs::rename(temp_, path_, ec);
-        if (ec) throw fileError(path_, "cannot rename " + temp_.string() + " to it: " + ec.message());
-        committed_ = true;
-    }
-
-private:
-    Error failure(const std::string& what, int err) const {
-        return fileError(path_, what + ": " + std::strerror(err != 0 ? err : EIO));
-    }
-    fs::path path_, temp_;
-    std::FILE* file_ = nullptr;
-    bool committed_ = false;
-};
+}
 
 template <class T>
 std::span<const std::byte> byteSpan(const std::vector<T>& v) {
@@ -265,14 +227,14 @@ void checkAccelFileTarget(const fs::path& path) {
         throw fileError(path, "cannot write: directory " + dir.string() + " does not exist");
     // The one sure test of a directory's permissions, its file system and quotas: create the
     // temporary file (empty) and remove it again.
-    TempFile probe(path);
+    StreamedFileWriter probe(path);
 }
 
 void saveAccelFile(const fs::path& path, const AccelSpec& spec, const Scene& scene, const GpuAccelData& data,
                    const std::vector<AccelStat>& stats) {
     checkAccelFileTarget(path);
     const std::string meta = encodeMeta(headerFor(spec, scene, data, stats));
-    TempFile out(path);
+    StreamedFileWriter out(path);
     out.write(kAccelFileMagic, sizeof kAccelFileMagic);
     const uint32_t prefix[2] = {kAccelFileVersion, uint32_t(meta.size())};
     out.write(prefix, sizeof prefix);
@@ -280,9 +242,9 @@ void saveAccelFile(const fs::path& path, const AccelSpec& spec, const Scene& sce
     const uint64_t metaHash = hash64(meta.data(), meta.size());
     out.write(&metaHash, sizeof metaHash);
     Hash64 payload;
-    out.writeHashed(byteSpan(data.triangleOrder), payload);
+    writeHashed(out, byteSpan(data.triangleOrder), payload);
     for (const std::vector<std::byte>* array : {&data.nodes, &data.indices, &data.extra})
-        out.writeHashed(byteSpan(*array), payload);
+        writeHashed(out, byteSpan(*array), payload);
     const uint64_t payloadHash = payload.digest();
     out.write(&payloadHash, sizeof payloadHash);
     out.commit();

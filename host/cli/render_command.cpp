@@ -106,7 +106,8 @@ void printBuildProgress(const std::string& phase, double fraction) {
 void clearProgressLine() { std::fprintf(stderr, "\r%*s\r", 48, ""); }
 
 void printLoadProgress(const std::string& step) {
-    std::fprintf(stderr, "\r%*s\rloading: %s", 48, "", step.c_str());
+    clearProgressLine();
+    std::fprintf(stderr, "loading: %s", step.c_str());
 }
 
 void printRowProgress(int done, int total) {

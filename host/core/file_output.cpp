@@ -30,4 +30,41 @@ void writeFileText(const std::filesystem::path& path, std::string_view text) {
     writeFileBytes(path, text.data(), text.size());
 }
 
+namespace {
+
+Error streamFailure(const std::filesystem::path& path, const std::string& what, int err) {
+    return Error(FileLoc{path.string()}, what + ": " + std::strerror(err != 0 ? err : EIO));
+}
+
+}  // namespace
+
+StreamedFileWriter::StreamedFileWriter(const std::filesystem::path& path)
+    : path_(path), temp_(path.string() + ".tmp") {
+    file_ = std::fopen(temp_.c_str(), "wb");
+    if (!file_) throw streamFailure(path_, "cannot open " + temp_.string() + " for writing", errno);
+}
+
+StreamedFileWriter::~StreamedFileWriter() {
+    if (file_) std::fclose(file_);
+    if (!committed_) {
+        std::error_code ignored;
+        std::filesystem::remove(temp_, ignored);
+    }
+}
+
+void StreamedFileWriter::write(const void* data, size_t size) {
+    if (size > 0 && std::fwrite(data, 1, size, file_) != size)
+        throw streamFailure(path_, "cannot write " + temp_.string(), errno);
+}
+
+void StreamedFileWriter::commit() {
+    const int closed = std::fclose(file_);
+    file_ = nullptr;
+    if (closed != 0) throw streamFailure(path_, "cannot write " + temp_.string(), errno);
+    std::error_code ec;
+    std::filesystem::rename(temp_, path_, ec);
+    if (ec) throw Error(FileLoc{path_.string()}, "cannot rename " + temp_.string() + " to it: " + ec.message());
+    committed_ = true;
+}
+
 }  // namespace vkray
