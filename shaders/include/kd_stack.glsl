@@ -11,12 +11,25 @@
 #include "trace_status.glsl"
 #include "triangle.glsl"
 
+// A stack entry's node and the axis its segment starts on, in one word: every word of an entry
+// is a store at a per-lane index, a loop over the SIMD lanes on llvmpipe (docs/benchmarks.md, "A
+// third round"). Node indices stay below 2^28: a kd-tree's nodes are read through one texel view of
+// at most maxTexelBufferElements (2^27 on lavapipe) texels, and the host refuses more
+// (VKRAY_KD_MAX_NODES).
+uint kdStackEntry(uint node, uint minAxis) { return node | (minAxis << 28); }
+
 bool kdWalkPass(KdRay r, WatertightRay w, const bool anyHit, float segMin, uint minAxis, float segMax,
                 uint maxAxis, inout KdPass pass, inout int steps, inout Hit best) {
-    // At most one push per level: VKRAY_KD_STACK_SIZE >= the builder's depth limit. stackAxes holds
-    // the axes of the entry's segment ends (minAxis << 2 | maxAxis).
-    uint stackNode[VKRAY_KD_STACK_SIZE], stackAxes[VKRAY_KD_STACK_SIZE];
-    float stackMin[VKRAY_KD_STACK_SIZE], stackMax[VKRAY_KD_STACK_SIZE];
+    // At most one push per level: VKRAY_KD_STACK_SIZE >= the builder's depth limit. An entry is a
+    // pending node with the start of its segment: stackNode holds the node in bits 0-27 and the axis
+    // of its segment's start above (kdStackEntry), stackMin the start. Its end is not stored: the
+    // walk's current segment always ends where the top entry's starts (a push cuts the segment at the
+    // plane where the pushed one starts, and a pop resumes a segment that ended there too), so an
+    // entry's end is the start of the entry below it, or the pass's end for the bottom one.
+    uint stackNode[VKRAY_KD_STACK_SIZE];
+    float stackMin[VKRAY_KD_STACK_SIZE];
+    const float passMax = segMax;
+    const uint passMaxAxis = maxAxis;
     int top = 0;
     uint node = 0u;
     bool passDone = false;
@@ -33,10 +46,8 @@ bool kdWalkPass(KdRay r, WatertightRay w, const bool anyHit, float segMin, uint 
                     steps = VKRAY_KD_MAX_STEPS;
                     break;
                 }
-                stackNode[top] = second;
-                stackAxes[top] = kdAxis(n) << 2 | maxAxis;
+                stackNode[top] = kdStackEntry(second, kdAxis(n));
                 stackMin[top] = thit;
-                stackMax[top] = segMax;
                 ++top;
             }
             node = kdDescend(visit, n, first, second, thit, segMax, maxAxis);
@@ -48,11 +59,12 @@ bool kdWalkPass(KdRay r, WatertightRay w, const bool anyHit, float segMin, uint 
             passDone = true;
         } else {  // pop the nearest pending node
             --top;
-            node = stackNode[top];
-            minAxis = stackAxes[top] >> 2;
-            maxAxis = stackAxes[top] & 3u;
+            const uint entry = stackNode[top];
+            node = entry & VKRAY_KD_STACK_NODE_MASK;
+            minAxis = entry >> 28;
             segMin = stackMin[top];
-            segMax = stackMax[top];
+            segMax = top > 0 ? stackMin[top - 1] : passMax;
+            maxAxis = top > 0 ? stackNode[top - 1] >> 28 : passMaxAxis;
         }
     }
     return passDone;

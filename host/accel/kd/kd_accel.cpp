@@ -1,10 +1,12 @@
 #include "accel/kd/kd_accel.h"
 
 #include <algorithm>
+#include <string>
 #include <utility>
 
 #include "accel/kd/kd_traversal.h"
 #include "accel/kd/sah_kd_builder.h"
+#include "core/error.h"
 #include "core/format.h"
 #include "geometry/brute_force.h"
 
@@ -27,6 +29,10 @@ public:
         data.kernel = kdKernel(traversal_);
         data.nodeTexelBytes = VKRAY_KD_NODE_TEXEL_BYTES;
         const kd::KdTree& t = build_.tree;
+        // kd-stack keeps a node index and two bits in one stack word (kd_stack.glsl).
+        if (t.nodes.size() > VKRAY_KD_MAX_NODES)
+            throw Error("the kd-tree has " + std::to_string(t.nodes.size()) + " nodes; the GPU kernels address at most " +
+                        std::to_string(VKRAY_KD_MAX_NODES) + " (raise --kd-traversal-cost or lower --kd-max-depth)");
         for (const gpu::KdNode& n : t.nodes)
             if (n.isLeaf()) data.maxLeafTriangles = std::max(data.maxLeafTriangles, n.triangleCount());
         data.nodes = asBytes(std::vector<gpu::KdTreeHeader>{t.header});
