@@ -227,6 +227,8 @@ private:
                       const accel::GpuAccelData& data, const std::string& label, bool rayKinds) {
         RenderOptions primary = render, depthOne = render;
         primary.maxDepth = depthOne.maxDepth = 1;
+        // Rates only: these renders' AOVs are never read (the error figures come from the full one).
+        primary.primaryAovs = depthOne.primaryAovs = false;
         Traced t;
         std::vector<double> full, prim, one, single, packet;
         for (int r = 0; r <= options_.repeat; ++r) {  // run 0 is the warm-up

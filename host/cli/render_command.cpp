@@ -90,6 +90,7 @@ RenderOptions resolveOptions(const RenderArgs& args, const Scene& scene) {
     if (args.threads < 0 || args.threads > 1024) throw Error("--threads must be 0 (all cores) or 1..1024");
     o.threads = args.threads;
     o.countTraversal = args.counters;
+    o.primaryAovs = !args.aovs.empty();
     return o;
 }
 

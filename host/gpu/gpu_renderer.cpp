@@ -79,23 +79,33 @@ GpuFrameParams frameParams(const Scene& scene, const RenderOptions& options) {
     return p;
 }
 
-void readTile(const GpuPixel* src, const Tile& tile, Frame& frame, GpuRenderReport& rep) {
+// Reads the pixels of `tile` into `frame` and `rep`: the fields the kernel of `features` writes
+// (the primary-hit AOVs and the counters only when it was specialised to write them; the resumable
+// variant writes every field).
+void readTile(const GpuPixel* src, const Tile& tile, const ShaderFeatures& features, Frame& frame,
+              GpuRenderReport& rep) {
+    const bool aovs = features.primaryAovs || features.resumable;
+    const bool counters = features.countTraversal || features.resumable;
     for (uint32_t y = 0; y < tile.height; ++y)
         for (uint32_t x = 0; x < tile.width; ++x) {
             const GpuPixel& px = src[y * VKRAY_TILE_SIZE + x];
             const size_t i = frame.index(int(tile.x + x), int(tile.y + y));
             frame.color[i] = px.color;
-            frame.depth[i] = px.depth;
-            frame.normal[i] = px.normal;
-            frame.primId[i] = px.primId;
+            if (aovs) {
+                frame.depth[i] = px.depth;
+                frame.normal[i] = px.normal;
+                frame.primId[i] = px.primId;
+            }
             rep.raysTraced += px.rays;
             rep.shadowRays += px.shadowRays;
             rep.cappedRays += px.capped;
-            rep.nodesVisited += px.nodes;
-            rep.leavesVisited += px.leaves;
-            rep.trianglesTested += px.triangles;
-            rep.restarts += px.restarts;
-            if (!rep.nodesPerPixel.empty()) rep.nodesPerPixel[i] = px.nodes;
+            if (counters) {
+                rep.nodesVisited += px.nodes;
+                rep.leavesVisited += px.leaves;
+                rep.trianglesTested += px.triangles;
+                rep.restarts += px.restarts;
+                if (!rep.nodesPerPixel.empty()) rep.nodesPerPixel[i] = px.nodes;
+            }
             rep.pixelsCutShort += (px.flags & VKRAY_PIXEL_CUT_SHORT) != 0;
         }
 }
@@ -229,7 +239,7 @@ void renderTiles(const VulkanContext& ctx, const ComputeKernel& kernel, const Bu
         const auto* src = static_cast<const GpuPixel*>(pixels.mapped());
         for (size_t k = 0; k < batch.size(); ++k) {
             if (countFlagged(src + k * kTilePixels, batch[k], VKRAY_PIXEL_CUT_SHORT) > 0) unfinished.push_back(batch[k]);
-            else readTile(src + k * kTilePixels, batch[k], frame, rep);
+            else readTile(src + k * kTilePixels, batch[k], rep.features, frame, rep);
         }
         if (progress) progress(uint32_t(first + batch.size()), uint32_t(tiles.size()));
     }
@@ -288,10 +298,12 @@ void renderResumable(const VulkanContext& ctx, ComputeKernel& kernel, const Scen
     bindBuffers(kernel, scene, accel, pixels, resume);
     rep.resumedTiles = uint32_t(tiles.size());
     rep.resumeRows = rows;
+    ShaderFeatures resumed = rep.features;
+    resumed.resumable = true;
     for (size_t t = 0; t < tiles.size(); ++t) {
         for (const Tile& strip : splitIntoStrips(tiles[t], rows)) {
             resumeStrip(ctx, kernel, resume, pixels, strip, base, rep);  // the strip as a tile of its own
-            readTile(static_cast<const GpuPixel*>(pixels.mapped()), strip, frame, rep);
+            readTile(static_cast<const GpuPixel*>(pixels.mapped()), strip, resumed, frame, rep);
         }
         if (progress) progress(uint32_t(t + 1), uint32_t(tiles.size()));
     }
@@ -373,6 +385,7 @@ Frame renderOnGpu(const VulkanContext& ctx, const Scene& scene, const RenderOpti
     start = Clock::now();
     rep.features = ShaderFeatures::forScene(scene, options.maxDepth);
     rep.features.countTraversal = options.countTraversal;
+    rep.features.primaryAovs = options.primaryAovs;
     rep.features.setMaxLeafTriangles(accel.maxLeafTriangles);
     std::optional<KernelCache> ownKernels;
     if (!kernels) kernels = &ownKernels.emplace(ctx);

@@ -36,6 +36,7 @@ Specialization ShaderFeatures::specialization() const {
     s.set(VKRAY_SPEC_COUNT_TRAVERSAL, countTraversal);
     s.set(VKRAY_SPEC_LEAF_SLOTS, singleSlotLeaves ? 1u : 4u);
     s.set(VKRAY_SPEC_RESUMABLE, resumable);
+    s.set(VKRAY_SPEC_PRIMARY_AOVS, primaryAovs);
     return s;
 }
 
@@ -46,6 +47,7 @@ std::vector<std::pair<std::string, bool>> ShaderFeatures::list() const {
             {"directional lights", directionalLights},
             {"smooth normals", smoothNormals},
             {"traversal counters", countTraversal},
+            {"primary-hit AOVs", primaryAovs},
             {"one triangle per leaf-loop iteration", singleSlotLeaves}};
 }
 

@@ -21,6 +21,7 @@ struct ShaderFeatures {
     bool directionalLights = false;
     bool smoothNormals = false;
     bool countTraversal = false;     // statistics variant (RenderOptions::countTraversal)
+    bool primaryAovs = true;         // depth, normal and triangle id written (RenderOptions::primaryAovs)
     // Leaf loop: one triangle per iteration unless a leaf holds more than
     // VKRAY_SINGLE_SLOT_LEAF_LIMIT (then four, for lavapipe's loop budget).
     bool singleSlotLeaves = true;

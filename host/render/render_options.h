@@ -12,6 +12,10 @@ struct RenderOptions {
     // Compile traversal counters into the kernel (nodes, leaves, triangle tests per ray): the
     // statistics variant; off, timing runs pay nothing for counting.
     bool countTraversal = false;
+    // Fill Frame's primary-hit AOVs (depth, primId, normal). A render that saves none and timing
+    // runs turn this off: the GPU kernel then stores only colour and ray counts per pixel, and
+    // the AOVs stay at their miss values.
+    bool primaryAovs = true;
 };
 
 }  // namespace vkray

@@ -59,5 +59,6 @@ layout(constant_id = VKRAY_SPEC_HAS_REFRACTION) const bool HAS_REFRACTION = true
 layout(constant_id = VKRAY_SPEC_HAS_POINT_LIGHTS) const bool HAS_POINT_LIGHTS = true;
 layout(constant_id = VKRAY_SPEC_HAS_DIRECTIONAL_LIGHTS) const bool HAS_DIRECTIONAL_LIGHTS = true;
 layout(constant_id = VKRAY_SPEC_HAS_SMOOTH_NORMALS) const bool HAS_SMOOTH_NORMALS = true;
+layout(constant_id = VKRAY_SPEC_PRIMARY_AOVS) const bool PRIMARY_AOVS = true;
 
 #endif

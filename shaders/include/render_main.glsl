@@ -41,17 +41,22 @@ layout(std430, set = 0, binding = VKRAY_BINDING_RESUME_RAYS) buffer ResumeRays {
 };
 
 // The pending rays: in registers, or in the resumable variant in this pixel's part of resumeRays
-// (saving them then needs no loop of its own).
+// (saving them then needs no loop of its own). Without refraction a hit spawns one ray at most, so
+// one ray is ever pending and the stack is its one entry 0: a constant index. An entry read or
+// written at a per-lane index is a loop over the SIMD lanes per word on llvmpipe, and a pending
+// ray is ten words (docs/benchmarks.md, "A third round").
 PendingRay gStack[MAX_DEPTH];
 uint gRayBase = 0u;  // first resumeRays entry of this pixel
 
+int stackSlot(int i) { return HAS_REFRACTION ? i : 0; }
+
 void storeRay(int i, PendingRay r) {
     if (RESUMABLE) resumeRays[gRayBase + uint(i)] = GpuPendingRay(r.origin, r.depth, r.dir, 0.0, r.weight, 0.0);
-    else gStack[i] = r;
+    else gStack[stackSlot(i)] = r;
 }
 
 PendingRay loadRay(int i) {
-    if (!RESUMABLE) return gStack[i];
+    if (!RESUMABLE) return gStack[stackSlot(i)];
     const GpuPendingRay g = resumeRays[gRayBase + uint(i)];
     return PendingRay(g.origin, g.dir, g.weight, g.depth);
 }
@@ -190,6 +195,30 @@ uint resumePixel(uint resumeIndex, uint outIndex, uvec2 pixel, uvec2 imageSize, 
     return r.stage;
 }
 
+// The pixel's record (GpuPixel). Only what the host reads: the primary-hit AOVs when it saves them,
+// the traversal counters in the statistics variant, everything in the resumable variant, which
+// reads its pixels back. On llvmpipe every word stored at a per-lane address is a loop over the
+// SIMD lanes: the full 16 words were 6% of a camera-ray render (docs/benchmarks.md, "A third
+// round").
+void storePixel(uint i, PixelTrace pt, uint flags) {
+    pixels[i].color = pt.radiance;
+    pixels[i].flags = flags;
+    pixels[i].rays = uint(pt.rays);
+    pixels[i].shadowRays = gShadowRays;
+    pixels[i].capped = gCappedRays;
+    if (PRIMARY_AOVS || RESUMABLE) {
+        pixels[i].depth = pt.depth;
+        pixels[i].normal = pt.normal;
+        pixels[i].primId = pt.primId;
+    }
+    if (COUNT_TRAVERSAL || RESUMABLE) {
+        pixels[i].nodes = gNodesVisited;
+        pixels[i].leaves = gLeavesVisited;
+        pixels[i].triangles = gTrianglesTested;
+        pixels[i].restarts = gRestarts;
+    }
+}
+
 void main() {
     const uvec2 local = pixelInTile();
     const uvec2 imageSize = params.imageTile.xy;
@@ -227,8 +256,7 @@ void main() {
                           (RESUMABLE ? unfinished && (!progressed || pt.rays >= kMaxRaysPerPixel)
                                      : gLoopCutShort || unfinished);
     const uint flags = cutShort ? VKRAY_PIXEL_CUT_SHORT : unfinished ? VKRAY_PIXEL_UNFINISHED : 0u;
-    pixels[outIndex] = GpuPixel(pt.radiance, pt.depth, pt.normal, pt.primId, flags, uint(pt.rays), gShadowRays,
-                                gNodesVisited, gLeavesVisited, gTrianglesTested, gRestarts, gCappedRays);
+    storePixel(outIndex, pt, flags);
     if (RESUMABLE)
         resume[resumeIndex] = GpuPixelResume(pt.color, cutShort ? VKRAY_RESUME_DONE : stage,
                                              vec3(pt.hit.t, pt.hit.uv), pt.hit.triangle,

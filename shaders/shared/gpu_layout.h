@@ -75,7 +75,10 @@ using uvec4 = glm::uvec4;
 // The resumable variant's own loop budget: passes of a subgroup through its loops' headers per
 // dispatch, below llvmpipe's 65535 to leave room for the few fixed-count loops it does not count.
 #define VKRAY_RESUMABLE_LOOP_BUDGET 60000u
-#define VKRAY_SPEC_COUNT 9
+// bool: write the primary hit's depth, normal and triangle identity (GpuPixel); off when nothing
+// reads them (a render that saves no AOV, a timing run), so the kernel stores 7 words a pixel, not 16.
+#define VKRAY_SPEC_PRIMARY_AOVS 9
+#define VKRAY_SPEC_COUNT 10
 #define VKRAY_SINGLE_SLOT_LEAF_LIMIT 128
 
 // ---- GpuPixel.flags ------------------------------------------------------------------------------
@@ -172,6 +175,7 @@ VKRAY_STRUCT(GpuPixel) {  // 64 bytes
     float depth;  // primary-hit t, +inf on a miss
     vec3 normal;  // primary shading normal, 0 on a miss
     int primId;   // triangle identity of the primary hit, -1 on a miss
+    // depth, normal and primId are written only when VKRAY_SPEC_PRIMARY_AOVS is on
     uint flags;   // VKRAY_PIXEL_* bits
     uint rays;    // closest-hit rays traced for this pixel (camera and secondary)
     uint shadowRays;  // any-hit rays traced for this pixel
