@@ -4,6 +4,7 @@
 
 #include <cstdio>
 #include <filesystem>
+#include <future>
 #include <map>
 #include <memory>
 #include <optional>
@@ -219,6 +220,14 @@ void runRender(const RenderArgs& args) {
 
     const bool showProgress = !args.json && isatty(STDERR_FILENO);
     const Clock::time_point t0 = Clock::now();
+    // The device opens while the scene loads: the Vulkan loader and the driver take tens of
+    // milliseconds to start. Its errors surface after the scene's, as when it opened second.
+    std::future<std::unique_ptr<gpu::VulkanContext>> opening;
+    if (!args.cpu)
+        opening = std::async(std::launch::async, [device = args.device] {
+            return std::make_unique<gpu::VulkanContext>(
+                gpu::ContextOptions{.validation = gpu::validationRequestedByEnvironment(), .device = device});
+        });
     ParseOptions parse;
     if (showProgress) parse.progress = printLoadProgress;
     Scene scene = loadScene(args.scene, parse);
@@ -236,17 +245,17 @@ void runRender(const RenderArgs& args) {
         accelFiles.loadMs += msSince(t1);
     }
 
-    // The device first: a missing or unknown device fails before a long build.
-    std::optional<gpu::VulkanContext> ctx;
+    // The device before the build: a missing or unknown device fails before a long build.
+    std::unique_ptr<gpu::VulkanContext> ctx;
     if (!args.cpu) {
-        ctx.emplace(gpu::ContextOptions{.validation = gpu::validationRequestedByEnvironment(), .device = args.device});
+        ctx = opening.get();
         report.device = ctx->info().name + " (" + ctx->info().driver + ")";
         gpu::checkSceneFits(*ctx, scene);
     } else {
         report.device = "CPU reference (double precision)";
     }
 
-    const Frame frame = renderFrame(scene, options, spec, ctx ? &*ctx : nullptr, accelFiles, showProgress, report);
+    const Frame frame = renderFrame(scene, options, spec, ctx.get(), accelFiles, showProgress, report);
     writeColorImage(out, frame.width, frame.height, frame.color);
     for (const auto& [name, file] : aovFiles) writeAov(file, frame, name);
 
