@@ -188,9 +188,18 @@ Structure prepareStructure(const Scene& scene, const RenderOptions& options, con
 }
 
 // Renders with the structure `spec` names: on the GPU of `ctx`, or on the CPU reference when there
-// is none. Fills the build and render parts of `report`.
+// is none. Fills the build and render parts of `report`. On the GPU the kernel's pipeline is
+// created on a thread while the structure is built (LLVM compiles it on lavapipe: tens of ms).
 Frame renderFrame(const Scene& scene, const RenderOptions& options, const accel::AccelSpec& spec,
                   const gpu::VulkanContext* ctx, AccelFiles& files, bool showProgress, RenderReport& report) {
+    std::optional<gpu::KernelCache> kernels;
+    std::future<double> compiling;  // waits in its destructor, so kernels outlives it
+    if (ctx) {
+        kernels.emplace(*ctx);
+        compiling = std::async(std::launch::async, [&] {
+            return gpu::prepareKernel(scene, options, accel::kernelOf(spec), *kernels);
+        });
+    }
     const Structure structure = prepareStructure(scene, options, spec, files, ctx != nullptr, showProgress, report);
 
     Frame frame;
@@ -201,9 +210,11 @@ Frame renderFrame(const Scene& scene, const RenderOptions& options, const accel:
         report.renderMs = msSince(t0);
         return frame;
     }
+    const double preparedMs = compiling.get();
     gpu::GpuRenderReport& rep = report.gpu.emplace();
     frame = gpu::renderOnGpu(*ctx, scene, options, *structure.data, &rep,
-                             showProgress ? gpu::TileProgress(printTileProgress) : gpu::TileProgress());
+                             showProgress ? gpu::TileProgress(printTileProgress) : gpu::TileProgress(), &*kernels);
+    rep.pipelineMs += preparedMs;
     report.renderMs = msSince(t0);
     if (rep.cappedRays > 0)
         std::fprintf(stderr, "warning: %llu rays reached the traversal's iteration cap and were ended "

@@ -347,6 +347,22 @@ std::span<const uint32_t> kernelSpirv(accel::Kernel kernel, std::vector<uint32_t
 
 }  // namespace
 
+ShaderFeatures renderFeatures(const Scene& scene, const RenderOptions& options, uint32_t maxLeafTriangles) {
+    ShaderFeatures f = ShaderFeatures::forScene(scene, options.maxDepth);
+    f.countTraversal = options.countTraversal;
+    f.primaryAovs = options.primaryAovs;
+    f.setMaxLeafTriangles(maxLeafTriangles);
+    return f;
+}
+
+double prepareKernel(const Scene& scene, const RenderOptions& options, accel::Kernel kernel, KernelCache& kernels) {
+    const auto start = Clock::now();
+    std::vector<uint32_t> spirvFromFile;
+    kernels.kernel(std::string(accel::kernelName(kernel)), kernelSpirv(kernel, spirvFromFile),
+                   renderFeatures(scene, options, 1).specialization());
+    return msSince(start);
+}
+
 KernelCache::KernelCache(const VulkanContext& ctx) : ctx_(ctx) {}
 KernelCache::~KernelCache() = default;
 
@@ -383,10 +399,7 @@ Frame renderOnGpu(const VulkanContext& ctx, const Scene& scene, const RenderOpti
     rep.uploadMs = msSince(start);
 
     start = Clock::now();
-    rep.features = ShaderFeatures::forScene(scene, options.maxDepth);
-    rep.features.countTraversal = options.countTraversal;
-    rep.features.primaryAovs = options.primaryAovs;
-    rep.features.setMaxLeafTriangles(accel.maxLeafTriangles);
+    rep.features = renderFeatures(scene, options, accel.maxLeafTriangles);
     std::optional<KernelCache> ownKernels;
     if (!kernels) kernels = &ownKernels.emplace(ctx);
     std::vector<uint32_t> spirvFromFile;

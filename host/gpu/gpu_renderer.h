@@ -68,6 +68,16 @@ private:
     std::map<std::pair<std::string, std::vector<std::pair<uint32_t, uint32_t>>>, std::unique_ptr<ComputeKernel>> kernels_;
 };
 
+// What the kernel of a render of `scene` with `options` is specialised with, for a structure whose
+// largest leaf holds `maxLeafTriangles`.
+ShaderFeatures renderFeatures(const Scene& scene, const RenderOptions& options, uint32_t maxLeafTriangles);
+
+// Creates in `kernels` the pipeline that a render of `scene` with `kernel` will use, so that LLVM
+// compiles it while the structure is built: for a structure whose leaves all hold at most
+// VKRAY_SINGLE_SLOT_LEAF_LIMIT triangles (any BVH; a kd-tree with larger leaves gets its own
+// pipeline in the render). Returns the milliseconds it took.
+double prepareKernel(const Scene& scene, const RenderOptions& options, accel::Kernel kernel, KernelCache& kernels);
+
 // Renders with an acceleration structure already built (accel::buildAccel(...)->gpuData()).
 Frame renderOnGpu(const VulkanContext& ctx, const Scene& scene, const RenderOptions& options,
                   const accel::GpuAccelData& accel, GpuRenderReport* report = nullptr,
