@@ -122,6 +122,37 @@ TEST(GpuRenderer, NoShadowAcneAtGrazingLight) {
     EXPECT_GT(hits, f.color.size() / 3);
 }
 
+// A render that saves no AOV leaves the primary-hit AOVs out of the kernel's output: its colour, ray
+// counts and traversal counters are those of a render with them, bit for bit, and its AOVs stay at
+// their miss values.
+TEST(GpuRenderer, WithoutPrimaryAovsTheImageAndCountsAreTheSame) {
+    const Scene s = litSquare();
+    for (const char* accel : {"bvh", "kd-stack"}) {
+        SCOPED_TRACE(accel);
+        RenderOptions with{.width = 40, .height = 30, .maxDepth = 2, .countTraversal = true};
+        RenderOptions without = with;
+        without.primaryAovs = false;
+        gpu::GpuRenderReport a, b;
+        const Frame f = test::renderGpu(s, with, &a, accel);
+        const Frame g = test::renderGpu(s, without, &b, accel);
+        EXPECT_TRUE(a.features.primaryAovs);
+        EXPECT_FALSE(b.features.primaryAovs);
+        ASSERT_EQ(f.color.size(), g.color.size());
+        for (size_t i = 0; i < f.color.size(); ++i) {
+            ASSERT_EQ(f.color[i], g.color[i]) << "pixel " << i;
+            ASSERT_NE(f.primId[i], -1) << "the square fills the view";
+            ASSERT_EQ(g.primId[i], -1);
+            ASSERT_EQ(g.depth[i], std::numeric_limits<float>::infinity());
+            ASSERT_EQ(g.normal[i], glm::vec3(0.0f));
+        }
+        EXPECT_EQ(a.raysTraced, b.raysTraced);
+        EXPECT_EQ(a.shadowRays, b.shadowRays);
+        EXPECT_GT(a.nodesVisited, 0u);
+        EXPECT_EQ(a.nodesVisited, b.nodesVisited);
+        EXPECT_EQ(a.trianglesTested, b.trianglesTested);
+    }
+}
+
 TEST(GpuRenderer, FeaturesFollowTheScene) {
     Scene s = litSquare();
     auto f = gpu::ShaderFeatures::forScene(s, 5);
