@@ -79,13 +79,10 @@ GpuFrameParams frameParams(const Scene& scene, const RenderOptions& options) {
     return p;
 }
 
-// Reads the pixels of `tile` into `frame` and `rep`: the fields the kernel of `features` writes
-// (the primary-hit AOVs and the counters only when it was specialised to write them; the resumable
-// variant writes every field).
+// Reads the pixels of `tile` into `frame` and `rep`: the fields the kernel of `features` writes.
 void readTile(const GpuPixel* src, const Tile& tile, const ShaderFeatures& features, Frame& frame,
               GpuRenderReport& rep) {
-    const bool aovs = features.primaryAovs || features.resumable;
-    const bool counters = features.countTraversal || features.resumable;
+    const bool aovs = features.writesPrimaryAovs(), counters = features.writesCounters();
     for (uint32_t y = 0; y < tile.height; ++y)
         for (uint32_t x = 0; x < tile.width; ++x) {
             const GpuPixel& px = src[y * VKRAY_TILE_SIZE + x];
@@ -288,9 +285,10 @@ void resumeStrip(const VulkanContext& ctx, const ComputeKernel& kernel, const Re
     }
 }
 
-// Renders `tiles` again with the resumable variant (render_main.glsl, "Resumable pixels"), strip by
-// strip, into `frame`.
-void renderResumable(const VulkanContext& ctx, ComputeKernel& kernel, const SceneBuffers& scene,
+// Renders `tiles` again with `kernel`, the resumable variant of `features` (render_main.glsl,
+// "Resumable pixels"), strip by strip, into `frame`.
+void renderResumable(const VulkanContext& ctx, ComputeKernel& kernel, const ShaderFeatures& features,
+                     const SceneBuffers& scene,
                      const AccelBuffers& accel, const Buffer& pixels, std::span<const Tile> tiles, int maxDepth,
                      const GpuFrameParams& base, Frame& frame, GpuRenderReport& rep, const TileProgress& progress) {
     const uint32_t rows = resumeStripRows(ctx, maxDepth);
@@ -298,12 +296,10 @@ void renderResumable(const VulkanContext& ctx, ComputeKernel& kernel, const Scen
     bindBuffers(kernel, scene, accel, pixels, resume);
     rep.resumedTiles = uint32_t(tiles.size());
     rep.resumeRows = rows;
-    ShaderFeatures resumed = rep.features;
-    resumed.resumable = true;
     for (size_t t = 0; t < tiles.size(); ++t) {
         for (const Tile& strip : splitIntoStrips(tiles[t], rows)) {
             resumeStrip(ctx, kernel, resume, pixels, strip, base, rep);  // the strip as a tile of its own
-            readTile(static_cast<const GpuPixel*>(pixels.mapped()), strip, resumed, frame, rep);
+            readTile(static_cast<const GpuPixel*>(pixels.mapped()), strip, features, frame, rep);
         }
         if (progress) progress(uint32_t(t + 1), uint32_t(tiles.size()));
     }
@@ -323,12 +319,11 @@ void throwIfCutShort(const VulkanContext& ctx, const Scene& scene, accel::Kernel
                 ", or another device; no image was written");
 }
 
-// The built-in SPIR-V of a kernel, or with VKRAY_KERNEL_DIR set render_<kernel>.spv from that folder
-// (docs/architecture.md, "Shaders"): a kernel edit is then timed against the built-in one without
-// rebuilding vkray.
-std::span<const uint32_t> kernelSpirv(accel::Kernel kernel, std::vector<uint32_t>& storage) {
+// With VKRAY_KERNEL_DIR set, render_<kernel>.spv from that folder (docs/architecture.md, "Shaders"):
+// a kernel edit is then timed against the built-in one without rebuilding vkray. Empty when unset.
+std::vector<uint32_t> kernelFromDir(accel::Kernel kernel) {
     const char* dir = std::getenv("VKRAY_KERNEL_DIR");
-    if (!dir || !*dir) return generated::kRenderKernels[kernelIndex(kernel)].code;
+    if (!dir || !*dir) return {};
     const std::filesystem::path file =
         std::filesystem::path(dir) / ("render_" + std::string(accel::kernelName(kernel)) + ".spv");
     std::ifstream in(file, std::ios::binary | std::ios::ate);
@@ -336,13 +331,13 @@ std::span<const uint32_t> kernelSpirv(accel::Kernel kernel, std::vector<uint32_t
     const std::streamsize size = in.tellg();
     if (size <= 0 || size % 4 != 0)
         throw Error("VKRAY_KERNEL_DIR: " + file.string() + " is not SPIR-V (size " + std::to_string(size) + ")");
-    storage.resize(size_t(size) / 4);
+    std::vector<uint32_t> code(size_t(size) / 4);
     in.seekg(0);
-    if (!in.read(reinterpret_cast<char*>(storage.data()), size) || storage[0] != 0x07230203u)
+    if (!in.read(reinterpret_cast<char*>(code.data()), size) || code[0] != 0x07230203u)
         throw Error("VKRAY_KERNEL_DIR: " + file.string() + " is not SPIR-V");
     std::fprintf(stderr, "vkray: kernel %s from %s\n", std::string(accel::kernelName(kernel)).c_str(),
                  file.c_str());
-    return storage;
+    return code;
 }
 
 }  // namespace
@@ -357,20 +352,24 @@ ShaderFeatures renderFeatures(const Scene& scene, const RenderOptions& options, 
 
 double prepareKernel(const Scene& scene, const RenderOptions& options, accel::Kernel kernel, KernelCache& kernels) {
     const auto start = Clock::now();
-    std::vector<uint32_t> spirvFromFile;
-    kernels.kernel(std::string(accel::kernelName(kernel)), kernelSpirv(kernel, spirvFromFile),
-                   renderFeatures(scene, options, 1).specialization());
+    kernels.kernel(kernel, renderFeatures(scene, options, 1).specialization());
     return msSince(start);
 }
 
 KernelCache::KernelCache(const VulkanContext& ctx) : ctx_(ctx) {}
 KernelCache::~KernelCache() = default;
 
-ComputeKernel& KernelCache::kernel(const std::string& name, std::span<const uint32_t> spirv,
-                                   const Specialization& spec) {
-    auto& slot = kernels_[{name, spec.values}];
+std::span<const uint32_t> KernelCache::spirv(accel::Kernel kernel) {
+    auto it = spirvFromFiles_.find(kernel);
+    if (it == spirvFromFiles_.end()) it = spirvFromFiles_.emplace(kernel, kernelFromDir(kernel)).first;
+    if (!it->second.empty()) return it->second;
+    return generated::kRenderKernels[kernelIndex(kernel)].code;
+}
+
+ComputeKernel& KernelCache::kernel(accel::Kernel kernel, const Specialization& spec) {
+    auto& slot = kernels_[{kernel, spec.values}];
     if (!slot)
-        slot = std::make_unique<ComputeKernel>(ctx_, spirv, kBindingTypes, sizeof(GpuFrameParams), spec);
+        slot = std::make_unique<ComputeKernel>(ctx_, spirv(kernel), kBindingTypes, sizeof(GpuFrameParams), spec);
     return *slot;
 }
 
@@ -402,9 +401,7 @@ Frame renderOnGpu(const VulkanContext& ctx, const Scene& scene, const RenderOpti
     rep.features = renderFeatures(scene, options, accel.maxLeafTriangles);
     std::optional<KernelCache> ownKernels;
     if (!kernels) kernels = &ownKernels.emplace(ctx);
-    std::vector<uint32_t> spirvFromFile;
-    const std::span<const uint32_t> spirv = kernelSpirv(accel.kernel, spirvFromFile);
-    ComputeKernel& kernel = kernels->kernel(rep.kernel, spirv, rep.features.specialization());
+    ComputeKernel& kernel = kernels->kernel(accel.kernel, rep.features.specialization());
     rep.pipelineMs = msSince(start);
 
     const std::vector<Tile> tiles = splitIntoTiles(uint32_t(options.width), uint32_t(options.height));
@@ -427,9 +424,9 @@ Frame renderOnGpu(const VulkanContext& ctx, const Scene& scene, const RenderOpti
     if (!unfinished.empty()) {
         ShaderFeatures resumable = rep.features;
         resumable.resumable = true;
-        ComputeKernel& again = kernels->kernel(rep.kernel, spirv, resumable.specialization());
-        renderResumable(ctx, again, sceneBuffers, accelBuffers, pixels, unfinished, options.maxDepth, baseParams,
-                        frame, rep, progress);
+        ComputeKernel& again = kernels->kernel(accel.kernel, resumable.specialization());
+        renderResumable(ctx, again, resumable, sceneBuffers, accelBuffers, pixels, unfinished, options.maxDepth,
+                        baseParams, frame, rep, progress);
     }
     rep.renderMs = msSince(start);
     ctx.checkValidation();

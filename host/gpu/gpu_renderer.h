@@ -60,12 +60,17 @@ public:
     KernelCache(const KernelCache&) = delete;
     KernelCache& operator=(const KernelCache&) = delete;
 
-    ComputeKernel& kernel(const std::string& name, std::span<const uint32_t> spirv, const Specialization& spec);
+    // The pipeline of `kernel` specialised with `spec`. Its SPIR-V is the built-in one, or with
+    // VKRAY_KERNEL_DIR set render_<kernel>.spv from that folder, read once per cache.
+    ComputeKernel& kernel(accel::Kernel kernel, const Specialization& spec);
     size_t size() const { return kernels_.size(); }
 
 private:
+    std::span<const uint32_t> spirv(accel::Kernel kernel);
+
     const VulkanContext& ctx_;
-    std::map<std::pair<std::string, std::vector<std::pair<uint32_t, uint32_t>>>, std::unique_ptr<ComputeKernel>> kernels_;
+    std::map<accel::Kernel, std::vector<uint32_t>> spirvFromFiles_;
+    std::map<std::pair<accel::Kernel, std::vector<std::pair<uint32_t, uint32_t>>>, std::unique_ptr<ComputeKernel>> kernels_;
 };
 
 // What the kernel of a render of `scene` with `options` is specialised with, for a structure whose

@@ -29,6 +29,12 @@ struct ShaderFeatures {
     // finish within the driver's loop budget.
     bool resumable = false;
 
+    // Which GpuPixel fields the kernel writes (render_main.glsl, storePixel): the primary-hit AOVs
+    // and the counters when specialised to, and every field in the resumable variant, which reads
+    // its pixels back.
+    bool writesPrimaryAovs() const { return primaryAovs || resumable; }
+    bool writesCounters() const { return countTraversal || resumable; }
+
     static ShaderFeatures forScene(const Scene& scene, int maxDepth);
     void setMaxLeafTriangles(uint32_t triangles) { singleSlotLeaves = triangles <= VKRAY_SINGLE_SLOT_LEAF_LIMIT; }
     Specialization specialization() const;

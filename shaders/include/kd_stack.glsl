@@ -17,6 +17,8 @@
 // at most maxTexelBufferElements (2^27 on lavapipe) texels, and the host refuses more
 // (VKRAY_KD_MAX_NODES).
 uint kdStackEntry(uint node, uint minAxis) { return node | (minAxis << 28); }
+uint kdStackNode(uint entry) { return entry & VKRAY_KD_STACK_NODE_MASK; }
+uint kdStackAxis(uint entry) { return entry >> 28; }
 
 bool kdWalkPass(KdRay r, WatertightRay w, const bool anyHit, float segMin, uint minAxis, float segMax,
                 uint maxAxis, inout KdPass pass, inout int steps, inout Hit best) {
@@ -60,11 +62,11 @@ bool kdWalkPass(KdRay r, WatertightRay w, const bool anyHit, float segMin, uint 
         } else {  // pop the nearest pending node
             --top;
             const uint entry = stackNode[top];
-            node = entry & VKRAY_KD_STACK_NODE_MASK;
-            minAxis = entry >> 28;
+            node = kdStackNode(entry);
+            minAxis = kdStackAxis(entry);
             segMin = stackMin[top];
             segMax = top > 0 ? stackMin[top - 1] : passMax;
-            maxAxis = top > 0 ? stackNode[top - 1] >> 28 : passMaxAxis;
+            maxAxis = top > 0 ? kdStackAxis(stackNode[top - 1]) : passMaxAxis;
         }
     }
     return passDone;
