@@ -169,8 +169,11 @@ TEST(AccelFile, RefusesAnotherAcceleratorOrTuning) {
                   "built for --accel kd-stack, not kd-backtrack");
     expectRefused([&] { loadAccelFile(bvhFile, resolveAccel("bvh", {{"--aac-delta", 9}}), scene); }, bvhFile,
                   "built for --accel bvh tuned otherwise");
-    // bvh and bvh-hq are one structure traced by one kernel.
-    EXPECT_NO_THROW(loadAccelFile(bvhFile, resolveAccel("bvh-hq"), scene));
+    // bvh is bvh-hq restructured: the same structure only when tuned alike.
+    expectRefused([&] { loadAccelFile(bvhFile, resolveAccel("bvh-hq"), scene); }, bvhFile,
+                  "built for --accel bvh, not bvh-hq");
+    EXPECT_NO_THROW(loadAccelFile(
+        bvhFile, resolveAccel("bvh-hq", {{"--bvh-treelet-passes", 2}, {"--bvh-treelet-min", 8}}), scene));
 }
 
 // Every damage a disk, a copy or an editor can do: each is caught before the arrays are used.

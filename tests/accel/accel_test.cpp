@@ -90,7 +90,10 @@ TEST(AccelSpec, EveryTuningOptionIsRangeCheckedAndNamed) {
 }
 
 TEST(AccelSpec, StructureKeysTellWhichBuildsAreShared) {
-    EXPECT_EQ(structureKey(resolveAccel("bvh")), structureKey(resolveAccel("bvh-hq")));
+    EXPECT_NE(structureKey(resolveAccel("bvh")), structureKey(resolveAccel("bvh-hq")));
+    EXPECT_EQ(structureKey(resolveAccel("bvh")),
+              structureKey(resolveAccel("bvh-hq", {{"--bvh-treelet-passes", 2}, {"--bvh-treelet-min", 8}})));
+    EXPECT_NE(structureKey(resolveAccel("bvh")), structureKey(resolveAccel("bvh", {{"--bvh-treelet-passes", 3}})));
     EXPECT_NE(structureKey(resolveAccel("bvh")), structureKey(resolveAccel("bvh-fast")));
     EXPECT_NE(structureKey(resolveAccel("bvh-sah")), structureKey(resolveAccel("bvh-fast")));
     EXPECT_EQ(structureKey(resolveAccel("kd-stack")), structureKey(resolveAccel("kd-backtrack")));

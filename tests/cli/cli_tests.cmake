@@ -146,6 +146,8 @@ vkray_expect_error(kd_cost_nan "--kd-traversal-cost and --kd-intersection-cost m
 vkray_expect_error(kd_max_duplication "--kd-max-duplication must be a number of references per triangle, 1 or more" render ${CLI_DATA}/one_triangle.scene --accel kd-stack --kd-max-duplication 0.5 -o ${CLI_OUT}/x.png)
 vkray_expect_error(kd_max_duplication_bvh "--kd-max-duplication applies to kd-restart, kd-backtrack, kd-stack only" render ${CLI_DATA}/one_triangle.scene --accel bvh --kd-max-duplication 4 -o ${CLI_OUT}/x.png)
 vkray_expect_error(aac_delta_absurd "--aac-delta must be 1..1024" render ${CLI_DATA}/one_triangle.scene --aac-delta 1000000 -o ${CLI_OUT}/x.png)
+vkray_expect_error(treelet_passes "--bvh-treelet-passes must be 0..16" render ${CLI_DATA}/one_triangle.scene --bvh-treelet-passes 17 -o ${CLI_OUT}/x.png)
+vkray_expect_error(treelet_min_kd "--bvh-treelet-min applies to bvh, bvh-fast, bvh-hq, bvh-sah only \\(--accel kd-stack\\)" render ${CLI_DATA}/one_triangle.scene --accel kd-stack --bvh-treelet-min 4 -o ${CLI_OUT}/x.png)
 
 # Hardened input: every case is one "error: " line naming the cause (and file:line where
 # there is one) and a non-zero exit, never a crash, a hang or a silently wrong image. Inputs too

@@ -85,9 +85,21 @@ struct Config {
     int maxLeafSize = VKRAY_BVH_MAX_LEAF_SIZE;
     SahConstants sah;
 
+    // Treelet restructuring after the build (treelet.h): passes over the tree (0 = none), and the
+    // smallest subtree, in primitives, whose root grows a treelet.
+    int treeletPasses = 0;
+    int treeletMinPrimitives = 1;
+
     // The paper's two presets, AAC-Fast and AAC-HQ (Mahmuda 2017 instead settled on delta 6 and 12).
     static Config aacFast() { return withAac(4, 0.2); }
     static Config aacHq() { return withAac(20, 0.1); }
+    // AAC-HQ followed by treelet restructuring (treelet.h): vkray's default BVH.
+    static Config aacHqRestructured() {
+        Config c = aacHq();
+        c.treeletPasses = 2;
+        c.treeletMinPrimitives = 8;
+        return c;
+    }
     static Config binnedSah() {
         Config c;
         c.builder = Builder::BinnedSah;

@@ -8,6 +8,7 @@
 #include "accel/bvh/leaf_collapse.h"
 #include "accel/bvh/primitives.h"
 #include "accel/bvh/sah_builder.h"
+#include "accel/bvh/treelet.h"
 #include "core/error.h"
 #include "core/format.h"
 #include "core/timing.h"
@@ -56,6 +57,10 @@ public:
         } else {
             s.push_back({"sah_bins", double(config_.sahBins), "per axis"});
         }
+        if (config_.treeletPasses > 0) {
+            s.push_back({"treelet_passes", double(config_.treeletPasses), "Karras and Aila 2013"});
+            s.push_back({"treelet_min", double(config_.treeletMinPrimitives), "triangles"});
+        }
         s.push_back({"nodes", double(flat.nodes.size()), "binary: inner nodes and leaves"});
         s.push_back({"leaves", double(flat.leaves), ""});
         s.push_back({"max_depth", double(flat.maxDepth), "root = 0"});
@@ -83,7 +88,10 @@ std::string Config::describe() const {
     const std::string builderText = builder == Builder::Aac
                                         ? "AAC delta=" + shortNumber(delta) + " epsilon=" + shortNumber(epsilon)
                                         : "binned SAH, " + std::to_string(sahBins) + " bins";
-    return builderText + "; " + sahUnit(*this);
+    const std::string treelets = treeletPasses > 0 ? "; " + std::to_string(treeletPasses) +
+                                                         " treelet passes from " + std::to_string(treeletMinPrimitives) + " triangles"
+                                                   : "";
+    return builderText + treelets + "; " + sahUnit(*this);
 }
 
 BuildResult buildFlatBvh(std::span<const Triangle> triangles, const Config& config, int threads,
@@ -93,7 +101,8 @@ BuildResult buildFlatBvh(std::span<const Triangle> triangles, const Config& conf
     tbb::task_arena arena(threads > 0 ? threads : tbb::task_arena::automatic);
     FlatBvh flat = arena.execute([&] {
         const PrimitiveSet prims = log.run("primitives", 0.05, [&] { return primitivesOf(triangles); });
-        const BinaryTree tree = buildTree(prims, config, log);
+        BinaryTree tree = buildTree(prims, config, log);
+        if (config.treeletPasses > 0) log.run("treelets", 0.88, [&] { restructureTreelets(tree, config); });
         const CollapsedTree collapsed = log.run("collapse", 0.92, [&] { return collapseLeaves(tree, config); });
         return log.run("flatten", 1.0, [&] { return flatten(tree, collapsed); });
     });

@@ -28,6 +28,7 @@ struct NamedConfig {
 std::vector<NamedConfig> testConfigs() {
     return {{"aac_fast", Config::aacFast()},
             {"aac_hq", Config::aacHq()},
+            {"aac_hq_treelets", Config::aacHqRestructured()},
             {"binned_sah", Config::binnedSah()},
             {"aac_delta1_eps0", Config::withAac(1, 0.0)},
             {"aac_delta7_eps03", Config::withAac(7, 0.3)}};

@@ -28,7 +28,10 @@ struct Presets {
 };
 
 std::vector<Presets> presets() {
-    return {{"bvh-fast", Config::aacFast()}, {"bvh-hq", Config::aacHq()}, {"bvh-sah", Config::binnedSah()}};
+    return {{"bvh", Config::aacHqRestructured()},
+            {"bvh-fast", Config::aacFast()},
+            {"bvh-hq", Config::aacHq()},
+            {"bvh-sah", Config::binnedSah()}};
 }
 
 std::vector<geometry::Ray> randomRays(uint32_t seed, int count) {
