@@ -278,6 +278,7 @@ TEST(KdLayout, NodePackingRoundTrips) {
 TEST(KdConfig, DescribesItsConvention) {
     KdConfig c;
     c.intersectionCost = 80;
+    c.emptyBonus = 0.5;
     EXPECT_EQ(c.describe(), "pbrt SAH: Ct=1 Ci=80 eb=0.5");
 }
 
