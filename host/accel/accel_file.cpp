@@ -212,6 +212,10 @@ uint64_t sceneGeometryHash(const Scene& scene) {
         }
         hash.update(block.data(), n * 9 * sizeof(float));
     }
+    if (scene.origin != glm::dvec3(0.0)) {
+        const double origin[3] = {scene.origin.x, scene.origin.y, scene.origin.z};
+        hash.update(origin, sizeof origin);
+    }
     return hash.digest();
 }
 

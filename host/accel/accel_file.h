@@ -28,8 +28,10 @@ namespace vkray::accel {
 inline constexpr char kAccelFileMagic[8] = {'V', 'K', 'R', 'A', 'Y', 'A', 'C', 'C'};
 inline constexpr uint32_t kAccelFileVersion = 1;
 
-// XXH64 of the triangle count and every triangle's vertex positions in scene order: all a
-// structure depends on (materials, normals, lights and the camera may change freely).
+// XXH64 of the triangle count, every triangle's vertex positions in scene order and, when it is not
+// (0, 0, 0), Scene::origin: all a structure depends on (materials, normals, lights and the camera may
+// change freely). The positions are local to the origin, so the same floats at another origin are
+// another scene; a file saved before the origin existed (always 0) still matches.
 uint64_t sceneGeometryHash(const Scene& scene);
 
 // Whether a build figure is a time or a setting of the build (threads) rather than a property of

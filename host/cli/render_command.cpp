@@ -278,6 +278,7 @@ void runRender(const RenderArgs& args) {
     report.triangles = scene.triangles.size();
     report.materials = scene.materials.size();
     report.lights = scene.lights.size();
+    report.origin = {scene.origin.x, scene.origin.y, scene.origin.z};
     if (args.json) {
         std::printf("%s\n", reportJson(report).c_str());
         return;

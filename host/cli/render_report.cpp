@@ -91,6 +91,7 @@ std::string reportJson(const RenderReport& r) {
     j["triangles"] = r.triangles;
     j["materials"] = r.materials;
     j["lights"] = r.lights;
+    j["origin"] = r.origin;
     j["load_ms"] = r.loadMs;
     j["render_ms"] = r.renderMs;
     j["output"] = r.output;
@@ -111,6 +112,9 @@ void printReport(const RenderReport& r, bool stats) {
     if (!stats) return;
     std::printf("scene:       %zu triangles, %zu materials, %zu lights (loaded in %.1f ms)\n", r.triangles,
                 r.materials, r.lights, r.loadMs);
+    if (r.origin != std::array<double, 3>{})
+        std::printf("origin:      (%.17g, %.17g, %.17g), positions stored relative to it\n", r.origin[0],
+                    r.origin[1], r.origin[2]);
     if (r.accelFile && r.accelFile->loaded)
         std::printf("accel:       %s, loaded from %s in %.1f ms (not built)\n", r.accel.c_str(),
                     r.accelFile->path.c_str(), r.accelFile->ms);

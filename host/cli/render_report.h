@@ -2,6 +2,7 @@
 // --stats) or as JSON for scripts (--json; the keys are stable).
 #pragma once
 
+#include <array>
 #include <map>
 #include <optional>
 #include <string>
@@ -31,6 +32,7 @@ struct RenderReport {
     std::optional<AccelFileReport> accelFile;
     std::vector<accel::AccelStat> accelStats;
     size_t triangles = 0, materials = 0, lights = 0;
+    std::array<double, 3> origin{};  // Scene::origin: where the scene's local floats are measured from
     double loadMs = 0.0, renderMs = 0.0;
     std::optional<gpu::GpuRenderReport> gpu;  // GPU renders only
 };

@@ -66,21 +66,22 @@ Camera closeUpCamera(const Scene& scene) {
 
 Camera explicitCamera(const Scene& scene, const std::string& text, const std::string& option) {
     const std::string usage = option + " '" + text + "': expected scene, close or EX,EY,EZ,CX,CY,CZ[,FOVY]";
-    std::vector<float> v;
+    std::vector<double> v;
     for (size_t start = 0;;) {  // every comma-separated item, empty ones included
         const size_t comma = std::min(text.find(',', start), text.size());
-        float x = 0.0f;
-        if (parseFloat(std::string_view(text).substr(start, comma - start), x) != NumberStatus::Ok)
+        double x = 0.0;
+        if (parseReal(std::string_view(text).substr(start, comma - start), x) != NumberStatus::Ok)
             throw Error(usage);
         v.push_back(x);
         if (comma == text.size()) break;
         start = comma + 1;
     }
     if (v.size() != 6 && v.size() != 7) throw Error(usage);
+    // Eye and centre are world positions, like the scene file's: into its local frame in double.
     Camera c = scene.camera;
-    c.eye = glm::vec3(v[0], v[1], v[2]);
-    c.center = glm::vec3(v[3], v[4], v[5]);
-    if (v.size() == 7) c.fovyDegrees = v[6];
+    c.eye = glm::vec3(glm::dvec3(v[0], v[1], v[2]) - scene.origin);
+    c.center = glm::vec3(glm::dvec3(v[3], v[4], v[5]) - scene.origin);
+    if (v.size() == 7) c.fovyDegrees = float(v[6]);
     try {
         makeCameraFrame(c, 1, 1);
     } catch (const Error& e) {

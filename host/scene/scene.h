@@ -1,6 +1,7 @@
-// In-memory scene: what the .scene parser (and the OBJ/MTL loader) produce, in world space, and what every
-// renderer and acceleration structure consumes. See docs/scene-format.md for the file format; triangle
-// order here *is* its triangle identity (docs/scene-format.md, "Triangle identity").
+// In-memory scene: what the .scene parser (and the OBJ/MTL loader) produce, in the scene's local frame
+// (world space minus Scene::origin), and what every renderer and acceleration structure consumes. See
+// docs/scene-format.md for the file format; triangle order here *is* its triangle identity
+// (docs/scene-format.md, "Triangle identity").
 #pragma once
 
 #include <cstdint>
@@ -53,7 +54,7 @@ struct Material {
 struct Light {
     enum class Type : uint32_t { Point = 0, Directional = 1 };
     Type type = Type::Point;
-    glm::vec3 vector{0.0f};  // Point: world position. Directional: direction *towards* the light.
+    glm::vec3 vector{0.0f};  // Point: position (local frame). Directional: direction *towards* the light.
     glm::vec3 color{1.0f};
 };
 
@@ -64,7 +65,7 @@ struct Camera {
     float fovyDegrees = 45.0f;
 };
 
-// One world-space triangle. `material` indexes Scene::materials.
+// One triangle in the local frame (world minus Scene::origin). `material` indexes Scene::materials.
 struct Triangle {
     glm::vec3 p0, p1, p2;
     uint32_t material = 0;
@@ -83,6 +84,15 @@ struct Scene {
     int height = 480;
     int maxDepth = 5;            // primary rays count as depth 1
     std::string output;          // `output NAME` as written in the file; empty if absent
+
+    // World position of the local frame's (0, 0, 0): triangles, the camera's eye and centre and point
+    // lights are stored relative to it, each rounded to float once from its double world position,
+    // so a scene far from the world's origin keeps the float precision it has near it. Chosen by
+    // localOrigin (scene_builder.h) from the geometry's bounds: exactly (0, 0, 0) for any scene whose
+    // bounds hold the world's origin, and always a multiple of a power of two no smaller than the
+    // geometry's extent, so translating a scene by a multiple of that power leaves its local floats
+    // bit for bit the same. Distances (depth, t) and directions are the same in both frames.
+    glm::dvec3 origin{0.0};
 
     Camera camera;
     bool hasCamera = false;      // a scene without a `camera` line is an error at render time

@@ -27,7 +27,9 @@ bool SceneBuilder::MaterialLess::operator()(const Material& a, const Material& b
     return std::lexicographical_compare(ka.begin(), ka.end(), kb.begin(), kb.end());
 }
 
-SceneBuilder::SceneBuilder(Scene& scene, int64_t maxTriangles) : scene_(scene), maxTriangles_(maxTriangles) {
+SceneBuilder::SceneBuilder(Scene& scene, int64_t maxTriangles)
+    : scene_(scene), maxTriangles_(maxTriangles), mayMove_(scene.triangles.empty()),
+      lo_(std::numeric_limits<double>::infinity()), hi_(-std::numeric_limits<double>::infinity()) {
     for (size_t i = 0; i < scene_.materials.size(); ++i) index_.emplace(scene_.materials[i], uint32_t(i));
 }
 
@@ -45,6 +47,7 @@ glm::vec3 geometricNormal(const glm::vec3& p0, const glm::vec3& p1, const glm::v
 
 void SceneBuilder::reserve(size_t triangles) {
     scene_.triangles.reserve(scene_.triangles.size() + triangles);
+    if (mayMove_) world_.reserve(world_.size() + triangles);
     if (scene_.hasSmoothNormals()) scene_.normals.reserve(scene_.normals.size() + triangles);
 }
 
@@ -66,6 +69,21 @@ bool SceneBuilder::append(const TriPoints& p, uint32_t material) {
     if (scene_.triangles.size() >= uint64_t(maxTriangles_)) throw Error(*roomProblem(1));
     if (!fitsFloat(p[0]) || !fitsFloat(p[1]) || !fitsFloat(p[2])) return false;
     scene_.triangles.push_back({glm::vec3(p[0]), glm::vec3(p[1]), glm::vec3(p[2]), material});
+    if (!mayMove_) return true;
+    for (const glm::dvec3& q : p) {
+        lo_ = glm::min(lo_, q);
+        hi_ = glm::max(hi_, q);
+    }
+    if (glm::all(glm::lessThanEqual(lo_, glm::dvec3(0.0))) && glm::all(glm::greaterThanEqual(hi_, glm::dvec3(0.0)))) {
+        // The bounds hold the world's origin and only grow: the local origin is 0 (localOrigin),
+        // the floats just stored are final.
+        mayMove_ = false;
+        std::vector<TriPoints>().swap(world_);
+        std::vector<bool>().swap(flat_);
+        return true;
+    }
+    world_.push_back(p);
+    flat_.push_back(true);
     return true;
 }
 
@@ -91,7 +109,72 @@ bool SceneBuilder::addSmooth(const TriPoints& p, const TriPoints& n, uint32_t ma
         }
     }
     scene_.normals.push_back({glm::vec3(n[0]), glm::vec3(n[1]), glm::vec3(n[2])});
+    if (mayMove_) flat_.back() = false;
     return true;
+}
+
+void SceneBuilder::setCamera(const Camera& camera, const glm::dvec3& eye, const glm::dvec3& centre) {
+    scene_.camera = camera;
+    scene_.camera.eye = glm::vec3(eye);
+    scene_.camera.center = glm::vec3(centre);
+    scene_.hasCamera = true;
+    camera_.emplace(eye, centre);
+}
+
+void SceneBuilder::addLight(const Light& light, const glm::dvec3& vector) {
+    scene_.lights.push_back(light);
+    scene_.lights.back().vector = glm::vec3(vector);
+    if (light.type == Light::Type::Point) pointLights_.emplace_back(scene_.lights.size() - 1, vector);
+}
+
+void SceneBuilder::finish() {
+    if (mayMove_ && !world_.empty()) {
+        const glm::dvec3 origin = localOrigin(lo_, hi_);
+        if (origin != glm::dvec3(0.0)) rebase(origin);
+    }
+    mayMove_ = false;
+    std::vector<TriPoints>().swap(world_);
+    std::vector<bool>().swap(flat_);
+}
+
+// Every position again, from its double world value: subtracted in double, rounded to float once.
+void SceneBuilder::rebase(const glm::dvec3& origin) {
+    scene_.origin = origin;
+    const auto local = [&](const glm::dvec3& p) { return glm::vec3(p - origin); };
+    for (size_t i = 0; i < world_.size(); ++i) {
+        Triangle& t = scene_.triangles[i];
+        t.p0 = local(world_[i][0]);
+        t.p1 = local(world_[i][1]);
+        t.p2 = local(world_[i][2]);
+        if (scene_.hasSmoothNormals() && flat_[i]) {
+            const glm::vec3 n = geometricNormal(t.p0, t.p1, t.p2);
+            scene_.normals[i] = {n, n, n};
+        }
+    }
+    if (camera_) {
+        scene_.camera.eye = local(camera_->first);
+        scene_.camera.center = local(camera_->second);
+    }
+    for (const auto& [index, position] : pointLights_) scene_.lights[index].vector = local(position);
+}
+
+glm::dvec3 localOrigin(const glm::dvec3& lo, const glm::dvec3& hi) {
+    if (!glm::all(glm::lessThanEqual(lo, hi))) return glm::dvec3(0.0);
+    const glm::dvec3 centre = 0.5 * lo + 0.5 * hi;  // halves first: no overflow near the float limit
+    const double extent = std::max({hi.x - lo.x, hi.y - lo.y, hi.z - lo.z});
+    if (extent == 0.0) return centre;
+    // The smallest power of two at least twice the extent.
+    int exponent = std::ilogb(extent);
+    if (std::ldexp(1.0, exponent) < extent) ++exponent;
+    const double grid = std::ldexp(1.0, exponent + 1);
+    glm::dvec3 origin;
+    for (int k = 0; k < 3; ++k) {
+        const double q = centre[k] / grid;  // exact: grid is a power of two
+        const double whole = std::trunc(q);
+        // Nearest, ties towards 0: an axis whose bounds end at 0 and span a power of two stays at 0.
+        origin[k] = grid * (std::abs(q - whole) <= 0.5 ? whole : whole + std::copysign(1.0, q)) + 0.0;  // no -0
+    }
+    return origin;
 }
 
 }  // namespace vkray

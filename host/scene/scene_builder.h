@@ -2,6 +2,12 @@
 // deduplicated (equal Material -> one index), Scene::normals either empty or one entry per triangle
 // (filled lazily: the first smooth triangle backfills geometric normals for the flat ones before it).
 // Used by the .scene parser, the sphere tessellation and the OBJ loader alike.
+//
+// Positions arrive in double world space. Each is stored at once as a float, as if Scene::origin
+// were (0, 0, 0); finish() then picks the scene's local origin (localOrigin) and, when it is not 0,
+// stores every position again as float(world - origin). Until then the builder keeps the double
+// world positions, but only while the origin may still move: once the geometry's bounds hold the
+// world's origin on every axis (most scenes, after a few triangles), it is 0 and the copy goes.
 #pragma once
 
 #include <array>
@@ -9,6 +15,8 @@
 #include <map>
 #include <optional>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include <glm/glm.hpp>
 
@@ -44,8 +52,19 @@ public:
     [[nodiscard]] bool addFlat(const TriPoints& p, uint32_t material);
     [[nodiscard]] bool addSmooth(const TriPoints& p, const TriPoints& n, uint32_t material);
 
+    // The camera and a light, with their world positions in double (a directional light's vector
+    // is a direction and stays as it is): stored like triangles, moved by finish().
+    void setCamera(const Camera& camera, const glm::dvec3& eye, const glm::dvec3& centre);
+    void addLight(const Light& light, const glm::dvec3& vector);
+
+    // Chooses Scene::origin from the triangles appended through this builder and stores them, the
+    // camera and the point lights relative to it. Call once, after the last append; a builder made
+    // over a scene that already had triangles leaves the origin as it is.
+    void finish();
+
 private:
     bool append(const TriPoints& p, uint32_t material);
+    void rebase(const glm::dvec3& origin);
 
     // Ordered by a lexicographic comparison of the material's numbers: consistent with
     // Material::operator== for the finite values the parsers let through.
@@ -56,7 +75,26 @@ private:
     Scene& scene_;
     int64_t maxTriangles_;
     std::map<Material, uint32_t, MaterialLess> index_;
+
+    // What finish() needs when the origin moves, kept while it still may (see the top).
+    bool mayMove_ = true;
+    glm::dvec3 lo_, hi_;                  // bounds of the world positions appended so far
+    std::vector<TriPoints> world_;        // per triangle, while mayMove_
+    std::vector<bool> flat_;              // per triangle: its normals are the geometric one
+    std::optional<std::pair<glm::dvec3, glm::dvec3>> camera_;  // eye, centre
+    std::vector<std::pair<size_t, glm::dvec3>> pointLights_;   // index in Scene::lights, position
 };
+
+// The local origin of geometry whose world bounds are [lo, hi] (double): on each axis the bounds'
+// centre rounded to the nearest multiple of g, the smallest power of two at least twice the bounds'
+// largest side (the extent), ties towards 0. So:
+//  - an axis whose bounds' centre lies within one extent of 0 (|centre| < g / 2) gets exactly 0, in
+//    particular one whose bounds hold 0: scenes built around the world's origin keep their floats;
+//  - every local coordinate lies within 3 g / 4 < 3 extent of 0, whatever the offset;
+//  - bounds translated by a multiple of g give an origin translated by exactly that, so a far copy
+//    of a scene (translated by a round number) has the local coordinates of the scene near 0.
+// Bounds of zero extent (one point) give the point itself; empty bounds (lo > hi) give 0.
+glm::dvec3 localOrigin(const glm::dvec3& lo, const glm::dvec3& hi);
 
 // Unit normal of the triangle's plane, cross(p1 - p0, p2 - p0) normalized; (0, 0, 1) for a
 // degenerate triangle, which no ray can hit, so its normal is never used but stays finite.

@@ -24,6 +24,14 @@ float SceneLine::number(size_t arg) const {
     return value;
 }
 
+double SceneLine::real(size_t arg) const {
+    double value = 0.0;
+    const NumberStatus status = parseReal(text(arg), value);
+    if (status != NumberStatus::Ok)
+        fail(describeNumberError(status, text(arg), argName(arg), "a number"), arg);
+    return value;
+}
+
 int64_t SceneLine::integer(size_t arg) const {
     int64_t value = 0;
     const NumberStatus status = parseInt(text(arg), value);
@@ -34,6 +42,10 @@ int64_t SceneLine::integer(size_t arg) const {
 
 glm::vec3 SceneLine::vec3(size_t firstArg) const {
     return glm::vec3(number(firstArg), number(firstArg + 1), number(firstArg + 2));
+}
+
+glm::dvec3 SceneLine::dvec3(size_t firstArg) const {
+    return glm::dvec3(real(firstArg), real(firstArg + 1), real(firstArg + 2));
 }
 
 }  // namespace vkray

@@ -28,6 +28,10 @@ public:
     float number(size_t arg) const;
     int64_t integer(size_t arg) const;
     glm::vec3 vec3(size_t firstArg) const;  // arguments firstArg .. firstArg + 2
+    // The same in double, for world positions that no transform applies to (camera, point lights):
+    // at 1e6 floats are 1/16 apart, doubles 1e-10, and Scene::origin takes the offset off in double.
+    double real(size_t arg) const;
+    glm::dvec3 dvec3(size_t firstArg) const;
 
     // Fails at argument `arg` (its column; 0 = the command itself).
     [[noreturn]] void fail(const std::string& what, size_t arg = 0) const;

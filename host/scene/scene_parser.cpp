@@ -41,6 +41,7 @@ public:
           transforms_(1) {}
 
     void parseLine(std::string_view text, int number);
+    void finish() { out_.finish(); }
 
 private:
     enum class Kind { Numbers, Integers, FileName, Nothing, Generator };
@@ -249,27 +250,27 @@ void Parser::maxdepth(const SceneLine& line) {
 }
 
 void Parser::camera(const SceneLine& line) {
-    Camera c{line.vec3(1), line.vec3(4), line.vec3(7), line.number(10)};
+    const glm::dvec3 eye = line.dvec3(1), centre = line.dvec3(4);
+    Camera c{glm::vec3(eye), glm::vec3(centre), line.vec3(7), line.number(10)};
     if (!(c.fovyDegrees > 0.0f && c.fovyDegrees < 180.0f))
         line.fail("camera fovy " + excerpt(line.text(10)) + " is outside (0, 180) degrees", 10);
-    const glm::dvec3 back = glm::dvec3(c.eye) - glm::dvec3(c.center);
+    const glm::dvec3 back = eye - centre;
     if (glm::length(back) == 0.0) line.fail("camera eye and look-at centre coincide", 1);
     const glm::dvec3 up(c.up);
     // The same test as makeCameraFrame (camera.cpp), reported here with the line.
     if (glm::length(glm::cross(up, glm::normalize(back))) <= 1e-9 * glm::length(up) || glm::length(up) == 0.0)
         line.fail("camera up vector is zero or parallel to the viewing direction", 7);
-    scene().camera = c;
-    scene().hasCamera = true;
+    out_.setCamera(c, eye, centre);
 }
 
 void Parser::light(const SceneLine& line) {
     Light l;
     l.type = line.command() == "point" ? Light::Type::Point : Light::Type::Directional;
-    l.vector = line.vec3(1);
+    const glm::dvec3 vector = line.dvec3(1);
     l.color = line.vec3(4);
-    if (l.type == Light::Type::Directional && l.vector == glm::vec3(0.0f))
+    if (l.type == Light::Type::Directional && glm::vec3(vector) == glm::vec3(0.0f))
         line.fail("directional light direction is the zero vector", 1);
-    scene().lights.push_back(l);
+    out_.addLight(l, vector);
 }
 
 void Parser::attenuation(const SceneLine& line) {
@@ -419,6 +420,7 @@ Scene parseSceneText(std::string_view text, const std::string& displayName, cons
     forEachLine(
         text, displayName, TextCheck::Utf8, [&](std::string_view line, int number) { parser.parseLine(line, number); },
         {}, kMaxSceneLineBytes);
+    parser.finish();
     return scene;
 }
 

@@ -1,8 +1,11 @@
 // The .scene format of docs/scene-format.md: the UCSD CSE167 ray tracer format (whose *.test files load
 // unchanged), plus `refract`, `reflect`, `spheresteps`, `geo`/`obj` for Wavefront OBJ and OFF meshes and
-// `generate` for procedural ones (generators.h). The result is world space: transforms, spheres and meshes
-// are resolved here, materials are deduplicated, and triangle order is load order (docs/scene-format.md,
-// "Triangle identity").
+// `generate` for procedural ones (generators.h). Transforms, spheres and meshes are resolved here,
+// materials are deduplicated, and triangle order is load order (docs/scene-format.md, "Triangle
+// identity"). Geometry is transformed in double and stored relative to Scene::origin, rounded to float
+// once (SceneBuilder). The camera's and point lights' positions are read in double; the numbers of
+// vertex, sphere and transform lines as float (as they always were: a scene near the origin keeps its
+// floats bit for bit), so a far scene is best placed with `translate` by a round number.
 //
 // Conventions where the format leaves room:
 //  - Transforms apply to geometry only (tri, trinormal, sphere, geo); `camera`, `point` and

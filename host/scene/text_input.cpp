@@ -275,7 +275,7 @@ std::string_view firstToken(std::string_view line) {
     return line.substr(i, end - i);
 }
 
-NumberStatus parseFloat(std::string_view s, float& out) {
+NumberStatus parseReal(std::string_view s, double& out) {
     // std::from_chars is locale-independent and reports overflow, unlike strtof under a
     // German locale; it rejects a leading '+', which strtod (and CSE167 files) accept.
     if (s.size() > 1 && s[0] == '+' && s[1] != '-') s.remove_prefix(1);
@@ -287,8 +287,15 @@ NumberStatus parseFloat(std::string_view s, float& out) {
     if (ec != std::errc()) return NumberStatus::NotANumber;
     if (!std::isfinite(value)) return NumberStatus::NotFinite;
     if (std::abs(value) > double(std::numeric_limits<float>::max())) return NumberStatus::OutOfRange;
-    out = static_cast<float>(value);
+    out = value;
     return NumberStatus::Ok;
+}
+
+NumberStatus parseFloat(std::string_view s, float& out) {
+    double value = 0.0;
+    const NumberStatus status = parseReal(s, value);
+    if (status == NumberStatus::Ok) out = static_cast<float>(value);
+    return status;
 }
 
 NumberStatus parseInt(std::string_view s, int64_t& out) {

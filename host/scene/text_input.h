@@ -70,6 +70,9 @@ enum class NumberStatus { Ok, NotANumber, NotFinite, OutOfRange };
 // The whole token must be a number (an optional leading '+' is accepted, as strtod does).
 // Floats must be finite and fit a 32-bit float: "nan", "inf" and 1e999 are rejected.
 NumberStatus parseFloat(std::string_view s, float& out);
+// The same number kept in double (the same rule: it must fit a 32-bit float), for positions that a
+// transform and the scene's local origin map before they are rounded to float once.
+NumberStatus parseReal(std::string_view s, double& out);
 NumberStatus parseInt(std::string_view s, int64_t& out);
 
 // "expected a number for argument 2 of 'vertex', got 'abc'" and its siblings; `what` names the

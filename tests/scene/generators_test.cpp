@@ -148,7 +148,7 @@ TEST(Generators, MillionsOfTrianglesAreReservedOnce) {
 }
 
 TEST(GenerateCommand, AppendsUnderTheTransformWithTheMaterialState) {
-    const Scene s = parseText("diffuse 0.5 0.25 0.125\ntranslate 10 0 0\ngenerate terrain 1000 9\n");
+    const Scene s = test::inWorld(parseText("diffuse 0.5 0.25 0.125\ntranslate 10 0 0\ngenerate terrain 1000 9\n"));
     const Scene plain = generated(GeneratorKind::Terrain, 1000, 9);
     ASSERT_EQ(s.triangles.size(), plain.triangles.size());
     EXPECT_EQ(s.triangles[0].p0, plain.triangles[0].p0 + glm::vec3(10, 0, 0));

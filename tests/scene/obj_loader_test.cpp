@@ -18,7 +18,7 @@ const char* kSceneWithMaterials =
     "geo materials.obj\n";
 
 TEST(ObjLoader, FacesInFileOrderUnderTheCurrentTransform) {
-    const Scene s = parseText(kSceneWithMaterials);
+    const Scene s = test::inWorld(parseText(kSceneWithMaterials));
     // 1 + 1 + 1 + 2 (quad) + 3 (pentagon) + 1 + 1
     ASSERT_EQ(s.triangles.size(), 10u);
     EXPECT_EQ(s.triangles[0].p0, glm::vec3(0, 0, -5));

@@ -77,7 +77,7 @@ TEST_F(OffLoader, FansPolygonsInFileOrder) {
 }
 
 TEST_F(OffLoader, UsesTheCurrentTransformAndMaterial) {
-    const Scene s = load(kQuadAndTriangle, "diffuse 0.1 0.2 0.3\ntranslate 0 0 -5\nscale 2 2 2\n");
+    const Scene s = test::inWorld(load(kQuadAndTriangle, "diffuse 0.1 0.2 0.3\ntranslate 0 0 -5\nscale 2 2 2\n"));
     ASSERT_EQ(s.triangles.size(), 3u);
     EXPECT_EQ(s.triangles[0].p2, glm::vec3(2, 2, -5));
     for (const Triangle& t : s.triangles) {

@@ -93,9 +93,9 @@ TEST(SceneParser, TransformsRightMultiplyInOpenGLOrder) {
 
 TEST(SceneParser, RotateIsCounterClockwiseDegreesAboutTheAxis) {
     // 90 degrees about +z maps x to y; then translate applied before rotate: R(T p).
-    const Scene s = parseText(
+    const Scene s = test::inWorld(parseText(
         "vertex 1 0 0\nvertex 0 1 0\nvertex 0 0 1\n"
-        "rotate 0 0 2 90\ntranslate 1 0 0\ntri 0 1 2\n");
+        "rotate 0 0 2 90\ntranslate 1 0 0\ntri 0 1 2\n"));
     ASSERT_EQ(s.triangles.size(), 1u);
     EXPECT_VEC3_NEAR(s.triangles[0].p0, glm::vec3(0, 2, 0), 1e-6f);   // R(2,0,0)
     EXPECT_VEC3_NEAR(s.triangles[0].p1, glm::vec3(-1, 1, 0), 1e-6f);  // R(1,1,0)
@@ -115,7 +115,7 @@ TEST(SceneParser, PushAndPopRestoreTheTransform) {
 }
 
 TEST(SceneParser, VerticesTakeTheTransformOfTheTriLine) {
-    const Scene s = parseText("vertex 0 0 0\nvertex 1 0 0\nvertex 0 1 0\ntranslate 0 0 -2\ntri 0 1 2\n");
+    const Scene s = test::inWorld(parseText("vertex 0 0 0\nvertex 1 0 0\nvertex 0 1 0\ntranslate 0 0 -2\ntri 0 1 2\n"));
     EXPECT_VEC3_NEAR(s.triangles.at(0).p0, glm::vec3(0, 0, -2), 0.0f);
 }
 

@@ -22,6 +22,23 @@ inline Scene parseText(const std::string& text) {
     return parseScene(in, "test.scene", sceneDataDir());
 }
 
+// `s` with its positions back in world space (float(local + origin), origin 0): for tests that
+// check where the loader put geometry in the world, whatever local origin it chose.
+inline Scene inWorld(Scene s) {
+    const auto world = [&](glm::vec3& p) { p = glm::vec3(glm::dvec3(p) + s.origin); };
+    for (Triangle& t : s.triangles) {
+        world(t.p0);
+        world(t.p1);
+        world(t.p2);
+    }
+    world(s.camera.eye);
+    world(s.camera.center);
+    for (Light& l : s.lights)
+        if (l.type == Light::Type::Point) world(l.vector);
+    s.origin = glm::dvec3(0.0);
+    return s;
+}
+
 // The message of the vkray::Error that parsing `text` throws, or "(no error)".
 inline std::string parseError(const std::string& text) {
     try {

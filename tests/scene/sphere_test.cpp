@@ -27,7 +27,7 @@ TEST(Sphere, UnitTrianglesAreOnTheSphereAndWoundOutward) {
 TEST(Sphere, AllVerticesLieAtTheRadiusFromTheCentre) {
     const glm::vec3 centre(1.5f, -2.0f, 4.0f);
     const float radius = 0.75f;
-    const Scene s = test::parseText("sphere 1.5 -2 4 0.75\n");
+    const Scene s = test::inWorld(test::parseText("sphere 1.5 -2 4 0.75\n"));
     ASSERT_EQ(s.triangles.size(), 960u);
     for (size_t i = 0; i < s.triangles.size(); ++i) {
         const Triangle& t = s.triangles[i];

@@ -13,12 +13,14 @@
 #include <glm/glm.hpp>
 
 #include "../gpu/gpu_test_util.h"
+#include "core/error.h"
 #include "geometry/ray.h"
 #include "geometry/ray_triangle.h"
 #include "image/compare.h"
 #include "render/frame.h"
 #include "scene/camera.h"
 #include "scene/scene.h"
+#include "scene/scene_builder.h"
 
 namespace vkray::stress {
 
@@ -136,22 +138,35 @@ inline LeakCount countLeaks(const Scene& scene, const Frame& f, bool everyPixelH
     return n;
 }
 
-// The whole scene mapped by p -> scale * p + offset (geometry, camera, point lights), each vertex
-// rounded to float once, as the parser would store `scale`/`translate` applied to the file's
-// vertices. Directions (directional lights, up) and attenuation stay: with the default attenuation
-// (1 0 0) the image is the same in exact arithmetic.
+// The whole scene mapped by p -> scale * p + offset (geometry, camera, point lights) in double, then
+// stored as the loader stores a scene (SceneBuilder): relative to its local origin, each position
+// rounded to float once, as the parser stores `scale`/`translate` applied to the file's vertices.
+// Directions (directional lights, up) and attenuation stay: with the default attenuation (1 0 0)
+// the image is the same in exact arithmetic. Normals are copied (a flat triangle's stays the
+// geometric normal of the unmapped floats).
 inline Scene mappedScene(const Scene& base, double scale, double offset) {
     Scene s = base;
-    const auto map = [&](const glm::vec3& p) { return glm::vec3(glm::dvec3(p) * scale + glm::dvec3(offset)); };
-    for (Triangle& t : s.triangles) {
-        t.p0 = map(t.p0);
-        t.p1 = map(t.p1);
-        t.p2 = map(t.p2);
+    s.triangles.clear();
+    s.normals.clear();
+    s.lights.clear();
+    const auto map = [&](const glm::vec3& p) { return glm::dvec3(p) * scale + glm::dvec3(offset); };
+    SceneBuilder out(s);
+    for (size_t i = 0; i < base.triangles.size(); ++i) {
+        const Triangle& t = base.triangles[i];
+        const TriPoints p{map(t.p0), map(t.p1), map(t.p2)};
+        bool ok = false;
+        if (base.hasSmoothNormals()) {
+            const TriangleNormals& n = base.normals[i];
+            ok = out.addSmooth(p, {glm::dvec3(n.n0), glm::dvec3(n.n1), glm::dvec3(n.n2)}, t.material);
+        } else {
+            ok = out.addFlat(p, t.material);
+        }
+        if (!ok) throw Error("mappedScene: a mapped vertex does not fit a float");
     }
-    s.camera.eye = map(s.camera.eye);
-    s.camera.center = map(s.camera.center);
-    for (Light& l : s.lights)
-        if (l.type == Light::Type::Point) l.vector = map(l.vector);
+    out.setCamera(base.camera, map(base.camera.eye), map(base.camera.center));
+    for (const Light& l : base.lights)
+        out.addLight(l, l.type == Light::Type::Point ? map(l.vector) : glm::dvec3(l.vector));
+    out.finish();
     return s;
 }
 
