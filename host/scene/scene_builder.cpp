@@ -65,12 +65,12 @@ std::optional<std::string> SceneBuilder::roomProblem(uint64_t more) const {
     return msg;
 }
 
-bool SceneBuilder::append(const TriPoints& p, uint32_t material) {
+bool SceneBuilder::append(const TriPoints& p, const TriPoints& exact, uint32_t material) {
     if (scene_.triangles.size() >= uint64_t(maxTriangles_)) throw Error(*roomProblem(1));
     if (!fitsFloat(p[0]) || !fitsFloat(p[1]) || !fitsFloat(p[2])) return false;
     scene_.triangles.push_back({glm::vec3(p[0]), glm::vec3(p[1]), glm::vec3(p[2]), material});
     if (!mayMove_) return true;
-    for (const glm::dvec3& q : p) {
+    for (const glm::dvec3& q : exact) {
         lo_ = glm::min(lo_, q);
         hi_ = glm::max(hi_, q);
     }
@@ -82,13 +82,19 @@ bool SceneBuilder::append(const TriPoints& p, uint32_t material) {
         std::vector<bool>().swap(flat_);
         return true;
     }
-    world_.push_back(p);
+    world_.push_back(exact);
     flat_.push_back(true);
     return true;
 }
 
-bool SceneBuilder::addFlat(const TriPoints& p, uint32_t material) {
-    if (!append(p, material)) return false;
+bool SceneBuilder::addFlat(const TriPoints& p, uint32_t material) { return addFlat(p, p, material); }
+
+bool SceneBuilder::addSmooth(const TriPoints& p, const TriPoints& n, uint32_t material) {
+    return addSmooth(p, p, n, material);
+}
+
+bool SceneBuilder::addFlat(const TriPoints& p, const TriPoints& exact, uint32_t material) {
+    if (!append(p, exact, material)) return false;
     if (scene_.hasSmoothNormals()) {
         const Triangle& t = scene_.triangles.back();
         const glm::vec3 n = geometricNormal(t.p0, t.p1, t.p2);
@@ -97,8 +103,8 @@ bool SceneBuilder::addFlat(const TriPoints& p, uint32_t material) {
     return true;
 }
 
-bool SceneBuilder::addSmooth(const TriPoints& p, const TriPoints& n, uint32_t material) {
-    if (!append(p, material)) return false;
+bool SceneBuilder::addSmooth(const TriPoints& p, const TriPoints& exact, const TriPoints& n, uint32_t material) {
+    if (!append(p, exact, material)) return false;
     // First smooth triangle: every earlier one was flat, give each its geometric normal.
     if (scene_.normals.empty()) {
         scene_.normals.reserve(scene_.triangles.capacity());

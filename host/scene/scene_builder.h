@@ -51,6 +51,12 @@ public:
     // it with its own file:line.
     [[nodiscard]] bool addFlat(const TriPoints& p, uint32_t material);
     [[nodiscard]] bool addSmooth(const TriPoints& p, const TriPoints& n, uint32_t material);
+    // The same, with `exact`: the corners computed from the file's decimal numbers read in double,
+    // where `p` comes from them read as float (how every scene near the world's origin has always
+    // been stored, kept bit for bit). A scene that moves to a local origin is stored from `exact`,
+    // so a vertex written as 1000000.02 keeps its .02.
+    [[nodiscard]] bool addFlat(const TriPoints& p, const TriPoints& exact, uint32_t material);
+    [[nodiscard]] bool addSmooth(const TriPoints& p, const TriPoints& exact, const TriPoints& n, uint32_t material);
 
     // The camera and a light, with their world positions in double (a directional light's vector
     // is a direction and stays as it is): stored like triangles, moved by finish().
@@ -63,7 +69,7 @@ public:
     void finish();
 
 private:
-    bool append(const TriPoints& p, uint32_t material);
+    bool append(const TriPoints& p, const TriPoints& exact, uint32_t material);
     void rebase(const glm::dvec3& origin);
 
     // Ordered by a lexicographic comparison of the material's numbers: consistent with

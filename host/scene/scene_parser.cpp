@@ -38,7 +38,7 @@ public:
     Parser(Scene& scene, std::string file, std::filesystem::path baseDir, const ParseOptions& options)
         : file_(std::move(file)), baseDir_(std::move(baseDir)), out_(scene, options.maxTriangles),
           readFile_(options.readFile ? options.readFile : fileSystemReader()), progress_(options.progress),
-          transforms_(1) {}
+          transforms_(1), exactTransforms_(1, glm::dmat4(1.0)) {}
 
     void parseLine(std::string_view text, int number);
     void finish() { out_.finish(); }
@@ -57,7 +57,8 @@ private:
 
     Scene& scene() { return out_.scene(); }
     const Transform& transform() const { return transforms_.back(); }
-    void then(const SceneLine& line, const glm::dmat4& m);
+    void then(const SceneLine& line, const glm::dmat4& m, const glm::dmat4& exact);
+    glm::dvec3 exactPoint(const glm::dvec3& p) const { return glm::dvec3(exactTransforms_.back() * glm::dvec4(p, 1.0)); }
     uint32_t currentMaterial();
     void materialChanged() { materialIndex_.reset(); }
     void checkArgCount(const Command& c, const SceneLine& line) const;
@@ -76,13 +77,15 @@ private:
     void shininess(const SceneLine&);
     void refract(const SceneLine&);
     void maxCount(const SceneLine&);
-    void vertex(const SceneLine& l) { vertices_.push_back(glm::dvec3(l.vec3(1))); }
+    void vertex(const SceneLine& l) { vertices_.push_back({glm::dvec3(l.vec3(1)), l.dvec3(1)}); }
     void tri(const SceneLine&);
     void vertexNormal(const SceneLine&);
     void triNormal(const SceneLine&);
     void sphere(const SceneLine&);
     void sphereSteps(const SceneLine&);
-    void translate(const SceneLine& l) { then(l, glm::translate(glm::dmat4(1.0), glm::dvec3(l.vec3(1)))); }
+    void translate(const SceneLine& l) {
+        then(l, glm::translate(glm::dmat4(1.0), glm::dvec3(l.vec3(1))), glm::translate(glm::dmat4(1.0), l.dvec3(1)));
+    }
     void rotate(const SceneLine&);
     void scale(const SceneLine&);
     void pushTransform(const SceneLine&);
@@ -98,8 +101,15 @@ private:
     MaterialState material_;
     std::optional<uint32_t> materialIndex_;
     std::vector<Transform> transforms_;  // back() is current; the first entry is never popped
-    std::vector<glm::dvec3> vertices_;
-    std::vector<std::pair<glm::dvec3, glm::dvec3>> normalVertices_;  // position, normal
+    // The same stack from the arguments read in double: what Position::exact goes through.
+    std::vector<glm::dmat4> exactTransforms_;
+    // A position as read in float (how scenes near the world's origin are stored) and in double
+    // (how a far one is: SceneBuilder::addFlat).
+    struct Position {
+        glm::dvec3 read, exact;
+    };
+    std::vector<Position> vertices_;
+    std::vector<std::pair<Position, glm::dvec3>> normalVertices_;  // position, normal
     int sphereSteps_ = kDefaultSphereSteps;
 };
 
@@ -217,7 +227,7 @@ void Parser::checkRoom(uint64_t triangles, const SceneLine& line) const {
     if (const auto problem = out_.roomProblem(triangles)) line.fail(*problem);
 }
 
-void Parser::then(const SceneLine& line, const glm::dmat4& m) {
+void Parser::then(const SceneLine& line, const glm::dmat4& m, const glm::dmat4& exact) {
     const Transform next = transform().then(m);
     // Scale factors are each finite and non-zero, but a chain of them can still multiply past what
     // a double holds; the normals would then be NaN (or the points infinite) without a word.
@@ -225,6 +235,7 @@ void Parser::then(const SceneLine& line, const glm::dmat4& m) {
         line.fail("the transform overflows or becomes singular in double precision (scale factors that "
                   "multiply past 1e308 or below 1e-308, or axes scaled too unevenly)");
     transforms_.back() = next;
+    exactTransforms_.back() = exactTransforms_.back() * exact;
 }
 
 void Parser::pushTransform(const SceneLine& line) {
@@ -232,6 +243,7 @@ void Parser::pushTransform(const SceneLine& line) {
         line.fail("pushTransform nested more than " + std::to_string(kMaxTransformDepth) +
                   " deep (is a popTransform missing?)");
     transforms_.push_back(transform());
+    exactTransforms_.push_back(exactTransforms_.back());
 }
 
 void Parser::size(const SceneLine& line) {
@@ -323,28 +335,32 @@ void Parser::maxCount(const SceneLine& line) {
 
 void Parser::tri(const SceneLine& line) {
     checkRoom(1, line);
-    TriPoints p;
-    for (size_t k = 0; k < 3; ++k)
-        p[k] = transform().point(vertices_[vertexIndex(line, k + 1, vertices_.size(), "vertex")]);
-    added(out_.addFlat(p, currentMaterial()), line);
+    TriPoints p, exact;
+    for (size_t k = 0; k < 3; ++k) {
+        const Position& v = vertices_[vertexIndex(line, k + 1, vertices_.size(), "vertex")];
+        p[k] = transform().point(v.read);
+        exact[k] = exactPoint(v.exact);
+    }
+    added(out_.addFlat(p, exact, currentMaterial()), line);
 }
 
 void Parser::vertexNormal(const SceneLine& line) {
     const glm::dvec3 n(line.vec3(4));
     if (n == glm::dvec3(0.0)) line.fail("vertexnormal normal is the zero vector", 4);
-    normalVertices_.emplace_back(glm::dvec3(line.vec3(1)), n);
+    normalVertices_.emplace_back(Position{glm::dvec3(line.vec3(1)), line.dvec3(1)}, n);
 }
 
 void Parser::triNormal(const SceneLine& line) {
     checkRoom(1, line);
-    TriPoints p, n;
+    TriPoints p, exact, n;
     for (size_t k = 0; k < 3; ++k) {
         const auto& [position, normal] =
             normalVertices_[vertexIndex(line, k + 1, normalVertices_.size(), "vertexnormal")];
-        p[k] = transform().point(position);
+        p[k] = transform().point(position.read);
+        exact[k] = exactPoint(position.exact);
         n[k] = transform().normal(normal);
     }
-    added(out_.addSmooth(p, n, currentMaterial()), line);
+    added(out_.addSmooth(p, exact, n, currentMaterial()), line);
 }
 
 void Parser::sphere(const SceneLine& line) {
@@ -368,19 +384,21 @@ void Parser::rotate(const SceneLine& line) {
     const glm::dvec3 axis(line.vec3(1));
     const double degrees = line.number(4);
     if (axis == glm::dvec3(0.0)) line.fail("rotate axis is the zero vector", 1);
-    then(line, glm::rotate(glm::dmat4(1.0), glm::radians(degrees), glm::normalize(axis)));
+    then(line, glm::rotate(glm::dmat4(1.0), glm::radians(degrees), glm::normalize(axis)),
+         glm::rotate(glm::dmat4(1.0), glm::radians(line.real(4)), glm::normalize(line.dvec3(1))));
 }
 
 void Parser::scale(const SceneLine& line) {
     const glm::dvec3 s(line.vec3(1));
     for (int k = 0; k < 3; ++k)
         if (s[k] == 0.0) line.fail("scale factor 0 would flatten the geometry (no normals)", size_t(k) + 1);
-    then(line, glm::scale(glm::dmat4(1.0), s));
+    then(line, glm::scale(glm::dmat4(1.0), s), glm::scale(glm::dmat4(1.0), line.dvec3(1)));
 }
 
 void Parser::popTransform(const SceneLine& line) {
     if (transforms_.size() == 1) line.fail("popTransform without a matching pushTransform");
     transforms_.pop_back();
+    exactTransforms_.pop_back();
 }
 
 void Parser::geo(const SceneLine& line) {

@@ -107,18 +107,42 @@ TEST(SceneOrigin, AnyOffsetKeepsPositionsWithinOneFloatRounding) {
         const Triangle &t = s.triangles[i], &b = base.triangles[i];
         for (int v = 0; v < 3; ++v)
             for (int k = 0; k < 3; ++k) {
-                // The double world position (translate parsed as float, added in double), minus the
-                // origin, rounded to float once: within half a float ulp of the local value.
-                const double world = double((&b.p0)[v][k]) + double(float(offset[k]));
+                // The world position (vertex and translate read in double, added in double), minus
+                // the origin, rounded to float once: within half a float ulp of the local value. The
+                // base scene's float vertex stands for the decimal one, within half its own ulp.
+                const float vertex = (&b.p0)[v][k];
+                const double world = double(vertex) + offset[k];
                 const double local = double((&t.p0)[v][k]);
                 const double ulp = std::nextafter(float(std::abs(local)), INFINITY) - float(std::abs(local));
-                EXPECT_LE(std::abs(local + s.origin[k] - world), 0.5 * ulp) << i << " " << v << " " << k;
+                const double vertexUlp = std::nextafter(std::abs(vertex), INFINITY) - std::abs(vertex);
+                EXPECT_LE(std::abs(local + s.origin[k] - world), 0.5 * ulp + 0.5 * vertexUlp)
+                    << i << " " << v << " " << k;
             }
     }
     // The camera the same way, and a world-space --view camera lands on it.
     const glm::dvec3 eye = offset + glm::dvec3(0.5, 2.2, 4.6);
     EXPECT_NEAR(double(s.camera.eye.x) + s.origin.x, eye.x, 1e-6);
     EXPECT_NEAR(double(s.camera.eye.z) + s.origin.z, eye.z, 1e-6);
+}
+
+// Coordinates written out far from the origin (as CAD or geographic data are), not translated
+// there: vertices and transforms are read in double, so 0.02 above a floor at 1e6 stays 0.02
+// (read as float, both would be 1e6).
+TEST(SceneOrigin, FarVerticesKeepTheirDecimals) {
+    const Scene s = test::parseText(
+        "camera 1000000 1000003 1000005  1000000 1000000 1000000  0 1 0  40\n"
+        "vertex 999997 1000000 999997\nvertex 1000003 1000000 999997\nvertex 1000003 1000000 1000003\n"
+        "vertex 999999.5 1000000.02 999999.5\nvertex 1000000.5 1000000.02 999999.5\n"
+        "vertex 1000000.5 1000000.02 1000000.5\n"
+        "tri 0 1 2\ntri 3 4 5\n"
+        "pushTransform\ntranslate 0.001 0.01 0\ntri 3 4 5\npopTransform\n");
+    ASSERT_EQ(s.triangles.size(), 3u);
+    EXPECT_NE(s.origin, glm::dvec3(0.0));
+    const double floor = double(s.triangles[0].p0.y), plate = double(s.triangles[1].p0.y);
+    EXPECT_NEAR(plate - floor, 0.02, 1e-6);
+    EXPECT_NEAR(double(s.triangles[2].p0.y) - plate, 0.01, 1e-6);
+    EXPECT_NEAR(double(s.triangles[2].p0.x) - double(s.triangles[1].p0.x), 0.001, 1e-6);
+    EXPECT_NEAR(double(s.triangles[1].p0.x) + s.origin.x, 999999.5, 1e-6);
 }
 
 TEST(SceneOrigin, ViewCameraIsWorldSpace) {
