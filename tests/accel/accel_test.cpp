@@ -79,6 +79,7 @@ TEST(AccelSpec, EveryTuningOptionIsRangeCheckedAndNamed) {
     expectError("kd-restart", "--kd-traversal-cost", -1, "must be finite and not negative");
     expectError("kd-restart", "--kd-intersection-cost", INFINITY, "must be finite and not negative");
     expectError("kd-restart", "--kd-empty-bonus", 1.5, "must be in [0, 1]");
+    expectError("kd-restart", "--kd-empty-min", -0.1, "must be in [0, 1]");
     // The kd-stack kernel's stack bounds the depth: the limit the command line accepts is the one the
     // builder honours, not silently clamped.
     expectError("kd-restart", "--kd-max-depth", kd::KdConfig::kMaxDepthLimit + 1, "must be 1..56");
@@ -100,6 +101,7 @@ TEST(AccelSpec, StructureKeysTellWhichBuildsAreShared) {
     EXPECT_NE(structureKey(resolveAccel("kd-stack")),
               structureKey(resolveAccel("kd-stack", {{"--kd-intersection-cost", 5}})));
     EXPECT_NE(structureKey(resolveAccel("kd-stack")), structureKey(resolveAccel("kd-stack", {{"--kd-max-depth", 9}})));
+    EXPECT_NE(structureKey(resolveAccel("kd-stack")), structureKey(resolveAccel("kd-stack", {{"--kd-empty-min", 0}})));
     EXPECT_NE(structureKey(resolveAccel("kd-stack")),
               structureKey(resolveAccel("kd-stack", {{"--kd-max-duplication", 4}})));
 }

@@ -142,6 +142,7 @@ set_tests_properties(cli.compare_cpu_bvh_brute PROPERTIES FIXTURES_REQUIRED "cpu
 vkray_expect_error(aac_epsilon "--aac-epsilon must be in" render ${CLI_DATA}/one_triangle.scene --aac-epsilon 0.7 -o ${CLI_OUT}/x.png)
 # A scene larger than one storage buffer (lavapipe: 128 MiB) is refused before any build.
 vkray_expect_error(kd_empty_bonus "--kd-empty-bonus must be in \\[0, 1\\]" render ${CLI_DATA}/one_triangle.scene --accel kd-stack --kd-empty-bonus -0.5 -o ${CLI_OUT}/x.png)
+vkray_expect_error(kd_empty_min "--kd-empty-min must be in \\[0, 1\\]" render ${CLI_DATA}/one_triangle.scene --accel kd-restart --kd-empty-min 2 -o ${CLI_OUT}/x.png)
 vkray_expect_error(kd_cost_nan "--kd-traversal-cost and --kd-intersection-cost must be finite and not negative" render ${CLI_DATA}/one_triangle.scene --accel kd-stack --kd-intersection-cost nan -o ${CLI_OUT}/x.png)
 vkray_expect_error(kd_max_duplication "--kd-max-duplication must be a number of references per triangle, 1 or more" render ${CLI_DATA}/one_triangle.scene --accel kd-stack --kd-max-duplication 0.5 -o ${CLI_OUT}/x.png)
 vkray_expect_error(kd_max_duplication_bvh "--kd-max-duplication applies to kd-restart, kd-backtrack, kd-stack only" render ${CLI_DATA}/one_triangle.scene --accel bvh --kd-max-duplication 4 -o ${CLI_OUT}/x.png)

@@ -22,8 +22,9 @@ int KdConfig::resolvedMaxDepth(size_t triangleCount) const {
 }
 
 std::string KdConfig::describe() const {
-    char text[96];
-    std::snprintf(text, sizeof text, "pbrt SAH: Ct=%g Ci=%g eb=%g", traversalCost, intersectionCost, emptyBonus);
+    char text[128];
+    std::snprintf(text, sizeof text, "pbrt SAH: Ct=%g Ci=%g eb=%g for empty sides >= %g of the node", traversalCost,
+                  intersectionCost, emptyBonus, emptyBonusMinFraction);
     return text;
 }
 

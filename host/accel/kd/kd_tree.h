@@ -30,16 +30,18 @@ namespace vkray::accel::kd {
 // (bunny, 320x240, Ci 5/10/20/40) found Ci = 20 best for kd-restart and within the noise of the
 // best for kd-stack (docs/kdtree.md, "Cost convention and tuning").
 //
-// Default eb = 0 rather than pbrt's 0.5: with the bonus, cutting a sliver of empty space off a
-// node's side is always cheaper than any real split (1 + Ci/2 n against about 0.6 Ci n), so every
-// node first peels up to six such slabs, each a level of the depth limit; the limit then ends the
-// tree with leaves of many triangles (the bunny: leaves of up to 71 triangles, 11 triangle tests
-// per camera ray; the 1M sphere grid: leaves of up to 3,050, 844 tests per ray). Without it: 2.2
-// and 1.1 tests per ray, kd-stack 0.8x and kd-restart 0.6-0.8x the time (docs/kdtree.md).
+// pbrt's eb = 0.5, but only for empty space worth cutting: a side that is empty and spans at least
+// emptyBonusMinFraction of the node along the split axis. With the bonus for any empty side,
+// cutting a sliver of empty space off a node is always cheaper than a real split (1 + Ci/2 n
+// against about 0.6 Ci n), so every node first peels up to six such slabs, each a level of the
+// depth limit, which then ends the tree with big leaves (the bunny: up to 71 triangles, 11 triangle
+// tests per camera ray; the 1M sphere grid: up to 3,050, 844 tests per ray). With the 10% rule: 2.9
+// and 1.7 (docs/kdtree.md, "The empty-space bonus").
 struct KdConfig {
     double traversalCost = 1.0;     // Ct: one inner-node step
     double intersectionCost = 20.0; // Ci: one ray-triangle test
-    double emptyBonus = 0.0;        // eb: discount on the intersection term when a side is empty
+    double emptyBonus = 0.5;        // eb: discount on the intersection term when a side is empty
+    double emptyBonusMinFraction = 0.1;  // ... and spans at least this fraction of the node's extent
     // Deepest level a node may sit at (the root is level 0), at most kMaxDepthLimit; unset: pbrt's
     // 8 + 1.3 log2 N, rounded, and capped at kMaxDepthLimit.
     std::optional<int> maxDepth;
@@ -54,7 +56,7 @@ struct KdConfig {
     static constexpr int kMaxDepthLimit = VKRAY_KD_MAX_DEPTH;
 
     int resolvedMaxDepth(size_t triangleCount) const;
-    // "pbrt SAH: Ct=1 Ci=20 eb=0.5" — printed with the SAH cost in --stats.
+    // "pbrt SAH: Ct=1 Ci=20 eb=0.5 for empty sides >= 0.1 of the node" — printed with the SAH cost in --stats.
     std::string describe() const;
 };
 

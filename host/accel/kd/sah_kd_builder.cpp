@@ -252,7 +252,11 @@ private:
 double Builder::splitCost(const AxisAreas& areas, float pos, size_t nBelow, size_t nAbove) const {
     const double below = areas.caps + areas.sides * (double(pos) - areas.lo);
     const double above = areas.caps + areas.sides * (areas.hi - double(pos));
-    const double bonus = (nBelow == 0 || nAbove == 0) ? 1.0 - config_.emptyBonus : 1.0;
+    // The bonus only for empty space worth a level of the tree (KdConfig::emptyBonusMinFraction).
+    const double emptyExtent = nBelow == 0 ? double(pos) - areas.lo : nAbove == 0 ? areas.hi - double(pos) : 0.0;
+    const bool emptySide = (nBelow == 0 || nAbove == 0) &&
+                           emptyExtent >= config_.emptyBonusMinFraction * (areas.hi - areas.lo);
+    const double bonus = emptySide ? 1.0 - config_.emptyBonus : 1.0;
     return config_.traversalCost +
            config_.intersectionCost * bonus * areas.invArea * (below * double(nBelow) + above * double(nAbove));
 }
