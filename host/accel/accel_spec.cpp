@@ -19,7 +19,7 @@ struct AccelEntry {
 };
 
 // Plain `bvh` is AAC-HQ with two passes of treelet restructuring (Karras and Aila 2013): camera
-// rays take 5-12% fewer node steps than in AAC-HQ's tree, for about twice its build time, and a
+// rays take 4-11% fewer node steps than in AAC-HQ's tree, for about twice its build time, and a
 // render traces far more rays than the build touches primitives (docs/bvh.md, "Default preset").
 // bvh-fast and bvh-hq are the two presets of Gu, He, Fatahalian and Blelloch, "Efficient BVH
 // Construction via Approximate Agglomerative Clustering", HPG 2013, as published.
