@@ -26,16 +26,10 @@ public:
                  [&] { right = visit(node.child[1], depth + 1); });
         const uint32_t count = out_.primitives[node.child[0]] + out_.primitives[node.child[1]];
         out_.primitives[id] = count;
-        const double asInner = config_.sah.traversal * area + left + right;
-        const double asLeaf = config_.sah.intersection * area * count;
-        if (count <= uint32_t(config_.maxLeafSize) && asLeaf <= asInner) {
-            out_.isLeaf[id] = 1;
-            out_.flatNodes[id] = 1;
-            return asLeaf;
-        }
-        out_.isLeaf[id] = 0;
-        out_.flatNodes[id] = 1 + out_.flatNodes[node.child[0]] + out_.flatNodes[node.child[1]];
-        return asInner;
+        const NodeChoice choice = chooseNode(config_, area, count, left + right);
+        out_.isLeaf[id] = choice.leaf ? 1 : 0;
+        out_.flatNodes[id] = choice.leaf ? 1 : 1 + out_.flatNodes[node.child[0]] + out_.flatNodes[node.child[1]];
+        return choice.cost;
     }
 
 private:
@@ -45,6 +39,13 @@ private:
 };
 
 }  // namespace
+
+NodeChoice chooseNode(const Config& config, double area, uint32_t count, double childCosts) {
+    const double asInner = config.sah.traversal * area + childCosts;
+    const double asLeaf = config.sah.intersection * area * count;
+    if (count <= uint32_t(config.maxLeafSize) && asLeaf <= asInner) return {asLeaf, true};
+    return {asInner, false};
+}
 
 CollapsedTree collapseLeaves(const BinaryTree& tree, const Config& config) {
     CollapsedTree out;

@@ -22,4 +22,14 @@ struct CollapsedTree {
 // Subtrees build as oneTBB tasks near the root; the result does not depend on the thread count.
 CollapsedTree collapseLeaves(const BinaryTree& tree, const Config& config);
 
+// The collapse's rule for one node of `count` primitives whose box has half-area `area` and whose
+// children's subtrees cost `childCosts`: an inner node (Ct A + childCosts), or one leaf of all its
+// primitives (Ci A count) when count <= maxLeafSize and that is no dearer. The treelet
+// restructuring (treelet.h) prices its candidate trees by the same rule.
+struct NodeChoice {
+    double cost;
+    bool leaf;
+};
+NodeChoice chooseNode(const Config& config, double area, uint32_t count, double childCosts);
+
 }  // namespace vkray::bvh

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "core/fork_join.h"
+#include "accel/bvh/leaf_collapse.h"
 #include "core/parallel_alloc.h"
 
 namespace vkray::bvh {
@@ -52,13 +53,9 @@ public:
     }
 
 private:
-    // The collapse's rule (leaf_collapse.cpp): an inner node, or one leaf of all its primitives
-    // when that is allowed and no dearer.
+    // The leaf collapse's rule (chooseNode), so the trees compared are priced as they will be built.
     double nodeCost(const Aabb& box, uint32_t count, double childCosts) const {
-        const double area = box.halfArea();
-        const double inner = config_.sah.traversal * area + childCosts;
-        if (count > uint32_t(config_.maxLeafSize)) return inner;
-        return std::min(inner, config_.sah.intersection * area * count);
+        return chooseNode(config_, box.halfArea(), count, childCosts).cost;
     }
 
     // Section 4.1: grow from the root's children, always opening the leaf of largest area.
