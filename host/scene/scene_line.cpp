@@ -16,29 +16,17 @@ void SceneLine::fail(const std::string& what, size_t arg) const {
     throw Error(FileLoc{file_, number_, col}, what);
 }
 
-float SceneLine::number(size_t arg) const {
-    float value = 0.0f;
-    const NumberStatus status = parseFloat(text(arg), value);
-    if (status != NumberStatus::Ok)
-        fail(describeNumberError(status, text(arg), argName(arg), "a number"), arg);
+template <class T>
+T SceneLine::parsed(size_t arg, NumberStatus (*parse)(std::string_view, T&), const char* noun) const {
+    T value{};
+    const NumberStatus status = parse(text(arg), value);
+    if (status != NumberStatus::Ok) fail(describeNumberError(status, text(arg), argName(arg), noun), arg);
     return value;
 }
 
-double SceneLine::real(size_t arg) const {
-    double value = 0.0;
-    const NumberStatus status = parseReal(text(arg), value);
-    if (status != NumberStatus::Ok)
-        fail(describeNumberError(status, text(arg), argName(arg), "a number"), arg);
-    return value;
-}
-
-int64_t SceneLine::integer(size_t arg) const {
-    int64_t value = 0;
-    const NumberStatus status = parseInt(text(arg), value);
-    if (status != NumberStatus::Ok)
-        fail(describeNumberError(status, text(arg), argName(arg), "an integer"), arg);
-    return value;
-}
+float SceneLine::number(size_t arg) const { return parsed<float>(arg, parseFloat, "a number"); }
+double SceneLine::real(size_t arg) const { return parsed<double>(arg, parseReal, "a number"); }
+int64_t SceneLine::integer(size_t arg) const { return parsed<int64_t>(arg, parseInt, "an integer"); }
 
 glm::vec3 SceneLine::vec3(size_t firstArg) const {
     return glm::vec3(number(firstArg), number(firstArg + 1), number(firstArg + 2));

@@ -38,6 +38,9 @@ public:
 
 private:
     std::string argName(size_t arg) const;
+    // Argument `arg` read by `parse`; a failure names it as `noun` ("a number").
+    template <class T>
+    T parsed(size_t arg, NumberStatus (*parse)(std::string_view, T&), const char* noun) const;
 
     const std::string& file_;
     int number_;
