@@ -78,12 +78,10 @@ bool SceneBuilder::append(const TriPoints& p, const TriPoints& exact, uint32_t m
         // The bounds hold the world's origin and only grow: the local origin is 0 (localOrigin),
         // the floats just stored are final.
         mayMove_ = false;
-        std::vector<TriPoints>().swap(world_);
-        std::vector<bool>().swap(flat_);
+        std::vector<WorldTriangle>().swap(world_);
         return true;
     }
-    world_.push_back(exact);
-    flat_.push_back(true);
+    world_.push_back({exact, true});
     return true;
 }
 
@@ -115,7 +113,7 @@ bool SceneBuilder::addSmooth(const TriPoints& p, const TriPoints& exact, const T
         }
     }
     scene_.normals.push_back({glm::vec3(n[0]), glm::vec3(n[1]), glm::vec3(n[2])});
-    if (mayMove_) flat_.back() = false;
+    if (mayMove_) world_.back().flat = false;
     return true;
 }
 
@@ -139,8 +137,7 @@ void SceneBuilder::finish() {
         if (origin != glm::dvec3(0.0)) rebase(origin);
     }
     mayMove_ = false;
-    std::vector<TriPoints>().swap(world_);
-    std::vector<bool>().swap(flat_);
+    std::vector<WorldTriangle>().swap(world_);
 }
 
 // Every position again, from its double world value: subtracted in double, rounded to float once.
@@ -149,10 +146,11 @@ void SceneBuilder::rebase(const glm::dvec3& origin) {
     const auto local = [&](const glm::dvec3& p) { return glm::vec3(p - origin); };
     for (size_t i = 0; i < world_.size(); ++i) {
         Triangle& t = scene_.triangles[i];
-        t.p0 = local(world_[i][0]);
-        t.p1 = local(world_[i][1]);
-        t.p2 = local(world_[i][2]);
-        if (scene_.hasSmoothNormals() && flat_[i]) {
+        const WorldTriangle& w = world_[i];
+        t.p0 = local(w.corners[0]);
+        t.p1 = local(w.corners[1]);
+        t.p2 = local(w.corners[2]);
+        if (scene_.hasSmoothNormals() && w.flat) {
             const glm::vec3 n = geometricNormal(t.p0, t.p1, t.p2);
             scene_.normals[i] = {n, n, n};
         }

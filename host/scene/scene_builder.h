@@ -85,8 +85,11 @@ private:
     // What finish() needs when the origin moves, kept while it still may (see the top).
     bool mayMove_ = true;
     glm::dvec3 lo_, hi_;                  // bounds of the world positions appended so far
-    std::vector<TriPoints> world_;        // per triangle, while mayMove_
-    std::vector<bool> flat_;              // per triangle: its normals are the geometric one
+    struct WorldTriangle {
+        TriPoints corners;   // double world positions
+        bool flat = true;    // its normals are the geometric one (recomputed after the move)
+    };
+    std::vector<WorldTriangle> world_;    // per triangle, while mayMove_
     std::optional<std::pair<glm::dvec3, glm::dvec3>> camera_;  // eye, centre
     std::vector<std::pair<size_t, glm::dvec3>> pointLights_;   // index in Scene::lights, position
 };

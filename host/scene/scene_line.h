@@ -28,8 +28,9 @@ public:
     float number(size_t arg) const;
     int64_t integer(size_t arg) const;
     glm::vec3 vec3(size_t firstArg) const;  // arguments firstArg .. firstArg + 2
-    // The same in double, for world positions that no transform applies to (camera, point lights):
-    // at 1e6 floats are 1/16 apart, doubles 1e-10, and Scene::origin takes the offset off in double.
+    // The same in double (still within float's range), for positions and transforms a far scene
+    // needs exactly: at 1e6 floats are 1/16 apart, doubles 1e-10, and Scene::origin takes the
+    // offset off in double. number() is real() rounded to float.
     double real(size_t arg) const;
     glm::dvec3 dvec3(size_t firstArg) const;
 

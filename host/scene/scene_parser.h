@@ -3,9 +3,9 @@
 // `generate` for procedural ones (generators.h). Transforms, spheres and meshes are resolved here,
 // materials are deduplicated, and triangle order is load order (docs/scene-format.md, "Triangle
 // identity"). Geometry is transformed in double and stored relative to Scene::origin, rounded to float
-// once (SceneBuilder). The camera's and point lights' positions are read in double; the numbers of
-// vertex, sphere and transform lines as float (as they always were: a scene near the origin keeps its
-// floats bit for bit), so a far scene is best placed with `translate` by a round number.
+// once (SceneBuilder). Camera, point-light, vertex and transform numbers are read in double; a scene
+// whose origin stays 0 is stored from them rounded to float first, as always (bit for bit), a far one
+// from the double values. A `sphere` line's numbers and mesh files' vertices are floats.
 //
 // Conventions where the format leaves room:
 //  - Transforms apply to geometry only (tri, trinormal, sphere, geo); `camera`, `point` and

@@ -71,7 +71,8 @@ enum class NumberStatus { Ok, NotANumber, NotFinite, OutOfRange };
 // Floats must be finite and fit a 32-bit float: "nan", "inf" and 1e999 are rejected.
 NumberStatus parseFloat(std::string_view s, float& out);
 // The same number kept in double (the same rule: it must fit a 32-bit float), for positions that a
-// transform and the scene's local origin map before they are rounded to float once.
+// transform and the scene's local origin map before they are rounded to float once. parseFloat is
+// this, rounded.
 NumberStatus parseReal(std::string_view s, double& out);
 NumberStatus parseInt(std::string_view s, int64_t& out);
 

@@ -16,9 +16,9 @@
 // third round"). Node indices stay below 2^28: a kd-tree's nodes are read through one texel view of
 // at most maxTexelBufferElements (2^27 on lavapipe) texels, and the host refuses more
 // (VKRAY_KD_MAX_NODES).
-uint kdStackEntry(uint node, uint minAxis) { return node | (minAxis << 28); }
+uint kdStackEntry(uint node, uint minAxis) { return node | (minAxis << VKRAY_KD_STACK_AXIS_SHIFT); }
 uint kdStackNode(uint entry) { return entry & VKRAY_KD_STACK_NODE_MASK; }
-uint kdStackAxis(uint entry) { return entry >> 28; }
+uint kdStackAxis(uint entry) { return entry >> VKRAY_KD_STACK_AXIS_SHIFT; }
 
 bool kdWalkPass(KdRay r, WatertightRay w, const bool anyHit, float segMin, uint minAxis, float segMax,
                 uint maxAxis, inout KdPass pass, inout int steps, inout Hit best) {

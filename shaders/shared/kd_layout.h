@@ -40,9 +40,11 @@ using uint = uint32_t;
 // for any N a 32-bit index can name.
 #define VKRAY_KD_MAX_DEPTH 56
 #define VKRAY_KD_STACK_SIZE 56
-// Most nodes a tree may have: kd-stack keeps a node index in the low 28 bits of a stack word.
-#define VKRAY_KD_MAX_NODES 0x10000000u
-#define VKRAY_KD_STACK_NODE_MASK 0x0FFFFFFFu
+// Most nodes a tree may have: kd-stack keeps a node index in the bits below
+// VKRAY_KD_STACK_AXIS_SHIFT of a stack word and an axis above them.
+#define VKRAY_KD_STACK_AXIS_SHIFT 28u
+#define VKRAY_KD_MAX_NODES (1u << VKRAY_KD_STACK_AXIS_SHIFT)
+#define VKRAY_KD_STACK_NODE_MASK (VKRAY_KD_MAX_NODES - 1u)
 // The nodes binding read as RG32UI texels (VKRAY_BINDING_NODE_TEXELS): texel i + VKRAY_KD_HEADER_TEXELS
 // is node i.
 #define VKRAY_KD_NODE_TEXEL_BYTES 8

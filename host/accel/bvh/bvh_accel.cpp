@@ -67,7 +67,7 @@ public:
         const double mean = flat.leaves ? double(flat.triangleOrder.size()) / flat.leaves : 0.0;
         s.push_back({"mean_leaf_size", mean, "triangles"});
         s.push_back({"sah_cost", flat.sahCost, sahUnit(config_)});
-        const size_t wide = gpuNodes(flat).size();
+        const size_t wide = gpuNodeCount(flat);
         s.push_back({"gpu_nodes", double(wide), std::to_string(VKRAY_BVH_WIDTH) + "-wide nodes of the kernel"});
         s.push_back({"gpu_bytes", double(wide * sizeof(gpu::GpuBvhNode)),
                      "bytes: node buffer (triangles, reordered, are uploaded as usual)"});

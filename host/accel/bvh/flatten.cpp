@@ -104,6 +104,16 @@ public:
         return self;
     }
 
+    // How many wide nodes write(i) makes, without making them.
+    size_t count(uint32_t i) const {
+        uint32_t kids[VKRAY_BVH_WIDTH];
+        const int n = gather(i, kids);
+        size_t total = 1;
+        for (int k = 0; k < n; ++k)
+            if (flat_.nodes[kids[k]].count == 0) total += count(kids[k]);
+        return total;
+    }
+
     static gpu::GpuBvhNode emptyNode() {
         gpu::GpuBvhNode node{};
         node.child = gpu::uvec4(VKRAY_BVH_NO_CHILD);
@@ -169,6 +179,13 @@ std::vector<gpu::GpuBvhNode> gpuNodes(const FlatBvh& flat) {
     out.reserve(flat.nodes.size() / 4 + 1);
     WideWriter(flat, out).write(0);
     return out;
+}
+
+size_t gpuNodeCount(const FlatBvh& flat) {
+    if (flat.nodes.empty()) return 0;
+    if (flat.nodes[0].count > 0) return 1;
+    std::vector<gpu::GpuBvhNode> unused;
+    return WideWriter(flat, unused).count(0);
 }
 
 FlatBvh flatten(const BinaryTree& tree, const CollapsedTree& collapsed) {

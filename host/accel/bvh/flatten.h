@@ -16,5 +16,7 @@ FlatBvh flatten(const BinaryTree& tree, const CollapsedTree& collapsed);
 // depth-first, each with its children's boxes and references. Throws vkray::Error for more
 // triangles than leaf references can address (VKRAY_BVH_MAX_TRIANGLES).
 std::vector<gpu::GpuBvhNode> gpuNodes(const FlatBvh& flat);
+// gpuNodes(flat).size(), counted without writing the nodes.
+size_t gpuNodeCount(const FlatBvh& flat);
 
 }  // namespace vkray::bvh

@@ -33,20 +33,23 @@ public:
         if (t.nodes.size() > VKRAY_KD_MAX_NODES)
             throw Error("the kd-tree has " + std::to_string(t.nodes.size()) + " nodes; the GPU kernels address at most " +
                         std::to_string(VKRAY_KD_MAX_NODES) + " (raise --kd-traversal-cost or lower --kd-max-depth)");
-        for (const gpu::KdNode& n : t.nodes)
-            if (n.isLeaf()) data.maxLeafTriangles = std::max(data.maxLeafTriangles, n.triangleCount());
+        data.maxLeafTriangles = maxLeafTriangles();
         data.nodes = asBytes(std::vector<gpu::KdTreeHeader>{t.header});
         const std::vector<std::byte> nodeBytes = asBytes(t.nodes);
         data.nodes.insert(data.nodes.end(), nodeBytes.begin(), nodeBytes.end());
         data.indices = asBytes(t.indices);
-        if (traversal_ == kd::Traversal::Backtrack) data.extra = asBytes(t.extra);  // only it pays for them
+        if (usesExtra()) data.extra = asBytes(t.extra);
         return data;
     }
 
     std::vector<AccelStat> stats() const override {
         const kd::KdTreeFigures f = kd::measureTree(build_.tree, config_);
         const kd::KdBuildTimes& ms = build_.times;
-        const GpuAccelData data = gpuData();
+        // What gpuData() would upload, counted without copying the arrays.
+        const kd::KdTree& t = build_.tree;
+        const size_t gpuBytes = sizeof(gpu::KdTreeHeader) + t.nodes.size() * sizeof(gpu::KdNode) +
+                                t.indices.size() * sizeof(uint32_t) +
+                                (usesExtra() ? t.extra.size() * sizeof(gpu::KdNodeExtra) : 0);
         return {
             {"build_ms", ms.totalMs, "ms"},
             {"build_events_ms", ms.eventsMs, "ms: bounds, events, sort"},
@@ -54,7 +57,7 @@ public:
             {"build_flatten_ms", ms.flattenMs, "ms: GPU arrays"},
             {"nodes", double(f.nodes), "8 bytes each"},
             {"leaves", double(f.leaves), ""},
-            {"max_leaf_triangles", double(data.maxLeafTriangles), ""},
+            {"max_leaf_triangles", double(maxLeafTriangles()), ""},
             {"empty_leaves", double(f.emptyLeaves), ""},
             {"max_depth", double(f.maxDepth), "limit " + std::to_string(config_.resolvedMaxDepth(f.indexedTriangles))},
             {"mean_triangles_per_leaf", f.meanTrianglesPerLeaf(), "references / leaves"},
@@ -62,11 +65,20 @@ public:
             {"references_per_triangle", f.indexedTriangles ? double(f.references) / double(f.indexedTriangles) : 0.0,
              "budget " + shortNumber(config_.maxDuplication)},
             {"sah_cost", f.sahCost, config_.describe()},
-            {"gpu_bytes", double(data.bytes()), "bytes"},
+            {"gpu_bytes", double(gpuBytes), "bytes"},
         };
     }
 
 private:
+    // Parent links and node boxes: only kd-backtrack reads (and pays for) them.
+    bool usesExtra() const { return traversal_ == kd::Traversal::Backtrack; }
+    uint32_t maxLeafTriangles() const {
+        uint32_t most = 0;
+        for (const gpu::KdNode& n : build_.tree.nodes)
+            if (n.isLeaf()) most = std::max(most, n.triangleCount());
+        return most;
+    }
+
     kd::Traversal traversal_;
     kd::KdConfig config_;
     kd::KdBuildResult build_;

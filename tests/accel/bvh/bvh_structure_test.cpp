@@ -120,6 +120,7 @@ TEST(BvhStructure, SmallScenes) {
 void checkGpuNodes(const FlatBvh& flat, const Scene& scene) {
     const std::vector<gpu::GpuBvhNode> nodes = gpuNodes(flat);
     ASSERT_FALSE(nodes.empty());
+    EXPECT_EQ(gpuNodeCount(flat), nodes.size());
     uint32_t nextSlot = 0, nextInner = 1;
     const auto boxOfChild = [](const gpu::GpuBvhNode& g, int k) {
         return Aabb{{g.loX[k], g.loY[k], g.loZ[k]}, {g.hiX[k], g.hiY[k], g.hiZ[k]}};
