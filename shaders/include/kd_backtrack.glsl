@@ -64,7 +64,7 @@ bool kdWalkPass(KdRay r, WatertightRay w, const bool anyHit, float segMin, uint 
             uint first, second;
             float thit;
             const int visit = kdStepInner(r, n, node, segMin, minAxis, segMax, maxAxis, pass, first, second, thit);
-            node = kdDescend(visit, n, first, second, thit, segMax, maxAxis);
+            node = kdDescend(visit, n, first, second, thit, segMin, minAxis, segMax, maxAxis);
             n = kdNode(node);
         }
         if (!kdLeafStep(n, steps)) break;  // the cap, or the driver

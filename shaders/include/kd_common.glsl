@@ -49,7 +49,7 @@ uvec2 kdNode(uint i) { return texelFetch(nodeTexels, int(i) + VKRAY_KD_HEADER_TE
 bool kdIsLeaf(uvec2 n) { return (n.y & 3u) == VKRAY_KD_LEAF_TAG; }
 uint kdAxis(uvec2 n) { return n.y & 3u; }
 float kdSplit(uvec2 n) { return uintBitsToFloat(n.x); }
-uint kdAboveChild(uvec2 n) { return n.y >> 2; }
+uint kdAboveChild(uvec2 n) { return n.y >> VKRAY_KD_CHILD_SHIFT; }
 uint kdFirstIndex(uvec2 n) { return n.x; }
 uint kdTriangleCount(uvec2 n) { return n.y >> 2; }
 
@@ -173,9 +173,12 @@ bool kdClipBox(KdRay r, vec3 lo, vec3 hi, inout float tmin, inout uint tminAxis,
            kdCompare(p, tmin, tminAxis, tmax, tmaxAxis) <= 0;
 }
 
-const int kKdFirst = 0, kKdSecond = 1, kKdBoth = 2;
+const int kKdFirst = 0, kKdSecond = 1, kKdBoth = 2, kKdPastFirst = 3;
 
 // One inner-node step: which children of inner node `index` the segment [tmin, tmax] reaches.
+// kKdPastFirst: both, but the first is a leaf without triangles (the node's flag bits, kd_layout.h):
+// the walk goes on in the second from the plane, as it would after visiting that leaf, without the
+// step onto it and the restart, climb or pop after it.
 int kdStepInner(KdRay r, uvec2 n, uint index, float tmin, uint tminAxis, float tmax, uint tmaxAxis,
                 inout KdPass p, out uint first, out uint second, out float thit) {
     const uint axis = kdAxis(n);
@@ -197,17 +200,23 @@ int kdStepInner(KdRay r, uvec2 n, uint index, float tmin, uint tminAxis, float t
     thit = kdPlaneHit(r, axis, split);
     if (kdCompare(p, thit, axis, tmax, tmaxAxis) >= 0) return kKdFirst;
     if (kdCompare(p, thit, axis, tmin, tminAxis) <= 0) return kKdSecond;
-    return kKdBoth;
+    return (n.y & (up ? VKRAY_KD_EMPTY_BELOW : VKRAY_KD_EMPTY_ABOVE)) != 0u ? kKdPastFirst : kKdBoth;
 }
 
 // Takes the step kdStepInner chose: the child to descend to, with the segment cut at the plane when
-// both are reached (kd-stack pushes the second child first; kd-restart and kd-backtrack drop it).
-uint kdDescend(int visit, uvec2 n, uint first, uint second, float thit, inout float segMax, inout uint maxAxis) {
+// both are reached (kd-stack pushes the second child first; kd-restart and kd-backtrack drop it), or
+// starting there when the first is passed.
+uint kdDescend(int visit, uvec2 n, uint first, uint second, float thit, inout float segMin, inout uint minAxis,
+               inout float segMax, inout uint maxAxis) {
     if (visit == kKdBoth) {
         segMax = thit;
         maxAxis = kdAxis(n);
     }
-    return visit == kKdSecond ? second : first;
+    if (visit == kKdPastFirst) {
+        segMin = thit;
+        minAxis = kdAxis(n);
+    }
+    return visit == kKdSecond || visit == kKdPastFirst ? second : first;
 }
 
 // A leaf lists its triangles in the index list: a triangle may lie in several leaves.

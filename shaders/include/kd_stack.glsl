@@ -52,7 +52,7 @@ bool kdWalkPass(KdRay r, WatertightRay w, const bool anyHit, float segMin, uint 
                 stackMin[top] = thit;
                 ++top;
             }
-            node = kdDescend(visit, n, first, second, thit, segMax, maxAxis);
+            node = kdDescend(visit, n, first, second, thit, segMin, minAxis, segMax, maxAxis);
             n = kdNode(node);
         }
         if (!kdLeafStep(n, steps)) break;  // the cap, or the driver

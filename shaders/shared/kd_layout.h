@@ -12,8 +12,11 @@
 //
 // KdNode is pbrt's 8-byte node (Pharr, Jakob, Humphreys, "Physically Based Rendering", 3rd ed.,
 // section 4.4.1), two 32-bit words:
-//   inner: word0 = split position (float bits), word1 = aboveChild << 2 | axis (0, 1, 2)
+//   inner: word0 = split position (float bits),
+//          word1 = aboveChild << 4 | aboveIsEmptyLeaf << 3 | belowIsEmptyLeaf << 2 | axis (0, 1, 2)
 //   leaf:  word0 = first entry in the index list,  word1 = triangleCount << 2 | 3
+// The two flag bits let a traversal step past an empty near child without visiting it (kd_common.glsl,
+// kdStepInner): such a leaf holds nothing to test, and the segment goes on at the split plane.
 // The split is a plain float: the builder never chooses a denormal split, so a driver that flushes
 // denormals (lavapipe does, see gpu_layout.h) reads back exactly the value the builder used.
 #ifndef VKRAY_KD_LAYOUT_H
@@ -35,6 +38,11 @@ using uint = uint32_t;
 
 // word1 & 3 of a leaf; 0..2 is an inner node's split axis.
 #define VKRAY_KD_LEAF_TAG 3u
+// An inner node's word1: the flag bits saying its below or above child is a leaf without triangles,
+// and the shift of the above child's index.
+#define VKRAY_KD_EMPTY_BELOW 4u
+#define VKRAY_KD_EMPTY_ABOVE 8u
+#define VKRAY_KD_CHILD_SHIFT 4u
 // Largest tree depth the builder produces; the kd-stack kernel's per-ray stack holds this many
 // entries (a push happens at most once per level). 8 + 1.3 log2 N (pbrt's default) stays below it
 // for any N a 32-bit index can name.
@@ -79,11 +87,13 @@ struct KdNode {  // 8 bytes
     uint32_t word0 = 0;
     uint32_t word1 = VKRAY_KD_LEAF_TAG;
 
-    // Range-checked factories: the packing leaves 30 bits for a child index or a triangle count.
-    static KdNode inner(int axis, float split, uint32_t aboveChild) {
-        if (axis < 0 || axis > 2 || aboveChild >= (1u << 30))
+    // Range-checked factories: the packing leaves 28 bits for a child index, 30 for a triangle count.
+    static KdNode inner(int axis, float split, uint32_t aboveChild, bool belowEmpty = false, bool aboveEmpty = false) {
+        if (axis < 0 || axis > 2 || aboveChild >= (1u << (32u - VKRAY_KD_CHILD_SHIFT)))
             throw std::length_error("kd node: axis or child index out of range");
-        return KdNode{std::bit_cast<uint32_t>(split), aboveChild << 2 | uint32_t(axis)};
+        return KdNode{std::bit_cast<uint32_t>(split), aboveChild << VKRAY_KD_CHILD_SHIFT |
+                                                          (aboveEmpty ? VKRAY_KD_EMPTY_ABOVE : 0u) |
+                                                          (belowEmpty ? VKRAY_KD_EMPTY_BELOW : 0u) | uint32_t(axis)};
     }
     static KdNode leaf(uint32_t firstIndex, uint32_t count) {
         if (count >= (1u << 30)) throw std::length_error("kd leaf: too many triangles");
@@ -93,7 +103,9 @@ struct KdNode {  // 8 bytes
     bool isLeaf() const { return (word1 & 3u) == VKRAY_KD_LEAF_TAG; }
     int axis() const { return int(word1 & 3u); }
     float split() const { return std::bit_cast<float>(word0); }
-    uint32_t aboveChild() const { return word1 >> 2; }
+    uint32_t aboveChild() const { return word1 >> VKRAY_KD_CHILD_SHIFT; }
+    // Whether the child on the `above` side is a leaf without triangles (inner nodes only).
+    bool childEmpty(bool above) const { return (word1 & (above ? VKRAY_KD_EMPTY_ABOVE : VKRAY_KD_EMPTY_BELOW)) != 0; }
     uint32_t firstIndex() const { return word0; }
     uint32_t triangleCount() const { return word1 >> 2; }
     bool operator==(const KdNode&) const = default;

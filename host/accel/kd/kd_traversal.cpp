@@ -16,7 +16,10 @@ double planeHit(const geometry::Ray& ray, int axis, float plane) {
     return (double(plane) - ray.origin[axis]) / ray.dir[axis];
 }
 
-enum class Visit { First, Second, Both };
+// PastFirst: both children, but the first is a leaf without triangles (the node's flag bits,
+// kd_layout.h): the walk goes on in the second from the plane, as it would after visiting that
+// leaf, without the step onto it and the pop, restart or climb after it.
+enum class Visit { First, Second, Both, PastFirst };
 
 struct SplitStep {
     Visit visit;
@@ -46,17 +49,22 @@ SplitStep stepInner(const geometry::Ray& ray, const gpu::KdNode& node, uint32_t 
     const double thit = planeHit(ray, axis, node.split());
     if (pass.compare(thit, axis, seg.tmax, seg.maxAxis) >= 0) return {Visit::First, first, second, thit, axis};
     if (pass.compare(thit, axis, seg.tmin, seg.minAxis) <= 0) return {Visit::Second, first, second, thit, axis};
-    return {Visit::Both, first, second, thit, axis};
+    return {node.childEmpty(d < 0.0) ? Visit::PastFirst : Visit::Both, first, second, thit, axis};
 }
 
 // Takes step `s`: the child to descend to, with the segment cut at the plane when both are reached
-// (the stack traversal pushes the second child first; the stackless ones drop it).
+// (the stack traversal pushes the second child first; the stackless ones drop it), or starting
+// there when the first is passed.
 uint32_t descend(const SplitStep& s, Segment& seg) {
     if (s.visit == Visit::Both) {
         seg.tmax = s.thit;
         seg.maxAxis = s.axis;
     }
-    return s.visit == Visit::Second ? s.second : s.first;
+    if (s.visit == Visit::PastFirst) {
+        seg.tmin = s.thit;
+        seg.minAxis = s.axis;
+    }
+    return s.visit == Visit::Second || s.visit == Visit::PastFirst ? s.second : s.first;
 }
 
 // Relative slack of the stop rule below: far above the few ulps by which a triangle's t and a plane's

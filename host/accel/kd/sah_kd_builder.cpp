@@ -423,7 +423,9 @@ void flatten(const BuildNode& n, uint32_t parent, const Box& box, KdTree& out) {
     }
     const auto [below, above] = splitBox(box, n.axis, n.split);
     flatten(*n.below, index, below, out);
-    out.nodes[index] = gpu::KdNode::inner(n.axis, n.split, uint32_t(out.nodes.size()));
+    const auto emptyLeaf = [](const BuildNode& child) { return child.axis < 0 && child.triangles.empty(); };
+    out.nodes[index] =
+        gpu::KdNode::inner(n.axis, n.split, uint32_t(out.nodes.size()), emptyLeaf(*n.below), emptyLeaf(*n.above));
     flatten(*n.above, index, above, out);
 }
 

@@ -85,7 +85,8 @@ void expectConservative(const Scene& s, const KdTree& t) {
 }
 
 // Inner splits lie strictly inside their node's box, children's boxes are the two halves, parent
-// links point back, and the leaves' volumes add up to the root's (they tile it).
+// links point back, an inner node flags exactly its children that are leaves without triangles, and
+// the leaves' volumes add up to the root's (they tile it).
 void expectPartition(const KdTree& t) {
     ASSERT_EQ(t.nodes.size(), t.extra.size());
     ASSERT_EQ(t.header.nodeCount, t.nodes.size());
@@ -112,6 +113,9 @@ void expectPartition(const KdTree& t) {
         ASSERT_LT(above, t.nodes.size());
         EXPECT_EQ(t.extra[below].parent, i);
         EXPECT_EQ(t.extra[above].parent, i);
+        const auto emptyLeaf = [&](uint32_t c) { return t.nodes[c].isLeaf() && t.nodes[c].triangleCount() == 0; };
+        EXPECT_EQ(n.childEmpty(false), emptyLeaf(below)) << "node " << i;
+        EXPECT_EQ(n.childEmpty(true), emptyLeaf(above)) << "node " << i;
         gpu::KdNodeExtra expectBelow = box, expectAbove = box;
         expectBelow.hi[a] = n.split();
         expectAbove.lo[a] = n.split();
@@ -267,12 +271,23 @@ TEST(KdLayout, NodePackingRoundTrips) {
     EXPECT_EQ(inner.axis(), 2);
     EXPECT_EQ(inner.split(), -1.5f);
     EXPECT_EQ(inner.aboveChild(), 12345u);
+    EXPECT_FALSE(inner.childEmpty(false));
+    EXPECT_FALSE(inner.childEmpty(true));
+    for (const bool below : {false, true})
+        for (const bool above : {false, true}) {
+            const gpu::KdNode n = gpu::KdNode::inner(1, 2.0f, VKRAY_KD_MAX_NODES - 1, below, above);
+            EXPECT_EQ(n.axis(), 1);
+            EXPECT_FALSE(n.isLeaf());
+            EXPECT_EQ(n.aboveChild(), VKRAY_KD_MAX_NODES - 1);
+            EXPECT_EQ(n.childEmpty(false), below);
+            EXPECT_EQ(n.childEmpty(true), above);
+        }
     const gpu::KdNode leaf = gpu::KdNode::leaf(77, (1u << 30) - 1);
     EXPECT_TRUE(leaf.isLeaf());
     EXPECT_EQ(leaf.firstIndex(), 77u);
     EXPECT_EQ(leaf.triangleCount(), (1u << 30) - 1);
     EXPECT_THROW(gpu::KdNode::inner(3, 0.0f, 1), std::length_error);
-    EXPECT_THROW(gpu::KdNode::inner(0, 0.0f, 1u << 30), std::length_error);
+    EXPECT_THROW(gpu::KdNode::inner(0, 0.0f, VKRAY_KD_MAX_NODES), std::length_error);
     EXPECT_THROW(gpu::KdNode::leaf(0, 1u << 30), std::length_error);
 }
 

@@ -251,6 +251,36 @@ TEST_P(KdTraversalTest, CountersAddUp) {
     }
 }
 
+// A near child flagged as an empty leaf is passed, not visited: the walk goes on from the plane in
+// the far child (no leaf step, restart, climb or pop for it). Unflagged, the same tree visits it.
+TEST_P(KdTraversalTest, EmptyNearChildIsPassed) {
+    Scene scene;
+    scene.triangles = {{{0.5f, -1, -1}, {0.5f, 1, -1}, {0.5f, 0, 1}, 0}};  // in the above leaf, x = 0.5
+    for (const bool flagged : {true, false}) {
+        KdTree t;
+        t.header = gpu::KdTreeHeader{{-1, -1, -1}, 3, {1, 1, 1}, 1};
+        t.nodes = {gpu::KdNode::inner(0, 0.0f, 2, flagged, false), gpu::KdNode::leaf(0, 0), gpu::KdNode::leaf(0, 1)};
+        t.indices = {0};
+        t.extra = {gpu::KdNodeExtra{{-1, -1, -1}, VKRAY_KD_NO_PARENT, {1, 1, 1}, 0},
+                   gpu::KdNodeExtra{{-1, -1, -1}, 0, {0, 1, 1}, 0}, gpu::KdNodeExtra{{0, -1, -1}, 0, {1, 1, 1}, 0}};
+        const auto kd = makeKdTracer(GetParam(), t, geometry::triangleVertices(scene));
+        geometry::TraversalCounters c;
+        const geometry::Hit hit = kd->closest({{-2.0, 0.1, 0.0}, {1.0, 0.0, 0.0}}, kInf, &c);
+        EXPECT_EQ(hit.triangle, 0);
+        EXPECT_DOUBLE_EQ(hit.t, 2.5);
+        EXPECT_EQ(c.leaves, flagged ? 1u : 2u) << (flagged ? "flagged" : "unflagged");
+        // Unflagged: root, empty leaf, then the pop (stack), a restart at the root (restart), or a
+        // climbing step at the root and the root again (backtrack), and the far leaf.
+        const uint32_t unflagged = GetParam() == kd::Traversal::Stack ? 3u : GetParam() == kd::Traversal::Restart ? 4u : 5u;
+        EXPECT_EQ(c.nodes, flagged ? 2u : unflagged);
+        EXPECT_EQ(c.restarts, flagged || GetParam() == kd::Traversal::Stack ? 0u : 1u);
+        // Going the other way the empty leaf lies beyond the triangle: never reached.
+        geometry::TraversalCounters back;
+        EXPECT_EQ(kd->closest({{2.0, 0.1, 0.0}, {-1.0, 0.0, 0.0}}, kInf, &back).triangle, 0);
+        EXPECT_EQ(back.leaves, 1u);
+    }
+}
+
 // Hand-made trees for rays lying in split planes: each triangle sits where the builder's one-sided
 // classification puts it (touching a plane from above: above only), and a decoy farther along the
 // ray sits on the other side. A traversal that walks only one side of an in-plane node returns the
