@@ -3,7 +3,8 @@
 // (VKRAY_BINDING_EXTRA_TEXELS) that only this kernel reads. After a leaf without an accepted hit,
 // tmin becomes the leaf's exit and the search climbs the parent links to the nearest ancestor whose
 // box the remaining segment still crosses for a positive length (exit > tmin), then descends from
-// there. Climbing and descending steps share one loop and its cap. The passes around this walk are
+// there; a climbing step computes only the box's exit (kdClimbStep). Climbing and descending steps
+// share one step cap. The passes around this walk are
 // kdTrace's (kd_common.glsl).
 #ifndef VKRAY_KD_BACKTRACK_GLSL
 #define VKRAY_KD_BACKTRACK_GLSL
@@ -19,16 +20,34 @@ KdNodeExtra kdExtraAt(uint i) {
     return KdNodeExtra(uintBitsToFloat(a.xyz), a.w, uintBitsToFloat(b.xyz), b.w);
 }
 
-// One climbing step from `node`: whether its box still holds part of the segment past segMin (then
-// the segment becomes that part and the walk descends from there); else `node` moves to its parent.
-bool kdClimbStep(KdRay r, inout uint node, inout float segMin, inout uint minAxis, inout float segMax,
-                 inout uint maxAxis, float globalMax, uint globalMaxAxis, inout KdPass pass) {
-    float t0 = segMin, t1 = globalMax;
-    uint a0 = minAxis, a1 = globalMaxAxis;
+// Node i's parent link alone: the first of its two texels.
+uint kdParentOf(uint i) { return texelFetch(extraTexels, int(2u * i)).w; }
+
+// The exit of one slab of an ancestor's box, when it comes before (t1, a1). Unrolled by the caller:
+// no loop iterations.
+void kdClimbExit(KdRay r, uint axis, float exitPlane, inout float t1, inout uint a1, inout KdPass pass) {
+    if (r.parallel[axis]) return;
+    const float tFar = kdPlaneHit(r, axis, exitPlane);
+    if (kdCompare(pass, tFar, axis, t1, a1) < 0) {
+        t1 = tFar;
+        a1 = axis;
+    }
+}
+
+// One climbing step from `node`, an ancestor of the leaf just left: whether its box still holds part
+// of the segment past segMin (then the segment becomes that part and the walk descends from there);
+// else `node` moves to its parent. Only the box's exit is computed: the ancestor holds the leaf, so
+// the ray entered it no later than segMin (exitFromAncestor in kd_traversal.cpp).
+bool kdClimbStep(KdRay r, inout uint node, float segMin, uint minAxis, inout float segMax, inout uint maxAxis,
+                 float globalMax, uint globalMaxAxis, inout KdPass pass) {
     const KdNodeExtra extra = kdExtraAt(node);
-    if (kdClipBox(r, extra.lo, extra.hi, t0, a0, t1, a1, pass) && kdCompare(pass, t1, a1, segMin, minAxis) > 0) {
-        segMin = t0;  // at least segMin: the clip started from it
-        minAxis = a0;
+    const vec3 exitPlane = mix(extra.lo, extra.hi, greaterThan(r.dir, vec3(0.0)));
+    float t1 = globalMax;
+    uint a1 = globalMaxAxis;
+    kdClimbExit(r, 0u, exitPlane.x, t1, a1, pass);
+    kdClimbExit(r, 1u, exitPlane.y, t1, a1, pass);
+    kdClimbExit(r, 2u, exitPlane.z, t1, a1, pass);
+    if (kdCompare(pass, t1, a1, segMin, minAxis) > 0) {
         segMax = t1;
         maxAxis = a1;
         return true;
@@ -74,7 +93,7 @@ bool kdWalkPass(KdRay r, WatertightRay w, const bool anyHit, float segMin, uint 
         } else {  // climb from this leaf's parent
             segMin = segMax;
             minAxis = maxAxis;
-            node = kdExtraAt(node).parent;
+            node = kdParentOf(node);
             climbing = true;
             countRestart();
         }

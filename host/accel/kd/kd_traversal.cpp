@@ -300,6 +300,29 @@ bool KdRestartTracer::walkPass(const geometry::Ray& ray, Segment global, PassSta
     }
 }
 
+namespace {
+
+// Where the ray leaves the box of an ancestor of the leaf it just left, or global's end if sooner.
+// Only the exit: the ancestor's box holds the leaf, so the ray entered it no later than the leaf's
+// exit (its near planes are hit at or before the leaf's, in the pass's order too), and a
+// direction component of zero keeps the ray inside that slab (the leaf's is within it).
+std::pair<double, int> exitFromAncestor(const geometry::Ray& ray, const gpu::KdNodeExtra& box, Segment global,
+                                        PassState& pass) {
+    double exit = global.tmax;
+    int exitAxis = global.maxAxis;
+    for (int axis = 0; axis < 3; ++axis) {
+        if (ray.dir[axis] == 0.0) continue;
+        const double tFar = planeHit(ray, axis, ray.dir[axis] > 0.0 ? box.hi[axis] : box.lo[axis]);
+        if (pass.compare(tFar, axis, exit, exitAxis) < 0) {
+            exit = tFar;
+            exitAxis = axis;
+        }
+    }
+    return {exit, exitAxis};
+}
+
+}  // namespace
+
 // Foley and Sugerman 4.2: after a leaf, backtrack() climbs the parent links, clipping the ray's
 // remaining segment (tmin, global tmax) to each ancestor's box, and descends from the first
 // ancestor the segment still passes through for a positive length (box exit > tmin: an ancestor
@@ -319,9 +342,9 @@ bool KdBacktrackTracer::walkPass(const geometry::Ray& ray, Segment global, PassS
         if (climbing) {
             if (node == VKRAY_KD_NO_PARENT) return true;  // climbed past the root: nothing left
             const gpu::KdNodeExtra& e = tree_.extra[node];
-            const auto inside = clipToBox(ray, e.lo, e.hi, {seg.tmin, global.tmax, seg.minAxis, global.maxAxis}, pass);
-            if (inside && pass.compare(inside->tmax, inside->maxAxis, seg.tmin, seg.minAxis) > 0) {
-                seg = *inside;  // its tmin is at least seg.tmin: the clip started from it
+            const auto [exit, exitAxis] = exitFromAncestor(ray, e, global, pass);
+            if (pass.compare(exit, exitAxis, seg.tmin, seg.minAxis) > 0) {
+                seg = {seg.tmin, exit, seg.minAxis, exitAxis};
                 climbing = false;
             } else {
                 node = e.parent;
