@@ -23,20 +23,29 @@
 #include <cstdint>
 
 #include "accel/bvh/bvh.h"
-#include "core/phase_log.h"
+#include "accel/bvh/leaf_collapse.h"
 #include "accel/bvh/primitives.h"
+#include "core/phase_log.h"
 
 namespace vkray::bvh {
 
 // The paper's cluster count reduction function: f(n) = c * n^alpha, alpha = 1/2 - epsilon,
 // c = delta^(1/2 + epsilon) / 2 (so f(delta) = delta / 2), rounded down and at least 1.
+struct AacReduction {
+    AacReduction(int delta, double epsilon);
+    size_t operator()(size_t n) const;
+
+    double c, alpha;
+};
 size_t aacReduction(size_t n, int delta, double epsilon);
 
 // Throws vkray::Error when delta < 1 or epsilon is outside [0, 1/2) (alpha must stay positive).
 void validateAacConfig(const Config& config);
 
 // Builds the AAC tree of `prims` on the calling thread's oneTBB arena; phases "morton", "sort" and
-// "cluster" go to `log`.
-BinaryTree buildAac(const PrimitiveSet& prims, const Config& config, PhaseLog& log);
+// "cluster" go to `log`. With `collapsed`, also the tree's leaf collapse, recorded as the clusters
+// merge (leaf_collapse.h, CollapseRecorder): equal to collapseLeaves() of the returned tree.
+BinaryTree buildAac(const PrimitiveSet& prims, const Config& config, PhaseLog& log,
+                    CollapsedTree* collapsed = nullptr);
 
 }  // namespace vkray::bvh

@@ -101,9 +101,12 @@ BuildResult buildFlatBvh(std::span<const Triangle> triangles, const Config& conf
     tbb::task_arena arena(threads > 0 ? threads : tbb::task_arena::automatic);
     FlatBvh flat = arena.execute([&] {
         const PrimitiveSet prims = log.run("primitives", 0.05, [&] { return primitivesOf(triangles); });
-        BinaryTree tree = buildTree(prims, config, log);
+        // AAC records the leaf collapse while it clusters, unless restructuring changes the tree after.
+        const bool collapseInBuild = config.builder == Config::Builder::Aac && config.treeletPasses == 0;
+        CollapsedTree collapsed;
+        BinaryTree tree = collapseInBuild ? buildAac(prims, config, log, &collapsed) : buildTree(prims, config, log);
         if (config.treeletPasses > 0) log.run("treelets", 0.88, [&] { restructureTreelets(tree, config); });
-        const CollapsedTree collapsed = log.run("collapse", 0.92, [&] { return collapseLeaves(tree, config); });
+        if (!collapseInBuild) collapsed = log.run("collapse", 0.92, [&] { return collapseLeaves(tree, config); });
         return log.run("flatten", 1.0, [&] { return flatten(tree, collapsed); });
     });
     log.finish();

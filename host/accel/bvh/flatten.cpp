@@ -28,16 +28,22 @@ public:
     // its triangles to triangleOrder[first] onwards; returns the depth of its deepest node.
     uint32_t write(uint32_t id, uint32_t slot, uint32_t first, uint32_t depth) {
         const BinaryNode& node = tree_.nodes[id];
-        if (collapsed_.isLeaf[id]) {
-            const uint32_t count = collapsed_.primitives[id];
+        const CollapsedNode& self = collapsed_.nodes[id];
+        if (self.leaf()) {
+            const uint32_t count = self.primitives;
             gatherPrimitives(id, first);
             std::sort(out_.triangleOrder.begin() + first, out_.triangleOrder.begin() + first + count);
             out_.nodes[slot] = makeNode(node.box, first, count);
             return depth;
         }
         const uint32_t left = node.child[0], right = node.child[1];
-        const uint32_t rightSlot = slot + 1 + collapsed_.flatNodes[left];
-        const uint32_t rightFirst = first + collapsed_.primitives[left];
+        // The right subtree is written after the whole left one: ask for its first lines now (the
+        // walk is bound by memory latency: nodes of a subtree lie far apart at the top).
+        __builtin_prefetch(&tree_.nodes[right]);
+        __builtin_prefetch(&collapsed_.nodes[right]);
+        const CollapsedNode& below = collapsed_.nodes[left];
+        const uint32_t rightSlot = slot + 1 + below.flatNodes;
+        const uint32_t rightFirst = first + below.primitives;
         out_.nodes[slot] = makeNode(node.box, rightSlot, 0);
         uint32_t dl = 0, dr = 0;
         forkJoin(depth < kParallelDepth, [&] { dl = write(left, slot + 1, first, depth + 1); },
@@ -51,8 +57,8 @@ private:
         uint32_t stack[VKRAY_BVH_MAX_LEAF_SIZE * 2 + 2];  // a collapsed subtree has < 2 * maxLeaf nodes
         std::vector<uint32_t> big;                        // for a Config with larger leaves
         uint32_t* s = stack;
-        if (collapsed_.primitives[id] > VKRAY_BVH_MAX_LEAF_SIZE) {
-            big.resize(2 * size_t(collapsed_.primitives[id]) + 2);
+        if (collapsed_.nodes[id].primitives > VKRAY_BVH_MAX_LEAF_SIZE) {
+            big.resize(2 * size_t(collapsed_.nodes[id].primitives) + 2);
             s = big.data();
         }
         size_t top = 0;
@@ -192,7 +198,7 @@ FlatBvh flatten(const BinaryTree& tree, const CollapsedTree& collapsed) {
     FlatBvh flat;
     flat.sahCost = collapsed.sahCost;
     if (tree.nodes.empty()) return flat;
-    resizeFirstTouched(flat.nodes, collapsed.flatNodes[tree.root]);
+    resizeFirstTouched(flat.nodes, collapsed.nodes[tree.root].flatNodes);
     resizeFirstTouched(flat.triangleOrder, tree.primitives);
     flat.maxDepth = Flattener(tree, collapsed, flat).write(tree.root, 0, 0, 0);
     flat.leaves = uint32_t((flat.nodes.size() + 1) / 2);  // a full binary tree: leaves = inner nodes + 1

@@ -6,6 +6,35 @@
 namespace vkray::bvh {
 namespace {
 
+// One node of the collapse, its children done: its record in `out` and its subtree's cost.
+double collapsePrimitive(const Config& config, CollapsedTree& out, uint32_t id, const Aabb& box) {
+    out.nodes[id] = CollapsedNode{1, 1};
+    return config.sah.intersection * double(box.halfArea());
+}
+
+double collapseInner(const Config& config, CollapsedTree& out, uint32_t id, const Aabb& box, uint32_t left,
+                     uint32_t right, double childCosts) {
+    const CollapsedNode& l = out.nodes[left];
+    const CollapsedNode& r = out.nodes[right];
+    const uint32_t count = l.primitives + r.primitives;
+    const NodeChoice choice = chooseNode(config, box.halfArea(), count, childCosts);
+    out.nodes[id] = CollapsedNode{count, choice.leaf ? 1 : 1 + l.flatNodes + r.flatNodes};
+    return choice.cost;
+}
+
+CollapsedTree allocate(size_t nodes) {
+    CollapsedTree out;
+    resizeFirstTouched(out.nodes, nodes);
+    return out;
+}
+
+// A scene without area (all triangles on one line or point) has no meaningful ratio; report the
+// unnormalised cost rather than divide by zero.
+double normalised(double cost, const Aabb& rootBox) {
+    const double rootArea = rootBox.halfArea();
+    return rootArea > 0.0 ? cost / rootArea : cost;
+}
+
 class Collapser {
 public:
     Collapser(const BinaryTree& tree, const Config& config, CollapsedTree& out)
@@ -14,22 +43,11 @@ public:
     // SAH cost of the subtree at `id`, not yet divided by the root's area; fills `out_` for it.
     double visit(uint32_t id, int depth) {
         const BinaryNode& node = tree_.nodes[id];
-        const double area = node.box.halfArea();
-        if (node.isPrimitive()) {
-            out_.isLeaf[id] = 1;
-            out_.primitives[id] = 1;
-            out_.flatNodes[id] = 1;
-            return config_.sah.intersection * area;
-        }
+        if (node.isPrimitive()) return collapsePrimitive(config_, out_, id, node.box);
         double left = 0.0, right = 0.0;
         forkJoin(depth < kParallelDepth, [&] { left = visit(node.child[0], depth + 1); },
                  [&] { right = visit(node.child[1], depth + 1); });
-        const uint32_t count = out_.primitives[node.child[0]] + out_.primitives[node.child[1]];
-        out_.primitives[id] = count;
-        const NodeChoice choice = chooseNode(config_, area, count, left + right);
-        out_.isLeaf[id] = choice.leaf ? 1 : 0;
-        out_.flatNodes[id] = choice.leaf ? 1 : 1 + out_.flatNodes[node.child[0]] + out_.flatNodes[node.child[1]];
-        return choice.cost;
+        return collapseInner(config_, out_, id, node.box, node.child[0], node.child[1], left + right);
     }
 
 private:
@@ -48,17 +66,27 @@ NodeChoice chooseNode(const Config& config, double area, uint32_t count, double 
 }
 
 CollapsedTree collapseLeaves(const BinaryTree& tree, const Config& config) {
-    CollapsedTree out;
-    if (tree.nodes.empty()) return out;
-    resizeFirstTouched(out.isLeaf, tree.nodes.size());
-    resizeFirstTouched(out.primitives, tree.nodes.size());
-    resizeFirstTouched(out.flatNodes, tree.nodes.size());
+    if (tree.nodes.empty()) return {};
+    CollapsedTree out = allocate(tree.nodes.size());
     const double cost = Collapser(tree, config, out).visit(tree.root, 0);
-    const double rootArea = tree.nodes[tree.root].box.halfArea();
-    // A scene without area (all triangles on one line or point) has no meaningful ratio; report
-    // the unnormalised cost rather than divide by zero.
-    out.sahCost = rootArea > 0.0 ? cost / rootArea : cost;
+    out.sahCost = normalised(cost, tree.nodes[tree.root].box);
     return out;
+}
+
+CollapseRecorder::CollapseRecorder(const Config& config, size_t nodes) : config_(config), out_(allocate(nodes)) {
+    resizeFirstTouched(cost_, nodes);
+}
+
+void CollapseRecorder::primitive(uint32_t id, const Aabb& box) { cost_[id] = collapsePrimitive(config_, out_, id, box); }
+
+void CollapseRecorder::inner(uint32_t id, const Aabb& box, uint32_t left, uint32_t right) {
+    cost_[id] = collapseInner(config_, out_, id, box, left, right, cost_[left] + cost_[right]);
+}
+
+CollapsedTree CollapseRecorder::finish(uint32_t root, const Aabb& rootBox) {
+    out_.sahCost = normalised(cost_[root], rootBox);
+    std::vector<double>().swap(cost_);
+    return std::move(out_);
 }
 
 }  // namespace vkray::bvh

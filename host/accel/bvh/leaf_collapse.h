@@ -12,15 +12,37 @@
 
 namespace vkray::bvh {
 
+// Per BinaryTree node, one record of 8 bytes (the flattening reads it with the node's children).
+struct CollapsedNode {
+    uint32_t primitives = 0;  // primitives below it
+    uint32_t flatNodes = 0;   // nodes of its subtree in the flat tree: 1 for a leaf, >= 3 for an inner node
+    bool leaf() const { return flatNodes == 1; }
+};
+
 struct CollapsedTree {
-    std::vector<uint8_t> isLeaf;       // per BinaryTree node: a leaf of the flat tree
-    std::vector<uint32_t> primitives;  // per node: primitives below it
-    std::vector<uint32_t> flatNodes;   // per node: nodes of its subtree in the flat tree
+    std::vector<CollapsedNode> nodes;  // indexed like BinaryTree::nodes
     double sahCost = 0.0;              // of the collapsed tree, divided by the root's area
 };
 
 // Subtrees build as oneTBB tasks near the root; the result does not depend on the thread count.
 CollapsedTree collapseLeaves(const BinaryTree& tree, const Config& config);
+
+// The same collapse, recorded while a builder makes the tree bottom-up (every node after both its
+// children): no pass over the finished tree, whose nodes are then read again far from any cache.
+// primitive() and inner() may run on several threads for distinct nodes; finish() once, after all.
+// The AAC builder records it when no restructuring follows (aac_builder.h).
+class CollapseRecorder {
+public:
+    CollapseRecorder(const Config& config, size_t nodes);
+    void primitive(uint32_t id, const Aabb& box);
+    void inner(uint32_t id, const Aabb& box, uint32_t left, uint32_t right);
+    CollapsedTree finish(uint32_t root, const Aabb& rootBox);
+
+private:
+    const Config& config_;
+    CollapsedTree out_;
+    std::vector<double> cost_;  // per node: SAH cost of its collapsed subtree, not yet divided by the root's area
+};
 
 // The collapse's rule for one node of `count` primitives whose box has half-area `area` and whose
 // children's subtrees cost `childCosts`: an inner node (Ct A + childCosts), or one leaf of all its

@@ -14,6 +14,7 @@
 #include "accel/bvh/aac_builder.h"
 #include "accel/bvh/bvh_accel.h"
 #include "accel/bvh/flatten.h"
+#include "accel/bvh/leaf_collapse.h"
 #include "accel/bvh/primitives.h"
 #include "bvh_test_meshes.h"
 
@@ -269,9 +270,40 @@ TEST(BvhAccel, BuildReportsPhasesAndStats) {
     EXPECT_EQ(gpu.nodes.size() % sizeof(gpu::GpuBvhNode), 0u);
     std::vector<std::string> keys;
     for (const accel::AccelStat& st : built->stats()) keys.push_back(st.key);
-    for (const char* k : {"build_ms", "morton_ms", "sort_ms", "cluster_ms", "collapse_ms", "flatten_ms", "nodes",
-                          "leaves", "max_depth", "mean_leaf_size", "sah_cost", "gpu_bytes"})
+    // AAC-HQ records the leaf collapse while it clusters: no "collapse" phase of its own.
+    for (const char* k : {"build_ms", "morton_ms", "sort_ms", "cluster_ms", "flatten_ms", "nodes", "leaves",
+                          "max_depth", "mean_leaf_size", "sah_cost", "gpu_bytes"})
         EXPECT_NE(std::find(keys.begin(), keys.end(), k), keys.end()) << k;
+    EXPECT_EQ(std::find(keys.begin(), keys.end(), "collapse_ms"), keys.end());
+    // With treelet restructuring after the clustering, the collapse is a pass of its own.
+    std::vector<std::string> restructuredKeys;
+    for (const accel::AccelStat& st : accel::buildBvhAccel(s, Config::aacHqRestructured(), {.threads = 2, .progress = {}})->stats())
+        restructuredKeys.push_back(st.key);
+    for (const char* k : {"treelets_ms", "collapse_ms"})
+        EXPECT_NE(std::find(restructuredKeys.begin(), restructuredKeys.end(), k), restructuredKeys.end()) << k;
+}
+
+// The collapse AAC records while its clusters merge is the one the pass over the finished tree
+// computes, node for node and to the last bit of the SAH cost.
+TEST(LeafCollapse, RecordedWhileClusteringEqualsThePass) {
+    for (const NamedConfig& c : {NamedConfig{"aac_fast", Config::aacFast()}, NamedConfig{"aac_hq", Config::aacHq()},
+                                 NamedConfig{"aac_delta1_eps0", Config::withAac(1, 0.0)}})
+        for (const Scene& scene : {test::cornellBox(), test::randomSoup(11, 3000), test::uvSphere({0, 0, 0}, 1.0f, 40, 80)}) {
+            tbb::task_arena arena(2);
+            arena.execute([&] {
+                const PrimitiveSet prims = primitivesOf(scene.triangles);
+                PhaseLog log;
+                CollapsedTree recorded;
+                const BinaryTree tree = buildAac(prims, c.config, log, &recorded);
+                const CollapsedTree pass = collapseLeaves(tree, c.config);
+                ASSERT_EQ(recorded.nodes.size(), pass.nodes.size()) << c.name;
+                for (size_t i = 0; i < pass.nodes.size(); ++i) {
+                    ASSERT_EQ(recorded.nodes[i].primitives, pass.nodes[i].primitives) << c.name << " node " << i;
+                    ASSERT_EQ(recorded.nodes[i].flatNodes, pass.nodes[i].flatNodes) << c.name << " node " << i;
+                }
+                EXPECT_EQ(recorded.sahCost, pass.sahCost) << c.name;
+            });
+        }
 }
 
 }  // namespace
