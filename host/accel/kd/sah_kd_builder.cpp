@@ -3,21 +3,25 @@
 #include <algorithm>
 #include <array>
 #include <bit>
+#include <cstdint>
 #include <atomic>
 #include <cmath>
 #include <limits>
 #include <memory>
 #include <mutex>
+#include <new>
 #include <optional>
 #include <string>
 
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
 #include <tbb/parallel_invoke.h>
+#include <tbb/scalable_allocator.h>
 #include <tbb/task_arena.h>
 
 #include "core/error.h"
 #include "core/fork_join.h"
+#include "core/parallel_alloc.h"
 #include "core/radix_sort.h"
 #include "core/timing.h"
 #include "geometry/ray_triangle.h"
@@ -90,11 +94,26 @@ struct SplitChoice {
     size_t below = 0, above = 0;  // triangles on each side
 };
 
+// A leaf's triangle list. The tree's millions of nodes and leaf lists come from oneTBB's scalable
+// allocator: from glibc's, their frees piled up and the next large free merged them all on one
+// thread (malloc_consolidate: 0.2 s at the end of a 1M-triangle build).
+using TriangleList = std::vector<uint32_t, tbb::scalable_allocator<uint32_t>>;
+
 struct BuildNode {
     int axis = -1;  // -1: leaf
     float split = 0.0f;
+    uint32_t subtreeNodes = 1;  // nodes of its subtree, itself included (the flat layout's offsets)
+    uint64_t subtreeRefs = 0;   // index-list entries of its subtree's leaves
     std::unique_ptr<BuildNode> below, above;
-    std::vector<uint32_t> triangles;  // leaves only, ascending
+    TriangleList triangles;  // leaves only, ascending
+
+    bool emptyLeaf() const { return axis < 0 && triangles.empty(); }
+
+    static void* operator new(size_t bytes) {
+        if (void* p = scalable_malloc(bytes)) return p;
+        throw std::bad_alloc();
+    }
+    static void operator delete(void* p) { scalable_free(p); }
 };
 
 Box boundsOf(const Triangle& t) {
@@ -179,8 +198,8 @@ size_t triangleCount(const NodeEvents& ev) {
 }
 
 // The node's triangles, ascending.
-std::vector<uint32_t> trianglesOf(const NodeEvents& ev) {
-    std::vector<uint32_t> tris;
+TriangleList trianglesOf(const NodeEvents& ev) {
+    TriangleList tris;
     for (const Event& e : ev[0])
         if (e.type() != EventType::End) tris.push_back(e.triangle());
     std::sort(tris.begin(), tris.end());
@@ -369,6 +388,7 @@ std::pair<NodeEvents, NodeEvents> Builder::splitEvents(NodeEvents ev, const Spli
 std::unique_ptr<BuildNode> Builder::makeLeaf(const NodeEvents& ev, int depth) {
     auto leaf = std::make_unique<BuildNode>();
     leaf->triangles = trianglesOf(ev);
+    leaf->subtreeRefs = leaf->triangles.size();
     const uint64_t done = doneWeight_.fetch_add(uint64_t(1) << (62 - depth)) + (uint64_t(1) << (62 - depth));
     if (progress_) {
         const double fraction = double(done) / double(uint64_t(1) << 62);
@@ -407,26 +427,31 @@ std::unique_ptr<BuildNode> Builder::build(NodeEvents ev, const Box& box, int dep
         node->above = build(std::move(aEv), aBox, depth + 1, s.above, share * double(s.above));
     };
     forkJoin(parallel, buildBelow, buildAbove);
+    node->subtreeNodes = 1 + node->below->subtreeNodes + node->above->subtreeNodes;
+    node->subtreeRefs = node->below->subtreeRefs + node->above->subtreeRefs;
     return node;
 }
 
 // Depth-first layout (kd_layout.h): below child next, above child by index; parent links and boxes
-// for kd-backtrack in `extra`.
-void flatten(const BuildNode& n, uint32_t parent, const Box& box, KdTree& out) {
-    const uint32_t index = uint32_t(out.nodes.size());
-    out.nodes.emplace_back();
-    out.extra.push_back(gpu::KdNodeExtra{box.lo, parent, box.hi, 0});
-    if (n.axis < 0) {
-        out.nodes[index] = gpu::KdNode::leaf(uint32_t(out.indices.size()), uint32_t(n.triangles.size()));
-        out.indices.insert(out.indices.end(), n.triangles.begin(), n.triangles.end());
+// for kd-backtrack in `extra`. Writes the subtree of `n` at node `index` and index-list entry
+// `first` onwards, whose places its subtree sizes give, so the subtrees near the root are written
+// as parallel tasks; it consumes the tree, which is then freed in parallel too (freeing millions
+// of nodes and leaf lists one by one took a fifth of a 1M-triangle build).
+void flatten(std::unique_ptr<BuildNode> n, uint32_t index, uint64_t first, uint32_t parent, const Box& box,
+             KdTree& out, int depth) {
+    out.extra[index] = gpu::KdNodeExtra{box.lo, parent, box.hi, 0};
+    if (n->axis < 0) {
+        out.nodes[index] = gpu::KdNode::leaf(uint32_t(first), uint32_t(n->triangles.size()));
+        std::copy(n->triangles.begin(), n->triangles.end(), out.indices.begin() + std::ptrdiff_t(first));
         return;
     }
-    const auto [below, above] = splitBox(box, n.axis, n.split);
-    flatten(*n.below, index, below, out);
-    const auto emptyLeaf = [](const BuildNode& child) { return child.axis < 0 && child.triangles.empty(); };
-    out.nodes[index] =
-        gpu::KdNode::inner(n.axis, n.split, uint32_t(out.nodes.size()), emptyLeaf(*n.below), emptyLeaf(*n.above));
-    flatten(*n.above, index, above, out);
+    const auto [belowBox, aboveBox] = splitBox(box, n->axis, n->split);
+    const uint32_t aboveIndex = index + 1 + n->below->subtreeNodes;
+    const uint64_t aboveFirst = first + n->below->subtreeRefs;
+    out.nodes[index] = gpu::KdNode::inner(n->axis, n->split, aboveIndex, n->below->emptyLeaf(), n->above->emptyLeaf());
+    forkJoin(depth < kParallelDepth,
+             [&, &bBox = belowBox] { flatten(std::move(n->below), index + 1, first, index, bBox, out, depth + 1); },
+             [&, &aBox = aboveBox] { flatten(std::move(n->above), aboveIndex, aboveFirst, index, aBox, out, depth + 1); });
 }
 
 }  // namespace
@@ -469,12 +494,18 @@ KdBuildResult buildSahKdTree(const std::vector<Triangle>& triangles, const KdCon
         const Clock::time_point treeStart = Clock::now();
         Builder builder(triangles, config, progress);
         builder.setMaxDepth(config.resolvedMaxDepth(n));
-        const std::unique_ptr<BuildNode> tree = builder.build(std::move(ev), root, 0, n, config.maxDuplication * double(n));
+        std::unique_ptr<BuildNode> tree = builder.build(std::move(ev), root, 0, n, config.maxDuplication * double(n));
         result.times.treeMs = msSince(treeStart);
 
         const Clock::time_point flattenStart = Clock::now();
         if (progress) progress("kd-tree: flattening", 1.0);
-        flatten(*tree, VKRAY_KD_NO_PARENT, root, result.tree);
+        if (tree->subtreeRefs > UINT32_MAX)  // a leaf's first entry is a 32-bit word (kd_layout.h)
+            throw Error("the kd-tree holds " + std::to_string(tree->subtreeRefs) +
+                        " triangle references; its GPU layout addresses at most " + std::to_string(UINT32_MAX));
+        resizeFirstTouched(result.tree.nodes, tree->subtreeNodes);
+        resizeFirstTouched(result.tree.extra, tree->subtreeNodes);
+        resizeFirstTouched(result.tree.indices, size_t(tree->subtreeRefs));
+        flatten(std::move(tree), 0, 0, VKRAY_KD_NO_PARENT, root, result.tree, 0);
         result.tree.header = gpu::KdTreeHeader{root.lo, uint32_t(result.tree.nodes.size()), root.hi,
                                                uint32_t(result.tree.indices.size())};
         result.times.flattenMs = msSince(flattenStart);
