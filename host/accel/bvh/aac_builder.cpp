@@ -8,6 +8,7 @@
 #include <span>
 #include <vector>
 
+#include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
 #include "core/fork_join.h"
@@ -80,13 +81,20 @@ public:
 
 private:
     // Node i is the primitive at sorted position i.
+    // The boxes are read in Morton order, scattered over the primitive array: each is asked for a
+    // few iterations before it is needed, so the cache misses overlap.
     void makePrimitiveNodes() {
-        tbb::parallel_for(size_t(0), keys_.size(), [&](size_t i) {
-            const uint32_t prim = keyPrimitive(keys_[i]);
-            nodes_[i].box = prims_.boxes[prim];
-            nodes_[i].child[0] = prim;
-            nodes_[i].child[1] = kPrimitive;
-            if (recorder_) recorder_->primitive(uint32_t(i), nodes_[i].box);
+        constexpr size_t kAhead = 16;
+        const size_t n = keys_.size();
+        tbb::parallel_for(tbb::blocked_range<size_t>(0, n), [&](const tbb::blocked_range<size_t>& r) {
+            for (size_t i = r.begin(); i < r.end(); ++i) {
+                if (i + kAhead < r.end()) __builtin_prefetch(&prims_.boxes[keyPrimitive(keys_[i + kAhead])]);
+                const uint32_t prim = keyPrimitive(keys_[i]);
+                nodes_[i].box = prims_.boxes[prim];
+                nodes_[i].child[0] = prim;
+                nodes_[i].child[1] = kPrimitive;
+                if (recorder_) recorder_->primitive(uint32_t(i), nodes_[i].box);
+            }
         });
     }
 
