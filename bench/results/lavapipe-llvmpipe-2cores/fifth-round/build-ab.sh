@@ -1,13 +1,14 @@
 #!/usr/bin/env bash
-# usage: build-ab.sh OLD_VKRAY NEW_VKRAY ROUNDS SCENE...   (from the repository root)
-# Build time of every CPU builder, old binary against new, interleaved: per round, scene, preset and
-# thread count (1, 2), one `vkray render --stats` with each binary (--cpu, 8x6 pixels: no Vulkan device competes for the cores, and the render is
-# negligible), reading build_ms from the statistics. Prints median and minimum per case, the new
-# binary's Mtri/s by the median, its 2-thread speed-up over 1 thread, and new / old.
+# usage: [PRESETS="bvh-fast bvh-hq"] build-ab.sh OLD_VKRAY NEW_VKRAY ROUNDS SCENE...   (from the repository root)
+# Build time of every CPU builder (or those PRESETS names), old binary against new, interleaved: per
+# round, scene, preset and thread count (1, 2), one `vkray render --cpu --stats` with each binary
+# (8x6 pixels: the render is negligible, and no Vulkan device competes for the cores), reading
+# build_ms from the statistics. Prints median and minimum per case, the new binary's Mtri/s by the
+# median, its 2-thread speed-up over 1 thread, and new / old.
 set -euo pipefail
 old=$1 new=$2 rounds=$3
 shift 3
-presets=(bvh-fast bvh-hq bvh bvh-sah kd-stack)
+read -r -a presets <<< "${PRESETS:-bvh-fast bvh-hq bvh bvh-sah kd-stack}"
 declare -A t
 for ((r = 0; r < rounds; r++)); do
   for scene in "$@"; do
