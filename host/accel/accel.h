@@ -27,9 +27,9 @@ namespace vkray::accel {
 // The GPU render kernels, one per shaders/render_<kernelName()>.comp. gpu/gpu_renderer.cpp checks
 // at compile time that each has its SPIR-V, so a kernel named here and missing there fails the
 // build, not a render.
-enum class Kernel { Brute, Bvh, KdStack, KdRestart, KdBacktrack };
-inline constexpr std::array kKernels{Kernel::Brute, Kernel::Bvh, Kernel::KdStack, Kernel::KdRestart,
-                                     Kernel::KdBacktrack};
+enum class Kernel { Brute, Bvh, KdStack, KdRestart, KdBacktrack, KdPushDown, KdShortStack };
+inline constexpr std::array kKernels{Kernel::Brute,       Kernel::Bvh,        Kernel::KdStack,     Kernel::KdRestart,
+                                     Kernel::KdBacktrack, Kernel::KdPushDown, Kernel::KdShortStack};
 
 constexpr std::string_view kernelName(Kernel k) {
     switch (k) {
@@ -38,6 +38,8 @@ constexpr std::string_view kernelName(Kernel k) {
     case Kernel::KdStack: return "kd_stack";
     case Kernel::KdRestart: return "kd_restart";
     case Kernel::KdBacktrack: return "kd_backtrack";
+    case Kernel::KdPushDown: return "kd_pushdown";
+    case Kernel::KdShortStack: return "kd_shortstack";
     }
     return "";
 }

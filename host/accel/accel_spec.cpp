@@ -29,8 +29,10 @@ const AccelEntry kAccels[] = {
     {"bvh-hq", Family::Bvh, bvh::Config::aacHq()},
     {"bvh-sah", Family::Bvh, bvh::Config::binnedSah()},
     {"kd-restart", Family::Kd, {}, kd::Traversal::Restart},
+    {"kd-pushdown", Family::Kd, {}, kd::Traversal::PushDown},
     {"kd-backtrack", Family::Kd, {}, kd::Traversal::Backtrack},
     {"kd-stack", Family::Kd, {}, kd::Traversal::Stack},
+    {"kd-shortstack", Family::Kd, {}, kd::Traversal::ShortStack},
     {"brute", Family::Brute, {}},
 };
 
@@ -84,7 +86,7 @@ std::string joined(const std::vector<std::string>& names) {
     return s;
 }
 
-// "--kd-max-depth applies to kd-restart, kd-backtrack, kd-stack only (--accel bvh)".
+// "--kd-max-depth applies to kd-restart, kd-pushdown, kd-backtrack, kd-stack, kd-shortstack only (--accel bvh)".
 Error notApplicable(const TuningOption& o, const AccelSpec& spec) {
     std::vector<std::string> names;
     for (const AccelEntry& e : kAccels) {

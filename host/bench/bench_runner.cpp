@@ -483,7 +483,7 @@ private:
     const Clock::time_point start_;
     std::vector<int> threads_ = options_.threads.empty() ? defaultThreadCounts() : options_.threads;
     // Per accel::structureKey, per scene: builds of one structure are timed once, whatever walks it
-    // (kd-stack, kd-restart and kd-backtrack share the tree).
+    // (the kd traversals share the tree).
     std::map<std::string, std::vector<ThreadTiming>> buildTimings_;
     gpu::KernelCache kernels_{ctx_};  // pipelines are not what the bench measures
     std::unique_ptr<EmbreeBaseline> embree_;          // of the current scene

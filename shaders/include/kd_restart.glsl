@@ -5,6 +5,12 @@
 // first only if its plane lies strictly beyond tmin (kdStepInner: thit <= tmin goes second), so
 // the leaf just left is never entered again. The passes around this walk are kdTrace's
 // (kd_common.glsl).
+//
+// kd-pushdown is this walk with push-down (Horn, Sugerman, Houston and Hanrahan, "Interactive k-D
+// Tree GPU Raytracing", I3D 2007, section 4.1; render_kd_pushdown.comp defines
+// VKRAY_KD_PUSH_DOWN): a restart begins at the deepest node whose region holds the whole rest of
+// the ray, the last node a descent entered before it first reached both children of a node
+// (KdRestartTracer::walkPass explains why the steps below it are those of a restart from the root).
 #ifndef VKRAY_KD_RESTART_GLSL
 #define VKRAY_KD_RESTART_GLSL
 
@@ -12,11 +18,18 @@
 #include "trace_status.glsl"
 #include "triangle.glsl"
 
+#ifdef VKRAY_KD_PUSH_DOWN
+const bool kKdPushDown = true;
+#else
+const bool kKdPushDown = false;
+#endif
+
 bool kdWalkPass(KdRay r, WatertightRay w, const bool anyHit, float segMin, uint minAxis, float segMax,
                 uint maxAxis, inout KdPass pass, inout int steps, inout Hit best) {
     const float globalMax = segMax;
     const uint globalMaxAxis = maxAxis;
-    uint node = 0u;
+    uint node = 0u, restartNode = 0u;
+    bool whole = true;  // push-down: no node of this descent had both children reached yet
     bool passDone = false;
     while (budgetLeft() && !passDone && steps < VKRAY_KD_MAX_STEPS) {
         // Down to the next leaf (kd_common.glsl, "Loops").
@@ -27,18 +40,23 @@ bool kdWalkPass(KdRay r, WatertightRay w, const bool anyHit, float segMin, uint 
             float thit;
             const int visit = kdStepInner(r, n, node, segMin, minAxis, segMax, maxAxis, pass, first, second, thit);
             node = kdDescend(visit, n, first, second, thit, segMin, minAxis, segMax, maxAxis);
+            if (kKdPushDown) {
+                whole = whole && visit != kKdBoth;
+                restartNode = whole ? node : restartNode;
+            }
             n = kdNode(node);
         }
         if (!kdLeafStep(n, steps)) break;  // the cap, or the driver
         kdVisitLeaf(n, w, anyHit, best);
         if (kdFinished(best, anyHit, segMax) || kdCompare(pass, segMax, maxAxis, globalMax, globalMaxAxis) >= 0) {
             passDone = true;
-        } else {  // restart at the root past this leaf
+        } else {  // restart past this leaf, at the root (at the pushed-down node with push-down)
             segMin = segMax;
             minAxis = maxAxis;
             segMax = globalMax;
             maxAxis = globalMaxAxis;
-            node = 0u;
+            node = restartNode;
+            whole = true;
             countRestart();
         }
     }

@@ -3,6 +3,12 @@
 // kd-backtrack are measured against. The far child is pushed with its segment; after a leaf without
 // an accepted hit, the nearest pending one is popped. The passes around this walk are kdTrace's
 // (kd_common.glsl).
+//
+// kd-shortstack is this walk with a short stack (Horn, Sugerman, Houston and Hanrahan, "Interactive
+// k-D Tree GPU Raytracing", I3D 2007, section 4.2; render_kd_shortstack.comp defines
+// VKRAY_KD_SHORT_STACK): VKRAY_KD_SHORT_STACK_SIZE entries in a ring; a push onto a full ring drops
+// the oldest entry, and when the ring runs dry with part of the ray left (something was dropped) the
+// walk restarts past the leaf, at the node push-down keeps (kd_restart.glsl).
 #ifndef VKRAY_KD_STACK_GLSL
 #define VKRAY_KD_STACK_GLSL
 
@@ -20,6 +26,17 @@ uint kdStackEntry(uint node, uint minAxis) { return node | (minAxis << VKRAY_KD_
 uint kdStackNode(uint entry) { return entry & VKRAY_KD_STACK_NODE_MASK; }
 uint kdStackAxis(uint entry) { return entry >> VKRAY_KD_STACK_AXIS_SHIFT; }
 
+#ifdef VKRAY_KD_SHORT_STACK
+const bool kKdShortStack = true;
+const int kKdStackSlots = VKRAY_KD_SHORT_STACK_SIZE;
+#else
+const bool kKdShortStack = false;
+const int kKdStackSlots = VKRAY_KD_STACK_SIZE;
+#endif
+
+// The ring slot of logical stack position i (the short stack only; the full stack never wraps).
+int kdStackSlot(int i) { return kKdShortStack ? i % kKdStackSlots : i; }
+
 bool kdWalkPass(KdRay r, WatertightRay w, const bool anyHit, float segMin, uint minAxis, float segMax,
                 uint maxAxis, inout KdPass pass, inout int steps, inout Hit best) {
     // At most one push per level: VKRAY_KD_STACK_SIZE >= the builder's depth limit. An entry is a
@@ -28,12 +45,17 @@ bool kdWalkPass(KdRay r, WatertightRay w, const bool anyHit, float segMin, uint 
     // walk's current segment always ends where the top entry's starts (a push cuts the segment at the
     // plane where the pushed one starts, and a pop resumes a segment that ended there too), so an
     // entry's end is the start of the entry below it, or the pass's end for the bottom one.
-    uint stackNode[VKRAY_KD_STACK_SIZE];
-    float stackMin[VKRAY_KD_STACK_SIZE];
+    // The short stack keeps logical positions [bottom, top) in its ring; the entries below `bottom`
+    // were dropped, and the bottom entry's end is then the start of the last one dropped (dropEnd).
+    uint stackNode[kKdStackSlots];
+    float stackMin[kKdStackSlots];
     const float passMax = segMax;
     const uint passMaxAxis = maxAxis;
-    int top = 0;
-    uint node = 0u;
+    int top = 0, bottom = 0;
+    float dropEnd = passMax;
+    uint dropEndAxis = passMaxAxis;
+    uint node = 0u, restartNode = 0u;
+    bool whole = true;  // push-down: no node of this descent had both children reached yet
     bool passDone = false;
     while (budgetLeft() && !passDone && steps < VKRAY_KD_MAX_STEPS) {
         // Down to the next leaf (kd_common.glsl, "Loops").
@@ -44,29 +66,52 @@ bool kdWalkPass(KdRay r, WatertightRay w, const bool anyHit, float segMin, uint 
             float thit;
             const int visit = kdStepInner(r, n, node, segMin, minAxis, segMax, maxAxis, pass, first, second, thit);
             if (visit == kKdBoth) {
-                if (top == VKRAY_KD_STACK_SIZE) {  // deeper than the builder goes: a malformed tree
+                if (kKdShortStack && top - bottom == kKdStackSlots) {  // full: drop the oldest
+                    const int oldest = kdStackSlot(bottom);
+                    dropEnd = stackMin[oldest];
+                    dropEndAxis = kdStackAxis(stackNode[oldest]);
+                    ++bottom;
+                } else if (!kKdShortStack && top == kKdStackSlots) {  // deeper than the builder goes: malformed
                     steps = VKRAY_KD_MAX_STEPS;
                     break;
                 }
-                stackNode[top] = kdStackEntry(second, kdAxis(n));
-                stackMin[top] = thit;
+                const int slot = kdStackSlot(top);
+                stackNode[slot] = kdStackEntry(second, kdAxis(n));
+                stackMin[slot] = thit;
                 ++top;
             }
             node = kdDescend(visit, n, first, second, thit, segMin, minAxis, segMax, maxAxis);
+            if (kKdShortStack) {
+                whole = whole && visit != kKdBoth;
+                restartNode = whole ? node : restartNode;
+            }
             n = kdNode(node);
         }
         if (!kdLeafStep(n, steps)) break;  // the cap, or the driver
         kdVisitLeaf(n, w, anyHit, best);
-        if (kdFinished(best, anyHit, segMax) || top == 0) {
+        if (kdFinished(best, anyHit, segMax)) {
             passDone = true;
-        } else {  // pop the nearest pending node
+        } else if (top > bottom) {  // pop the nearest pending node
             --top;
-            const uint entry = stackNode[top];
+            const uint entry = stackNode[kdStackSlot(top)];
             node = kdStackNode(entry);
             minAxis = kdStackAxis(entry);
-            segMin = stackMin[top];
-            segMax = top > 0 ? stackMin[top - 1] : passMax;
-            maxAxis = top > 0 ? kdStackAxis(stackNode[top - 1]) : passMaxAxis;
+            segMin = stackMin[kdStackSlot(top)];
+            segMax = top > bottom ? stackMin[kdStackSlot(top - 1)] : dropEnd;
+            maxAxis = top > bottom ? kdStackAxis(stackNode[kdStackSlot(top - 1)]) : dropEndAxis;
+        } else if (!kKdShortStack || kdCompare(pass, segMax, maxAxis, passMax, passMaxAxis) >= 0) {
+            passDone = true;  // nothing pending, and nothing dropped beyond this leaf
+        } else {  // the short stack ran dry: restart past this leaf at the pushed-down node
+            segMin = segMax;
+            minAxis = maxAxis;
+            segMax = passMax;
+            maxAxis = passMaxAxis;
+            top = bottom = 0;
+            dropEnd = passMax;
+            dropEndAxis = passMaxAxis;
+            node = restartNode;
+            whole = true;
+            countRestart();
         }
     }
     return passDone;

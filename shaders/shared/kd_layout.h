@@ -48,6 +48,8 @@ using uint = uint32_t;
 // for any N a 32-bit index can name.
 #define VKRAY_KD_MAX_DEPTH 56
 #define VKRAY_KD_STACK_SIZE 56
+// Entries of kd-shortstack's stack (Horn et al. 2007): a push onto a full one drops the oldest.
+#define VKRAY_KD_SHORT_STACK_SIZE 4
 // Most nodes a tree may have: kd-stack keeps a node index in the bits below
 // VKRAY_KD_STACK_AXIS_SHIFT of a stack word and an axis above them.
 #define VKRAY_KD_STACK_AXIS_SHIFT 28u

@@ -18,7 +18,8 @@ namespace vkray::accel {
 namespace {
 
 TEST(Accel, EveryNameResolvesToItsFamilyAndTraversal) {
-    for (const std::string name : {"bvh", "bvh-fast", "bvh-hq", "kd-restart", "kd-backtrack", "kd-stack", "brute"})
+    for (const std::string name :
+         {"bvh", "bvh-fast", "bvh-hq", "kd-restart", "kd-pushdown", "kd-backtrack", "kd-stack", "kd-shortstack", "brute"})
         EXPECT_NE(std::find(accelNames().begin(), accelNames().end(), name), accelNames().end()) << name;
     EXPECT_EQ(resolveAccel("brute").family, Family::Brute);
     EXPECT_EQ(resolveAccel("bvh-hq").family, Family::Bvh);
@@ -27,6 +28,8 @@ TEST(Accel, EveryNameResolvesToItsFamilyAndTraversal) {
     EXPECT_EQ(resolveAccel("kd-stack").kdTraversal, kd::Traversal::Stack);
     EXPECT_EQ(resolveAccel("kd-restart").kdTraversal, kd::Traversal::Restart);
     EXPECT_EQ(resolveAccel("kd-backtrack").kdTraversal, kd::Traversal::Backtrack);
+    EXPECT_EQ(resolveAccel("kd-pushdown").kdTraversal, kd::Traversal::PushDown);
+    EXPECT_EQ(resolveAccel("kd-shortstack").kdTraversal, kd::Traversal::ShortStack);
     EXPECT_EQ(resolveAccel("kd-backtrack").family, Family::Kd);
     EXPECT_EQ(resolveAccel(kDefaultAccel).name, "bvh");
 }
@@ -84,7 +87,7 @@ TEST(AccelSpec, EveryTuningOptionIsRangeCheckedAndNamed) {
     // builder honours, not silently clamped.
     expectError("kd-restart", "--kd-max-depth", kd::KdConfig::kMaxDepthLimit + 1, "must be 1..56");
     expectError("kd-restart", "--kd-max-depth", 0, "must be 1..56");
-    expectError("bvh", "--kd-max-depth", 10, "applies to kd-restart, kd-backtrack, kd-stack only");
+    expectError("bvh", "--kd-max-depth", 10, "applies to kd-restart, kd-pushdown, kd-backtrack, kd-stack, kd-shortstack only");
     expectError("kd-stack", "--aac-delta", 8, "applies to bvh, bvh-fast, bvh-hq only");
     expectError("brute", "--kd-empty-bonus", 0.5, "applies to");
     for (const TuningOption& o : tuningOptions()) EXPECT_EQ(o.flag.substr(0, 2), "--") << o.flag;

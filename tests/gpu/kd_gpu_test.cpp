@@ -21,7 +21,7 @@ namespace vkray {
 namespace {
 
 struct KdCase {
-    std::string accel;  // kd-stack, kd-restart, kd-backtrack
+    std::string accel;  // kd-stack, kd-shortstack, kd-restart, kd-pushdown, kd-backtrack
     std::string file;   // under scenes/
     int width, height;
     friend std::ostream& operator<<(std::ostream& os, const KdCase& c) {
@@ -109,7 +109,7 @@ TEST_P(KdGpuCounters, RecordTheWork) {
 
 std::vector<KdCase> cases() {
     std::vector<KdCase> all;
-    for (const char* accel : {"kd-stack", "kd-restart", "kd-backtrack"})
+    for (const char* accel : {"kd-stack", "kd-shortstack", "kd-restart", "kd-pushdown", "kd-backtrack"})
         for (const KdCase& scene : {KdCase{"", "cornell.scene", 128, 128}, KdCase{"", "spheres.scene", 160, 90},
                                     KdCase{"", "objects.scene", 128, 96}})
             all.push_back({accel, scene.file, scene.width, scene.height});
@@ -125,7 +125,8 @@ std::string testName(std::string name) {
 INSTANTIATE_TEST_SUITE_P(Traversals, KdGpu, ::testing::ValuesIn(cases()), [](const auto& info) {
     return testName(info.param.accel + "_" + std::filesystem::path(info.param.file).stem().string());
 });
-INSTANTIATE_TEST_SUITE_P(Traversals, KdGpuCounters, ::testing::Values("kd-stack", "kd-restart", "kd-backtrack"),
+INSTANTIATE_TEST_SUITE_P(Traversals, KdGpuCounters,
+                         ::testing::Values("kd-stack", "kd-shortstack", "kd-restart", "kd-pushdown", "kd-backtrack"),
                          [](const auto& info) { return testName(info.param); });
 
 }  // namespace

@@ -31,7 +31,8 @@
 namespace vkray {
 namespace {
 
-const std::vector<std::string> kAccels = {"brute", "bvh-fast", "bvh-hq", "kd-stack", "kd-restart", "kd-backtrack"};
+const std::vector<std::string> kAccels = {"brute",         "bvh-fast",   "bvh-hq",      "kd-stack",
+                                          "kd-shortstack", "kd-restart", "kd-pushdown", "kd-backtrack"};
 
 struct StressCase {
     std::string name;  // test name

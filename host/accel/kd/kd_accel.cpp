@@ -91,6 +91,8 @@ Kernel kdKernel(kd::Traversal traversal) {
     case kd::Traversal::Stack: return Kernel::KdStack;
     case kd::Traversal::Restart: return Kernel::KdRestart;
     case kd::Traversal::Backtrack: return Kernel::KdBacktrack;
+    case kd::Traversal::PushDown: return Kernel::KdPushDown;
+    case kd::Traversal::ShortStack: return Kernel::KdShortStack;
     }
     return Kernel::KdRestart;
 }

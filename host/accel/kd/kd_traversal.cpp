@@ -235,16 +235,22 @@ bool KdTracer::occluded(const geometry::Ray& ray, double tmax, geometry::Travers
 
 // Foley and Sugerman's standard traversal (2005; figure 9 of S. A. Mulia, "Penggunaan k-d Tree dalam
 // Ray Tracing", 2018), as a loop: one iteration per node; the stack holds the far children with
-// their segments, nearest on top.
-bool KdStackTracer::walkPass(const geometry::Ray& ray, Segment seg, PassState& pass, LeafVisitor& visitor,
+// their segments, nearest on top. The short stack (Horn et al. 2007, 4.2) is a ring of shortStack_
+// entries at logical positions [bottom, top): a push onto a full ring drops the bottom one; when the
+// ring runs dry before the segment reaches the global tmax (something was dropped), the walk
+// restarts past the leaf with (exit, global tmax) at the push-down node (see KdRestartTracer).
+bool KdStackTracer::walkPass(const geometry::Ray& ray, Segment global, PassState& pass, LeafVisitor& visitor,
                              geometry::TraversalCounters& c, int& steps) const {
     struct Pending {
         uint32_t node;
         Segment seg;
     };
     std::array<Pending, VKRAY_KD_STACK_SIZE> stack;
-    size_t top = 0;
-    uint32_t node = 0;
+    const size_t slots = shortStack_ > 0 ? size_t(shortStack_) : stack.size();
+    size_t top = 0, bottom = 0;
+    uint32_t node = 0, restartNode = 0;
+    bool whole = true;
+    Segment seg = global;
     for (;; ++steps) {
         if (steps >= maxSteps_) {
             ++c.capped;
@@ -255,20 +261,34 @@ bool KdStackTracer::walkPass(const geometry::Ray& ray, Segment seg, PassState& p
         if (!n.isLeaf()) {
             const SplitStep s = stepInner(ray, n, node, seg, pass);
             if (s.visit == Visit::Both) {
-                if (top == stack.size()) {  // deeper than any tree the builder makes: malformed
-                    ++c.capped;
-                    return false;
+                if (top - bottom == slots) {
+                    if (shortStack_ == 0) {  // deeper than any tree the builder makes: malformed
+                        ++c.capped;
+                        return false;
+                    }
+                    ++bottom;  // drop the oldest
                 }
-                stack[top++] = {s.second, {s.thit, seg.tmax, s.axis, seg.maxAxis}};
+                stack[top++ % slots] = {s.second, {s.thit, seg.tmax, s.axis, seg.maxAxis}};
             }
             node = descend(s, seg);
+            whole = whole && s.visit != Visit::Both;
+            if (shortStack_ > 0 && whole) restartNode = node;
             continue;
         }
         ++c.leaves;
-        if (visitor.visit(n, seg.tmax) || top == 0) return true;  // continue-search(): pop or fail
-        --top;
-        node = stack[top].node;
-        seg = stack[top].seg;
+        if (visitor.visit(n, seg.tmax)) return true;
+        if (top > bottom) {  // continue-search(): pop
+            --top;
+            node = stack[top % slots].node;
+            seg = stack[top % slots].seg;
+            continue;
+        }
+        if (shortStack_ == 0 || pass.compare(seg.tmax, seg.maxAxis, global.tmax, global.maxAxis) >= 0) return true;
+        seg = {seg.tmax, global.tmax, seg.maxAxis, global.maxAxis};  // the short stack ran dry: restart
+        top = bottom = 0;
+        node = restartNode;
+        whole = true;
+        ++c.restarts;
     }
 }
 
@@ -276,9 +296,16 @@ bool KdStackTracer::walkPass(const geometry::Ray& ray, Segment seg, PassState& p
 // The descent sends the segment to the first child only when the plane lies strictly beyond tmin
 // (stepInner: thit <= tmin goes second), so the leaf just left, whose exit is tmin, is never entered
 // again: every restart advances strictly past the exit, and each leaf is visited once.
+//
+// Push-down: while a descent has reached only one child at every node, the rest of the ray up to
+// the global tmax lies in the node it entered, so a restart may begin there; the first node with
+// both children reached ends that (`whole`). Restarting there with (exit, global tmax) takes the
+// steps a restart from the root would take below it: every ancestor sent the larger segment to
+// one child, the same one the smaller segment goes to.
 bool KdRestartTracer::walkPass(const geometry::Ray& ray, Segment global, PassState& pass, LeafVisitor& visitor,
                                geometry::TraversalCounters& c, int& steps) const {
-    uint32_t node = 0;
+    uint32_t node = 0, restartNode = 0;
+    bool whole = true;
     Segment seg = global;
     for (;; ++steps) {
         if (steps >= maxSteps_) {
@@ -288,14 +315,18 @@ bool KdRestartTracer::walkPass(const geometry::Ray& ray, Segment global, PassSta
         ++c.nodes;
         const gpu::KdNode& n = tree_.nodes[node];
         if (!n.isLeaf()) {
-            node = descend(stepInner(ray, n, node, seg, pass), seg);  // the stack traversal's push, dropped
+            const SplitStep s = stepInner(ray, n, node, seg, pass);
+            node = descend(s, seg);  // the stack traversal's push, dropped
+            whole = whole && s.visit != Visit::Both;
+            if (pushDown_ && whole) restartNode = node;
             continue;
         }
         ++c.leaves;
         if (visitor.visit(n, seg.tmax) || pass.compare(seg.tmax, seg.maxAxis, global.tmax, global.maxAxis) >= 0)
             return true;
         seg = {seg.tmax, global.tmax, seg.maxAxis, global.maxAxis};
-        node = 0;
+        node = restartNode;
+        whole = true;
         ++c.restarts;
     }
 }
@@ -368,10 +399,17 @@ bool KdBacktrackTracer::walkPass(const geometry::Ray& ray, Segment global, PassS
 }
 
 std::unique_ptr<KdTracer> makeKdTracer(kd::Traversal traversal, const KdTree& tree,
-                                       std::vector<geometry::TriangleVertices> triangles, int maxSteps) {
+                                       std::vector<geometry::TriangleVertices> triangles, int maxSteps,
+                                       int shortStack) {
     switch (traversal) {
-    case kd::Traversal::Stack: return std::make_unique<KdStackTracer>(tree, std::move(triangles), maxSteps);
-    case kd::Traversal::Restart: return std::make_unique<KdRestartTracer>(tree, std::move(triangles), maxSteps);
+    case kd::Traversal::Stack: return std::make_unique<KdStackTracer>(tree, std::move(triangles), maxSteps, 0);
+    case kd::Traversal::ShortStack:
+        return std::make_unique<KdStackTracer>(tree, std::move(triangles), maxSteps,
+                                               shortStack > 0 ? shortStack : VKRAY_KD_SHORT_STACK_SIZE);
+    case kd::Traversal::Restart:
+        return std::make_unique<KdRestartTracer>(tree, std::move(triangles), maxSteps, false);
+    case kd::Traversal::PushDown:
+        return std::make_unique<KdRestartTracer>(tree, std::move(triangles), maxSteps, true);
     case kd::Traversal::Backtrack: return std::make_unique<KdBacktrackTracer>(tree, std::move(triangles), maxSteps);
     }
     return nullptr;

@@ -112,20 +112,34 @@ protected:
 };
 
 // The standard traversal with a per-ray stack (Foley and Sugerman; Mulia 2018, figure 9): the baseline.
+// With a short stack of `shortStack` entries (Horn, Sugerman, Houston and Hanrahan 2007, section
+// 4.2; 0 = the full stack): a push onto a full stack drops the oldest entry, and when the stack
+// runs dry with part of the ray left, the walk restarts past the leaf at the node push-down keeps
+// (KdRestartTracer).
 class KdStackTracer final : public KdTracer {
 public:
-    using KdTracer::KdTracer;
+    KdStackTracer(const KdTree& tree, std::vector<geometry::TriangleVertices> triangles, int maxSteps, int shortStack)
+        : KdTracer(tree, std::move(triangles), maxSteps), shortStack_(shortStack) {}
     bool walkPass(const geometry::Ray& ray, Segment segment, PassState& pass, LeafVisitor& visitor,
                   geometry::TraversalCounters& counters, int& steps) const override;
+
+private:
+    int shortStack_;
 };
 
 // Stackless kd-restart (Foley and Sugerman 4.1): after a leaf, tmin = the leaf's exit and the search
-// starts again at the root.
+// starts again at the root. With push-down (Horn, Sugerman, Houston and Hanrahan 2007, section 4.1)
+// it starts again at the deepest node whose region holds the whole rest of the ray: the last node
+// the descent entered before it first reached both children of a node.
 class KdRestartTracer final : public KdTracer {
 public:
-    using KdTracer::KdTracer;
+    KdRestartTracer(const KdTree& tree, std::vector<geometry::TriangleVertices> triangles, int maxSteps, bool pushDown)
+        : KdTracer(tree, std::move(triangles), maxSteps), pushDown_(pushDown) {}
     bool walkPass(const geometry::Ray& ray, Segment segment, PassState& pass, LeafVisitor& visitor,
                   geometry::TraversalCounters& counters, int& steps) const override;
+
+private:
+    bool pushDown_;
 };
 
 // Stackless kd-backtrack (Foley and Sugerman 4.2): after a leaf, climb by parent links to the
@@ -143,8 +157,11 @@ public:
 // kdNextPass() in kd_common.glsl.
 int nextPass(unsigned inPlane, unsigned tied, uint64_t walked);
 
+// kd-shortstack's stack size defaults to the kernel's (VKRAY_KD_SHORT_STACK_SIZE); `shortStack`
+// other than 0 sets it, for experiments (the CPU only).
 std::unique_ptr<KdTracer> makeKdTracer(kd::Traversal traversal, const KdTree& tree,
-                                       std::vector<geometry::TriangleVertices> triangles, int maxSteps = VKRAY_KD_MAX_STEPS);
+                                       std::vector<geometry::TriangleVertices> triangles, int maxSteps = VKRAY_KD_MAX_STEPS,
+                                       int shortStack = 0);
 
 // The ray's segment inside the closed box within `within`, or nothing (exposed for the tests).
 std::optional<Segment> clipToBox(const geometry::Ray& ray, const glm::vec3& lo, const glm::vec3& hi, Segment within);

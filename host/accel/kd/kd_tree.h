@@ -60,10 +60,12 @@ struct KdConfig {
     std::string describe() const;
 };
 
-// The three traversals of one tree, after Foley and Sugerman, "KD-Tree Acceleration Structures for
-// a GPU Raytracer", Graphics Hardware 2005: the standard stack traversal (the baseline), and the
-// stackless kd-restart (section 4.1) and kd-backtrack (section 4.2).
-enum class Traversal { Stack, Restart, Backtrack };
+// The traversals of one tree, after Foley and Sugerman, "KD-Tree Acceleration Structures for a GPU
+// Raytracer", Graphics Hardware 2005: the standard stack traversal (the baseline), the stackless
+// kd-restart (section 4.1) and kd-backtrack (section 4.2); kd-restart with push-down (Horn,
+// Sugerman, Houston and Hanrahan, "Interactive k-D Tree GPU Raytracing", I3D 2007, section 4.1), and
+// the stack traversal with a short stack that falls back to that restart (section 4.2).
+enum class Traversal { Stack, Restart, Backtrack, PushDown, ShortStack };
 
 // An axis-aligned box in float (the scene's precision; every split lies on a float).
 struct Box {

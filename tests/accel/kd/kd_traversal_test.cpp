@@ -233,7 +233,8 @@ TEST_P(KdTraversalTest, IterationCapEndsAndCountsARunawayRay) {
     EXPECT_EQ(ok.capped, 0u);
 }
 
-// Counters: the stack traversal never restarts; the stackless ones restart once per leaf left.
+// Counters: the stack traversal never restarts; the stackless ones restart once per leaf left; the
+// short stack only when it ran dry (KdShortStack tests below).
 TEST_P(KdTraversalTest, CountersAddUp) {
     const Fixture f(test::meshScene(), GetParam());
     std::mt19937 rng(8);
@@ -246,7 +247,7 @@ TEST_P(KdTraversalTest, CountersAddUp) {
     EXPECT_GT(c.triangles, 0u);
     if (GetParam() == kd::Traversal::Stack) {
         EXPECT_EQ(c.restarts, 0u);
-    } else {
+    } else if (GetParam() != kd::Traversal::ShortStack) {
         EXPECT_GT(c.restarts, 0u);
     }
 }
@@ -271,14 +272,77 @@ TEST_P(KdTraversalTest, EmptyNearChildIsPassed) {
         EXPECT_EQ(c.leaves, flagged ? 1u : 2u) << (flagged ? "flagged" : "unflagged");
         // Unflagged: root, empty leaf, then the pop (stack), a restart at the root (restart), or a
         // climbing step at the root and the root again (backtrack), and the far leaf.
-        const uint32_t unflagged = GetParam() == kd::Traversal::Stack ? 3u : GetParam() == kd::Traversal::Restart ? 4u : 5u;
+        // (push-down: the root reached both children, so the restart begins at the root too)
+        const bool stack = GetParam() == kd::Traversal::Stack || GetParam() == kd::Traversal::ShortStack;
+        const uint32_t unflagged = stack ? 3u : GetParam() == kd::Traversal::Backtrack ? 5u : 4u;
         EXPECT_EQ(c.nodes, flagged ? 2u : unflagged);
-        EXPECT_EQ(c.restarts, flagged || GetParam() == kd::Traversal::Stack ? 0u : 1u);
+        EXPECT_EQ(c.restarts, flagged || stack ? 0u : 1u);
         // Going the other way the empty leaf lies beyond the triangle: never reached.
         geometry::TraversalCounters back;
         EXPECT_EQ(kd->closest({{2.0, 0.1, 0.0}, {-1.0, 0.0, 0.0}}, kInf, &back).triangle, 0);
         EXPECT_EQ(back.leaves, 1u);
     }
+}
+
+// Push-down restarts below the root, never above what a restart from the root would reach: the same
+// hits, leaves and restarts as kd-restart on every ray, fewer node steps in all.
+TEST(KdPushDown, SameWalkAsRestartInFewerSteps) {
+    const Fixture f(test::meshScene(), kd::Traversal::PushDown);
+    const auto restart = makeKdTracer(kd::Traversal::Restart, f.tree, geometry::triangleVertices(f.scene));
+    std::mt19937 rng(13);
+    geometry::TraversalCounters pushed, rooted;
+    for (int k = 0; k < 2000; ++k) {
+        const geometry::Ray ray{test::randomPointIn(rng, f.tree.header.lo, f.tree.header.hi, 1.0), test::randomDirection(rng)};
+        geometry::TraversalCounters a, b;
+        const geometry::Hit got = f.kd->closest(ray, kInf, &a), want = restart->closest(ray, kInf, &b);
+        ASSERT_EQ(got.triangle, want.triangle) << "ray " << k;
+        ASSERT_EQ(got.t, want.t) << "ray " << k;
+        ASSERT_EQ(a.leaves, b.leaves) << "ray " << k;
+        ASSERT_EQ(a.restarts, b.restarts) << "ray " << k;
+        ASSERT_LE(a.nodes, b.nodes) << "ray " << k;
+        pushed.nodes += a.nodes;
+        rooted.nodes += b.nodes;
+        rooted.restarts += b.restarts;
+    }
+    ASSERT_GT(rooted.restarts, 0u);
+    std::printf("node steps: push-down %llu, restart %llu\n", (unsigned long long)pushed.nodes,
+                (unsigned long long)rooted.nodes);
+    EXPECT_LT(pushed.nodes, rooted.nodes);
+}
+
+// The short stack between the two ends: with room for the whole depth it is the full stack (the
+// same walk, no restart); with one entry it runs dry and restarts, and still finds the same hits;
+// its node steps lie between the full stack's and push-down's.
+TEST(KdShortStack, BetweenTheFullStackAndPushDown) {
+    const Fixture f(test::meshScene(), kd::Traversal::ShortStack);
+    const auto vertices = geometry::triangleVertices(f.scene);
+    const auto full = makeKdTracer(kd::Traversal::Stack, f.tree, vertices);
+    const auto deep = makeKdTracer(kd::Traversal::ShortStack, f.tree, vertices, VKRAY_KD_MAX_STEPS, VKRAY_KD_STACK_SIZE);
+    const auto one = makeKdTracer(kd::Traversal::ShortStack, f.tree, vertices, VKRAY_KD_MAX_STEPS, 1);
+    const auto pushDown = makeKdTracer(kd::Traversal::PushDown, f.tree, vertices);
+    std::mt19937 rng(17);
+    geometry::TraversalCounters cFull, cDeep, cOne, cDefault, cPush;
+    for (int k = 0; k < 2000; ++k) {
+        const geometry::Ray ray{test::randomPointIn(rng, f.tree.header.lo, f.tree.header.hi, 1.0), test::randomDirection(rng)};
+        const geometry::Hit want = full->closest(ray, kInf, &cFull);
+        for (const auto& [tracer, counters] : {std::pair{deep.get(), &cDeep}, std::pair{one.get(), &cOne},
+                                               std::pair{f.kd.get(), &cDefault}, std::pair{pushDown.get(), &cPush}}) {
+            const geometry::Hit got = tracer->closest(ray, kInf, counters);
+            ASSERT_EQ(got.triangle, want.triangle) << "ray " << k;
+            ASSERT_EQ(got.t, want.t) << "ray " << k;
+        }
+    }
+    std::printf("node steps: stack %llu, short stack 4 %llu (%llu restarts), 1 %llu (%llu), push-down %llu\n",
+                (unsigned long long)cFull.nodes, (unsigned long long)cDefault.nodes,
+                (unsigned long long)cDefault.restarts, (unsigned long long)cOne.nodes,
+                (unsigned long long)cOne.restarts, (unsigned long long)cPush.nodes);
+    EXPECT_EQ(cDeep.nodes, cFull.nodes);
+    EXPECT_EQ(cDeep.leaves, cFull.leaves);
+    EXPECT_EQ(cDeep.restarts, 0u);
+    EXPECT_GT(cOne.restarts, 0u);
+    EXPECT_GE(cDefault.nodes, cFull.nodes);
+    EXPECT_LE(cDefault.nodes, cOne.nodes);
+    EXPECT_LT(cOne.nodes, cPush.nodes);
 }
 
 // Hand-made trees for rays lying in split planes: each triangle sits where the builder's one-sided
@@ -358,12 +422,15 @@ TEST(KdClip, ZeroDirectionComponentsNeverMakeNaN) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Traversals, KdTraversalTest,
-                         ::testing::Values(kd::Traversal::Stack, kd::Traversal::Restart, kd::Traversal::Backtrack),
+                         ::testing::Values(kd::Traversal::Stack, kd::Traversal::Restart, kd::Traversal::Backtrack,
+                                           kd::Traversal::PushDown, kd::Traversal::ShortStack),
                          [](const auto& info) {
                              switch (info.param) {
                              case kd::Traversal::Stack: return std::string("Stack");
                              case kd::Traversal::Restart: return std::string("Restart");
                              case kd::Traversal::Backtrack: return std::string("Backtrack");
+                             case kd::Traversal::PushDown: return std::string("PushDown");
+                             case kd::Traversal::ShortStack: return std::string("ShortStack");
                              }
                              return std::string("Unknown");
                          });

@@ -1,0 +1,8 @@
+// Render kernel with kd-restart and push-down over the SAH kd-tree (include/kd_restart.glsl).
+#version 460
+#extension GL_GOOGLE_include_directive : require
+#extension GL_KHR_shader_subgroup_basic : require
+
+#define VKRAY_KD_PUSH_DOWN
+#include "include/kd_restart.glsl"
+#include "include/render_main.glsl"
