@@ -28,7 +28,7 @@ std::unique_ptr<BuiltAccel> buildAccel(const Scene& scene, const AccelSpec& spec
     switch (spec.family) {
     case Family::Brute: return std::make_unique<BruteAccel>();
     case Family::Bvh: return buildBvhAccel(scene, spec.bvh, options);
-    case Family::Kd: return buildKdAccel(scene, spec.kd, spec.kdTraversal, options);
+    case Family::Kd: return buildKdAccel(scene, spec.kd, spec.kdTraversal, spec.kdShortStack, options);
     }
     throw Error("accelerator '" + spec.name + "': unknown family");
 }

@@ -72,6 +72,8 @@ struct GpuAccelData {
     // Most triangles a leaf holds (0 for brute force): the kernels' leaf loop is specialised on it
     // (VKRAY_SPEC_LEAF_SLOTS).
     uint32_t maxLeafTriangles = 0;
+    // kd-shortstack: its stack's entries (VKRAY_SPEC_KD_SHORT_STACK); 0 for the other kernels.
+    uint32_t kdShortStack = 0;
 
     size_t bytes() const { return nodes.size() + indices.size() + extra.size(); }
 };

@@ -11,6 +11,7 @@
 #include <type_traits>
 #include <utility>
 
+#include "accel/kd/kd_accel.h"
 #include "core/error.h"
 #include "core/file_output.h"
 #include "core/hash64.h"
@@ -388,7 +389,9 @@ LoadedAccel AccelFileReader::readArrays() {
 LoadedAccel loadAccelFile(const fs::path& path, const AccelSpec& spec, const Scene& scene) {
     AccelFileReader reader(path);
     reader.checkSpec(spec);
-    return reader.read(scene);
+    LoadedAccel loaded = reader.read(scene);
+    if (spec.family == Family::Kd) loaded.data.kdShortStack = kdShortStack(spec.kdTraversal, spec.kdShortStack);
+    return loaded;
 }
 
 }  // namespace vkray::accel

@@ -42,6 +42,7 @@ bool isAac(const AccelSpec& s) {
     return s.family == Family::Bvh && s.bvh.builder == bvh::Config::Builder::Aac;
 }
 bool isKd(const AccelSpec& s) { return s.family == Family::Kd; }
+bool isKdShortStack(const AccelSpec& s) { return isKd(s) && s.kdTraversal == kd::Traversal::ShortStack; }
 bool isBvh(const AccelSpec& s) { return s.family == Family::Bvh; }
 
 // A leaf range is clustered by an all-pairs search, O(delta^2) per merge: the bound keeps a typo from
@@ -73,6 +74,8 @@ const TuningOption kTuning[] = {
     {"--kd-max-duplication", "kd-tree: most references per triangle in the whole tree (default 8)", isKd, 1.0,
      1e9, false, false, "--kd-max-duplication must be a number of references per triangle, 1 or more",
      [](AccelSpec& s, double v) { s.kd.maxDuplication = v; }},
+    {"--kd-short-stack", "kd-shortstack: entries of its stack (default 4)", isKdShortStack, 1, VKRAY_KD_STACK_SIZE,
+     false, true, "", [](AccelSpec& s, double v) { s.kdShortStack = int(v); }},
 };
 
 bool accepts(const TuningOption& o, double v) {
@@ -86,15 +89,21 @@ std::string joined(const std::vector<std::string>& names) {
     return s;
 }
 
+// The spec an accelerator's row names, before any tuning.
+AccelSpec specOf(const AccelEntry& e) {
+    AccelSpec spec;
+    spec.name = std::string(e.name);
+    spec.family = e.family;
+    spec.bvh = e.bvh;
+    spec.kdTraversal = e.kdTraversal;
+    return spec;
+}
+
 // "--kd-max-depth applies to kd-restart, kd-pushdown, kd-backtrack, kd-stack, kd-shortstack only (--accel bvh)".
 Error notApplicable(const TuningOption& o, const AccelSpec& spec) {
     std::vector<std::string> names;
-    for (const AccelEntry& e : kAccels) {
-        AccelSpec s;
-        s.family = e.family;
-        s.bvh = e.bvh;
-        if (o.appliesTo(s)) names.push_back(std::string(e.name));
-    }
+    for (const AccelEntry& e : kAccels)
+        if (o.appliesTo(specOf(e))) names.push_back(std::string(e.name));
     return Error(std::string(o.flag) + " applies to " + joined(names) + " only (--accel " + spec.name + ")");
 }
 
@@ -117,11 +126,7 @@ AccelSpec resolveAccel(std::string_view name, const Tuning& tuning) {
     if (entry == std::end(kAccels))
         throw Error("--accel " + std::string(name) + ": unknown accelerator '" + std::string(name) +
                     "' (known: " + joined(accelNames()) + ")");
-    AccelSpec spec;
-    spec.name = std::string(name);
-    spec.family = entry->family;
-    spec.bvh = entry->bvh;
-    spec.kdTraversal = entry->kdTraversal;
+    AccelSpec spec = specOf(*entry);
 
     for (const auto& [flag, value] : tuning) {
         if (!value) continue;

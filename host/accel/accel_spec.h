@@ -16,6 +16,7 @@
 
 #include "accel/bvh/bvh.h"
 #include "accel/kd/kd_tree.h"
+#include "shared/kd_layout.h"
 
 namespace vkray::accel {
 
@@ -29,7 +30,10 @@ struct AccelSpec {
     Family family = Family::Bvh;
     bvh::Config bvh = bvh::Config::aacHq();  // Family::Bvh: the preset with any overrides
     kd::KdConfig kd;                         // Family::Kd: the defaults with any overrides
-    kd::Traversal kdTraversal = kd::Traversal::Restart;  // Family::Kd: the same tree for all three
+    kd::Traversal kdTraversal = kd::Traversal::Restart;  // Family::Kd: the same tree for all of them
+    // kd-shortstack: its stack's entries (a specialization constant of its kernel, not part of the
+    // structure: files of any size serve).
+    int kdShortStack = VKRAY_KD_SHORT_STACK_SIZE;
 };
 
 // Every accelerator name vkray accepts, in the order `--help` lists them.
@@ -39,7 +43,8 @@ const std::vector<std::string>& accelNames();
 struct TuningOption {
     std::string_view flag;  // "--aac-delta"
     std::string_view help;  // for --help
-    // Whether it changes the structure `spec` builds; given for one it does not, it is an error.
+    // Whether it changes the structure `spec` builds, or how its kernel walks it; given for one it does
+    // not, it is an error.
     bool (*appliesTo)(const AccelSpec& spec);
     // Accepted values: lo <= v <= hi (v < hi when hiOpen), whole numbers only when `integer`.
     double lo, hi;

@@ -399,6 +399,7 @@ Frame renderOnGpu(const VulkanContext& ctx, const Scene& scene, const RenderOpti
 
     start = Clock::now();
     rep.features = renderFeatures(scene, options, accel.maxLeafTriangles);
+    if (accel.kdShortStack > 0) rep.features.kdShortStack = int(accel.kdShortStack);
     std::optional<KernelCache> ownKernels;
     if (!kernels) kernels = &ownKernels.emplace(ctx);
     ComputeKernel& kernel = kernels->kernel(accel.kernel, rep.features.specialization());

@@ -37,6 +37,7 @@ Specialization ShaderFeatures::specialization() const {
     s.set(VKRAY_SPEC_LEAF_SLOTS, singleSlotLeaves ? 1u : 4u);
     s.set(VKRAY_SPEC_RESUMABLE, resumable);
     s.set(VKRAY_SPEC_PRIMARY_AOVS, primaryAovs);
+    s.set(VKRAY_SPEC_KD_SHORT_STACK, uint32_t(kdShortStack));
     return s;
 }
 

@@ -10,6 +10,7 @@
 #include "gpu/compute_kernel.h"
 #include "scene/scene.h"
 #include "shared/gpu_layout.h"
+#include "shared/kd_layout.h"
 
 namespace vkray::gpu {
 
@@ -28,6 +29,8 @@ struct ShaderFeatures {
     // Resumable pixels (VKRAY_SPEC_RESUMABLE): specialised only for tiles the plain kernel could not
     // finish within the driver's loop budget.
     bool resumable = false;
+    // kd-shortstack's stack entries (VKRAY_SPEC_KD_SHORT_STACK; the other kernels ignore it).
+    int kdShortStack = VKRAY_KD_SHORT_STACK_SIZE;
 
     // Which GpuPixel fields the kernel writes (render_main.glsl, storePixel): the primary-hit AOVs
     // and the counters when specialised to, and every field in the resumable variant, which reads

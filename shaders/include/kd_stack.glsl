@@ -6,7 +6,8 @@
 //
 // kd-shortstack is this walk with a short stack (Horn, Sugerman, Houston and Hanrahan, "Interactive
 // k-D Tree GPU Raytracing", I3D 2007, section 4.2; render_kd_shortstack.comp defines
-// VKRAY_KD_SHORT_STACK): VKRAY_KD_SHORT_STACK_SIZE entries in a ring; a push onto a full ring drops
+// VKRAY_KD_SHORT_STACK): a ring of VKRAY_SPEC_KD_SHORT_STACK entries (a specialization constant,
+// VKRAY_KD_SHORT_STACK_SIZE unless --kd-short-stack says otherwise); a push onto a full ring drops
 // the oldest entry, and when the ring runs dry with part of the ray left (something was dropped) the
 // walk restarts past the leaf, at the node push-down keeps (kd_restart.glsl).
 #ifndef VKRAY_KD_STACK_GLSL
@@ -28,7 +29,7 @@ uint kdStackAxis(uint entry) { return entry >> VKRAY_KD_STACK_AXIS_SHIFT; }
 
 #ifdef VKRAY_KD_SHORT_STACK
 const bool kKdShortStack = true;
-const int kKdStackSlots = VKRAY_KD_SHORT_STACK_SIZE;
+layout(constant_id = VKRAY_SPEC_KD_SHORT_STACK) const int kKdStackSlots = VKRAY_KD_SHORT_STACK_SIZE;
 #else
 const bool kKdShortStack = false;
 const int kKdStackSlots = VKRAY_KD_STACK_SIZE;

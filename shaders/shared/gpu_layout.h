@@ -78,7 +78,9 @@ using uvec4 = glm::uvec4;
 // bool: write the primary hit's depth, normal and triangle identity (GpuPixel); off when nothing
 // reads them (a render that saves no AOV, a timing run), so the kernel stores 7 words a pixel, not 16.
 #define VKRAY_SPEC_PRIMARY_AOVS 9
-#define VKRAY_SPEC_COUNT 10
+// int: kd-shortstack's stack entries (kd_stack.glsl; --kd-short-stack, default VKRAY_KD_SHORT_STACK_SIZE).
+#define VKRAY_SPEC_KD_SHORT_STACK 10
+#define VKRAY_SPEC_COUNT 11
 #define VKRAY_SINGLE_SLOT_LEAF_LIMIT 128
 
 // ---- GpuPixel.flags ------------------------------------------------------------------------------

@@ -30,6 +30,8 @@ TEST(Accel, EveryNameResolvesToItsFamilyAndTraversal) {
     EXPECT_EQ(resolveAccel("kd-backtrack").kdTraversal, kd::Traversal::Backtrack);
     EXPECT_EQ(resolveAccel("kd-pushdown").kdTraversal, kd::Traversal::PushDown);
     EXPECT_EQ(resolveAccel("kd-shortstack").kdTraversal, kd::Traversal::ShortStack);
+    EXPECT_EQ(resolveAccel("kd-shortstack").kdShortStack, VKRAY_KD_SHORT_STACK_SIZE);
+    EXPECT_EQ(resolveAccel("kd-shortstack", {{"--kd-short-stack", 2.0}}).kdShortStack, 2);
     EXPECT_EQ(resolveAccel("kd-backtrack").family, Family::Kd);
     EXPECT_EQ(resolveAccel(kDefaultAccel).name, "bvh");
 }

@@ -107,6 +107,29 @@ TEST_P(KdGpuCounters, RecordTheWork) {
     EXPECT_EQ(report.cappedRays, 0u);
 }
 
+// kd-shortstack's stack size is its kernel's specialization constant (--kd-short-stack): a ring of one
+// entry runs dry and restarts often, one of the whole depth never does, and both name the primary
+// triangles kd-stack names, with the same leaves visited.
+TEST(KdGpuShortStack, AnySizeWalksTheSameLeaves) {
+    const KdCase c{"kd-shortstack", "cornell.scene", 64, 48};
+    const References& ref = referencesFor(c);
+    const RenderOptions options{.width = c.width, .height = c.height, .maxDepth = ref.scene.maxDepth,
+                                .countTraversal = true};
+    gpu::GpuRenderReport stack, one, deep;
+    const Frame fStack = test::renderGpu(ref.scene, options, &stack, "kd-stack");
+    const Frame fOne = gpu::renderOnGpu(test::gpuContext(), ref.scene, options,
+                                        accel::resolveAccel("kd-shortstack", {{"--kd-short-stack", 1.0}}), &one);
+    const Frame fDeep = gpu::renderOnGpu(test::gpuContext(), ref.scene, options,
+                                         accel::resolveAccel("kd-shortstack", {{"--kd-short-stack", 56.0}}), &deep);
+    EXPECT_EQ(fOne.primId, fStack.primId);
+    EXPECT_EQ(fDeep.primId, fStack.primId);
+    EXPECT_EQ(one.leavesVisited, stack.leavesVisited);
+    EXPECT_EQ(deep.nodesVisited, stack.nodesVisited);
+    EXPECT_EQ(deep.restarts, 0u);
+    EXPECT_GT(one.restarts, 0u);
+    EXPECT_GT(one.nodesVisited, stack.nodesVisited);
+}
+
 std::vector<KdCase> cases() {
     std::vector<KdCase> all;
     for (const char* accel : {"kd-stack", "kd-shortstack", "kd-restart", "kd-pushdown", "kd-backtrack"})

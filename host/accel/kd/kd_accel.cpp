@@ -16,12 +16,14 @@ namespace {
 // The kd family's BuiltAccel: one SAH tree, walked by one traversal on the CPU and the GPU.
 class KdAccel final : public BuiltAccel {
 public:
-    KdAccel(const Scene& scene, const kd::KdConfig& config, kd::Traversal traversal, const BuildOptions& options)
-        : traversal_(traversal), config_(config),
+    KdAccel(const Scene& scene, const kd::KdConfig& config, kd::Traversal traversal, int shortStack,
+            const BuildOptions& options)
+        : traversal_(traversal), shortStack_(shortStack), config_(config),
           build_(kd::buildSahKdTree(scene.triangles, config_, options.threads, options.progress)) {}
 
     std::unique_ptr<geometry::Tracer> makeTracer(const Scene& scene) const override {
-        return kd::makeKdTracer(traversal_, build_.tree, geometry::triangleVertices(scene));
+        return kd::makeKdTracer(traversal_, build_.tree, geometry::triangleVertices(scene), VKRAY_KD_MAX_STEPS,
+                                shortStack_);
     }
 
     GpuAccelData gpuData() const override {
@@ -34,6 +36,7 @@ public:
             throw Error("the kd-tree has " + std::to_string(t.nodes.size()) + " nodes; the GPU kernels address at most " +
                         std::to_string(VKRAY_KD_MAX_NODES) + " (raise --kd-traversal-cost or lower --kd-max-depth)");
         data.maxLeafTriangles = maxLeafTriangles();
+        data.kdShortStack = kdShortStack(traversal_, shortStack_);
         data.nodes = asBytes(std::vector<gpu::KdTreeHeader>{t.header});
         const std::vector<std::byte> nodeBytes = asBytes(t.nodes);
         data.nodes.insert(data.nodes.end(), nodeBytes.begin(), nodeBytes.end());
@@ -80,6 +83,7 @@ private:
     }
 
     kd::Traversal traversal_;
+    int shortStack_;
     kd::KdConfig config_;
     kd::KdBuildResult build_;
 };
@@ -97,9 +101,13 @@ Kernel kdKernel(kd::Traversal traversal) {
     return Kernel::KdRestart;
 }
 
+uint32_t kdShortStack(kd::Traversal traversal, int shortStack) {
+    return traversal == kd::Traversal::ShortStack ? uint32_t(shortStack) : 0u;
+}
+
 std::unique_ptr<BuiltAccel> buildKdAccel(const Scene& scene, const kd::KdConfig& config, kd::Traversal traversal,
-                                         const BuildOptions& options) {
-    return std::make_unique<KdAccel>(scene, config, traversal, options);
+                                         int shortStack, const BuildOptions& options) {
+    return std::make_unique<KdAccel>(scene, config, traversal, shortStack, options);
 }
 
 }  // namespace vkray::accel

@@ -13,7 +13,11 @@ namespace vkray::accel {
 // The GPU kernel that walks the tree with `traversal`.
 Kernel kdKernel(kd::Traversal traversal);
 
+// GpuAccelData::kdShortStack for `traversal`: the stack's entries for kd-shortstack, else 0.
+uint32_t kdShortStack(kd::Traversal traversal, int shortStack);
+
+// `shortStack`: kd-shortstack's stack entries (AccelSpec::kdShortStack).
 std::unique_ptr<BuiltAccel> buildKdAccel(const Scene& scene, const kd::KdConfig& config, kd::Traversal traversal,
-                                         const BuildOptions& options);
+                                         int shortStack, const BuildOptions& options);
 
 }  // namespace vkray::accel
