@@ -292,8 +292,9 @@ AccelFileReader::~AccelFileReader() = default;
 AccelFileReader::AccelFileReader(AccelFileReader&&) noexcept = default;
 AccelFileReader& AccelFileReader::operator=(AccelFileReader&&) noexcept = default;
 
-void AccelFileReader::checkSpec(const AccelSpec& spec) const {
+void AccelFileReader::checkSpec(const AccelSpec& spec) {
     const Header& h = *header_;
+    kdShortStack_ = spec.family == Family::Kd ? kdShortStack(spec.kdTraversal, spec.kdShortStack) : 0u;
     // bvh and bvh-hq name one structure and one kernel: either reads the other's file. The three kd
     // traversals share a tree but not a kernel (nor, for kd-backtrack, the arrays).
     const std::string key = structureKey(spec);
@@ -365,6 +366,7 @@ LoadedAccel AccelFileReader::readArrays() {
     d.kernel = kernelNamed(h.kernel, path_);
     d.nodeTexelBytes = h.nodeTexelBytes;
     d.maxLeafTriangles = h.maxLeafTriangles;
+    d.kdShortStack = kdShortStack_;
     Hash64 payload;
     d.triangleOrder.resize(h.orderCount);
     readHashed(d.triangleOrder.data(), d.triangleOrder.size() * sizeof(uint32_t), payload);
@@ -389,9 +391,7 @@ LoadedAccel AccelFileReader::readArrays() {
 LoadedAccel loadAccelFile(const fs::path& path, const AccelSpec& spec, const Scene& scene) {
     AccelFileReader reader(path);
     reader.checkSpec(spec);
-    LoadedAccel loaded = reader.read(scene);
-    if (spec.family == Family::Kd) loaded.data.kdShortStack = kdShortStack(spec.kdTraversal, spec.kdShortStack);
-    return loaded;
+    return reader.read(scene);
 }
 
 }  // namespace vkray::accel

@@ -66,8 +66,9 @@ public:
     AccelFileReader(AccelFileReader&&) noexcept;
     AccelFileReader& operator=(AccelFileReader&&) noexcept;
 
-    // Refuses a file built for another kernel or another structure (preset, tuning).
-    void checkSpec(const AccelSpec& spec) const;
+    // Refuses a file built for another kernel or another structure (preset, tuning); keeps what the
+    // spec sets in the kernel but not in the structure (kd-shortstack's stack size) for readArrays().
+    void checkSpec(const AccelSpec& spec);
     // Refuses a file built for other geometry.
     void checkScene(const Scene& scene);
     // Reads the arrays, checking the file's size and the payload's checksum; after checkScene(),
@@ -87,6 +88,7 @@ private:
     std::filesystem::path path_;
     std::unique_ptr<std::FILE, int (*)(std::FILE*)> file_;
     std::unique_ptr<Header> header_;
+    uint32_t kdShortStack_ = 0;  // GpuAccelData::kdShortStack of the spec checked
     uint32_t metaBytes_ = 0;
     bool sceneChecked_ = false;
 };

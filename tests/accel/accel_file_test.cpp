@@ -126,6 +126,7 @@ TEST_P(EveryStructure, LoadsByteForByteWhatWasBuilt) {
     EXPECT_EQ(loaded.data.extra, data.extra);
     EXPECT_EQ(loaded.data.nodeTexelBytes, data.nodeTexelBytes);
     EXPECT_EQ(loaded.data.maxLeafTriangles, data.maxLeafTriangles);
+    EXPECT_EQ(loaded.data.kdShortStack, data.kdShortStack);
     EXPECT_EQ(loaded.builtAs, GetParam());
     // The structural figures come back; the times and the thread count were not stored.
     std::vector<std::string> want, got;
@@ -145,6 +146,21 @@ INSTANTIATE_TEST_SUITE_P(Names, EveryStructure,
                              std::replace(n.begin(), n.end(), '-', '_');
                              return n;
                          });
+
+// kd-shortstack's stack size is the kernel's, not the structure's: a file saved with one size serves
+// a render that asks for another, which gets the size it asked for.
+TEST(AccelFile, AShortStackFileServesAnyStackSize) {
+    const Scene scene = test::smallSoup(300, 3);
+    const fs::path file = outDir() / "short-stack.vkacc";
+    const AccelSpec saved = resolveAccel("kd-shortstack");
+    const auto built = buildAccel(scene, saved, BuildOptions{.threads = 2, .progress = {}});
+    const GpuAccelData data = built->gpuData();
+    EXPECT_EQ(data.kdShortStack, uint32_t(VKRAY_KD_SHORT_STACK_SIZE));
+    saveAccelFile(file, saved, scene, data, built->stats());
+    const LoadedAccel loaded = loadAccelFile(file, resolveAccel("kd-shortstack", {{"--kd-short-stack", 2.0}}), scene);
+    EXPECT_EQ(loaded.data.kdShortStack, 2u);
+    EXPECT_EQ(loaded.data.nodes, data.nodes);
+}
 
 TEST(AccelFile, TheSameStructureWritesTheSameBytesWhateverTheThreads) {
     const Scene scene = test::smallSoup(500, 9);
