@@ -342,11 +342,13 @@ std::vector<uint32_t> kernelFromDir(accel::Kernel kernel) {
 
 }  // namespace
 
-ShaderFeatures renderFeatures(const Scene& scene, const RenderOptions& options, uint32_t maxLeafTriangles) {
+ShaderFeatures renderFeatures(const Scene& scene, const RenderOptions& options, uint32_t maxLeafTriangles,
+                              uint32_t kdShortStack) {
     ShaderFeatures f = ShaderFeatures::forScene(scene, options.maxDepth);
     f.countTraversal = options.countTraversal;
     f.primaryAovs = options.primaryAovs;
     f.setMaxLeafTriangles(maxLeafTriangles);
+    f.setKdShortStack(kdShortStack);
     return f;
 }
 
@@ -398,8 +400,7 @@ Frame renderOnGpu(const VulkanContext& ctx, const Scene& scene, const RenderOpti
     rep.uploadMs = msSince(start);
 
     start = Clock::now();
-    rep.features = renderFeatures(scene, options, accel.maxLeafTriangles);
-    if (accel.kdShortStack > 0) rep.features.kdShortStack = int(accel.kdShortStack);
+    rep.features = renderFeatures(scene, options, accel.maxLeafTriangles, accel.kdShortStack);
     std::optional<KernelCache> ownKernels;
     if (!kernels) kernels = &ownKernels.emplace(ctx);
     ComputeKernel& kernel = kernels->kernel(accel.kernel, rep.features.specialization());

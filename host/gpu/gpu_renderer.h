@@ -74,8 +74,10 @@ private:
 };
 
 // What the kernel of a render of `scene` with `options` is specialised with, for a structure whose
-// largest leaf holds `maxLeafTriangles`.
-ShaderFeatures renderFeatures(const Scene& scene, const RenderOptions& options, uint32_t maxLeafTriangles);
+// largest leaf holds `maxLeafTriangles` (and, for kd-shortstack, whose stack holds `kdShortStack`
+// entries; 0: the default; GpuAccelData's fields of the same names).
+ShaderFeatures renderFeatures(const Scene& scene, const RenderOptions& options, uint32_t maxLeafTriangles,
+                              uint32_t kdShortStack = 0);
 
 // Creates in `kernels` the pipeline that a render of `scene` with `kernel` will use, so that LLVM
 // compiles it while the structure is built: for a structure whose leaves all hold at most

@@ -40,6 +40,8 @@ struct ShaderFeatures {
 
     static ShaderFeatures forScene(const Scene& scene, int maxDepth);
     void setMaxLeafTriangles(uint32_t triangles) { singleSlotLeaves = triangles <= VKRAY_SINGLE_SLOT_LEAF_LIMIT; }
+    // kd-shortstack's stack size as the structure's data asks (0: the default).
+    void setKdShortStack(uint32_t entries) { kdShortStack = entries > 0 ? int(entries) : VKRAY_KD_SHORT_STACK_SIZE; }
     Specialization specialization() const;
     // (name, compiled in) for --stats, of the plain kernel (resumed tiles are reported apart).
     std::vector<std::pair<std::string, bool>> list() const;

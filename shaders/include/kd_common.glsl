@@ -235,6 +235,39 @@ uint kdDescend(int visit, uvec2 n, uint first, uint second, float thit, inout fl
     return visit == kKdSecond || visit == kKdPastFirst ? second : first;
 }
 
+// Where a restart begins (kd-restart, kd-pushdown, and kd-shortstack once its stack ran dry): the
+// root, or with push-down (Horn, Sugerman, Houston and Hanrahan, "Interactive k-D Tree GPU
+// Raytracing", I3D 2007, section 4.1) the last node a descent entered before its first step that
+// reached both children: every ancestor of that node sends the rest of the ray to it
+// (KdRestartTracer::walkPass). The CPU twin is RestartPoint in kd_traversal.cpp.
+struct KdRestartPoint {
+    uint node;
+    bool whole;  // no step of this descent has reached both children yet
+};
+
+KdRestartPoint kdRootRestart() { return KdRestartPoint(0u, true); }
+
+// After a descending step to `child`: with push-down (a constant at every call, so it folds), the
+// restart node follows the descent while it is whole.
+void kdEntered(inout KdRestartPoint p, const bool pushDown, int visit, uint child) {
+    if (!pushDown) return;
+    p.whole = p.whole && visit != kKdBoth;
+    p.node = p.whole ? child : p.node;
+}
+
+// Restarts past the leaf just left: the segment from its exit to the pass's end; returns the node
+// to descend from.
+uint kdRestart(inout KdRestartPoint p, float passMax, uint passMaxAxis, inout float segMin, inout uint minAxis,
+               inout float segMax, inout uint maxAxis) {
+    segMin = segMax;
+    minAxis = maxAxis;
+    segMax = passMax;
+    maxAxis = passMaxAxis;
+    p.whole = true;
+    countRestart();
+    return p.node;
+}
+
 // A leaf lists its triangles in the index list: a triangle may lie in several leaves.
 uint slotTriangle(uint slot) { return texelFetch(indexTexels, int(slot)).x; }
 

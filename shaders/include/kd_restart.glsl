@@ -28,8 +28,8 @@ bool kdWalkPass(KdRay r, WatertightRay w, const bool anyHit, float segMin, uint 
                 uint maxAxis, inout KdPass pass, inout int steps, inout Hit best) {
     const float globalMax = segMax;
     const uint globalMaxAxis = maxAxis;
-    uint node = 0u, restartNode = 0u;
-    bool whole = true;  // push-down: no node of this descent had both children reached yet
+    uint node = 0u;
+    KdRestartPoint restart = kdRootRestart();
     bool passDone = false;
     while (budgetLeft() && !passDone && steps < VKRAY_KD_MAX_STEPS) {
         // Down to the next leaf (kd_common.glsl, "Loops").
@@ -40,10 +40,7 @@ bool kdWalkPass(KdRay r, WatertightRay w, const bool anyHit, float segMin, uint 
             float thit;
             const int visit = kdStepInner(r, n, node, segMin, minAxis, segMax, maxAxis, pass, first, second, thit);
             node = kdDescend(visit, n, first, second, thit, segMin, minAxis, segMax, maxAxis);
-            if (kKdPushDown) {
-                whole = whole && visit != kKdBoth;
-                restartNode = whole ? node : restartNode;
-            }
+            kdEntered(restart, kKdPushDown, visit, node);
             n = kdNode(node);
         }
         if (!kdLeafStep(n, steps)) break;  // the cap, or the driver
@@ -51,13 +48,7 @@ bool kdWalkPass(KdRay r, WatertightRay w, const bool anyHit, float segMin, uint 
         if (kdFinished(best, anyHit, segMax) || kdCompare(pass, segMax, maxAxis, globalMax, globalMaxAxis) >= 0) {
             passDone = true;
         } else {  // restart past this leaf, at the root (at the pushed-down node with push-down)
-            segMin = segMax;
-            minAxis = maxAxis;
-            segMax = globalMax;
-            maxAxis = globalMaxAxis;
-            node = restartNode;
-            whole = true;
-            countRestart();
+            node = kdRestart(restart, globalMax, globalMaxAxis, segMin, minAxis, segMax, maxAxis);
         }
     }
     return passDone;

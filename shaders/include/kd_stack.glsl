@@ -55,8 +55,8 @@ bool kdWalkPass(KdRay r, WatertightRay w, const bool anyHit, float segMin, uint 
     int top = 0, bottom = 0;
     float dropEnd = passMax;
     uint dropEndAxis = passMaxAxis;
-    uint node = 0u, restartNode = 0u;
-    bool whole = true;  // push-down: no node of this descent had both children reached yet
+    uint node = 0u;
+    KdRestartPoint restart = kdRootRestart();  // the short stack's, when it runs dry
     bool passDone = false;
     while (budgetLeft() && !passDone && steps < VKRAY_KD_MAX_STEPS) {
         // Down to the next leaf (kd_common.glsl, "Loops").
@@ -82,10 +82,7 @@ bool kdWalkPass(KdRay r, WatertightRay w, const bool anyHit, float segMin, uint 
                 ++top;
             }
             node = kdDescend(visit, n, first, second, thit, segMin, minAxis, segMax, maxAxis);
-            if (kKdShortStack) {
-                whole = whole && visit != kKdBoth;
-                restartNode = whole ? node : restartNode;
-            }
+            kdEntered(restart, kKdShortStack, visit, node);
             n = kdNode(node);
         }
         if (!kdLeafStep(n, steps)) break;  // the cap, or the driver
@@ -103,16 +100,10 @@ bool kdWalkPass(KdRay r, WatertightRay w, const bool anyHit, float segMin, uint 
         } else if (!kKdShortStack || kdCompare(pass, segMax, maxAxis, passMax, passMaxAxis) >= 0) {
             passDone = true;  // nothing pending, and nothing dropped beyond this leaf
         } else {  // the short stack ran dry: restart past this leaf at the pushed-down node
-            segMin = segMax;
-            minAxis = maxAxis;
-            segMax = passMax;
-            maxAxis = passMaxAxis;
             top = bottom = 0;
             dropEnd = passMax;
             dropEndAxis = passMaxAxis;
-            node = restartNode;
-            whole = true;
-            countRestart();
+            node = kdRestart(restart, passMax, passMaxAxis, segMin, minAxis, segMax, maxAxis);
         }
     }
     return passDone;

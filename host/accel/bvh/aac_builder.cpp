@@ -98,10 +98,6 @@ private:
         });
     }
 
-    // f(n), with f(delta) computed once: every range of at most delta primitives (half of all ranges)
-    // asks for it.
-    size_t reduction(size_t n) const { return n == size_t(config_.delta) ? leafReduction_ : reduce_(n); }
-
     // Node slots. The range [begin, end) of n primitives owns the merge slots
     // [N + begin - 1, N + end - 1), or [N, N + end - 1) when begin = 0 (N = primitive count), so the
     // halves of a range own disjoint parts of its slots and the whole tree owns [N, 2N - 1). Its
@@ -122,7 +118,7 @@ private:
             const size_t slots = begin == 0 ? n - 1 : n;
             for (size_t i = begin; i < end; ++i) clusters_[i] = uint32_t(i);
             for (size_t i = 0; i < slots; ++i) free_[begin + i] = uint32_t(first + i);
-            return combine(begin, n, reduction(size_t(config_.delta)));
+            return combine(begin, n, leafReduction_);
         }
         const size_t mid = splitPoint(begin, end);
         size_t left = 0, right = 0;
@@ -133,7 +129,7 @@ private:
                   clusters_.begin() + std::ptrdiff_t(begin + left));
         std::copy(free_.begin() + std::ptrdiff_t(mid), free_.begin() + std::ptrdiff_t(mid + right),
                   free_.begin() + std::ptrdiff_t(begin + spare(begin, left)));
-        return combine(begin, left + right, reduction(n));
+        return combine(begin, left + right, reduce_(n));
     }
 
     // Where [begin, end) splits: the first position whose code has the highest differing bit set
@@ -244,7 +240,7 @@ private:
     std::vector<uint32_t> clusters_;   // per range, its current clusters (node ids)
     std::vector<uint32_t> free_;       // per range, its unused merge slots
     AacReduction reduce_;              // f
-    size_t leafReduction_;             // f(delta)
+    size_t leafReduction_;             // f(delta), computed once: every range of at most delta primitives asks for it
 };
 
 std::vector<MortonKey> mortonKeys(const PrimitiveSet& prims) {

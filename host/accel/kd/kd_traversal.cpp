@@ -67,6 +67,28 @@ uint32_t descend(const SplitStep& s, Segment& seg) {
     return s.visit == Visit::Second || s.visit == Visit::PastFirst ? s.second : s.first;
 }
 
+// Where a restart begins (kd-restart, kd-pushdown, and kd-shortstack once its stack ran dry): the
+// root, or with push-down (Horn, Sugerman, Houston and Hanrahan 2007, section 4.1) the last node a
+// descent entered before its first step that reached both children (KdRestartTracer::walkPass says
+// why that is safe). kdEntered/kdRestart in kd_common.glsl are the float twins.
+struct RestartPoint {
+    bool pushDown;
+    uint32_t node = 0;
+    bool whole = true;  // no step of this descent has reached both children yet
+
+    void entered(Visit visit, uint32_t child) {
+        if (!pushDown) return;
+        whole = whole && visit != Visit::Both;
+        if (whole) node = child;
+    }
+    // The segment from the leaf's exit to the pass's end; returns the node to descend from.
+    uint32_t restart(Segment& seg, const Segment& global) {
+        seg = {seg.tmax, global.tmax, seg.maxAxis, global.maxAxis};
+        whole = true;
+        return node;
+    }
+};
+
 // Relative slack of the stop rule below: far above the few ulps by which a triangle's t and a plane's
 // t round apart, far below any distance between leaves.
 constexpr double kStopSlack = 1e-9;
@@ -248,8 +270,8 @@ bool KdStackTracer::walkPass(const geometry::Ray& ray, Segment global, PassState
     std::array<Pending, VKRAY_KD_STACK_SIZE> stack;
     const size_t slots = shortStack_ > 0 ? size_t(shortStack_) : stack.size();
     size_t top = 0, bottom = 0;
-    uint32_t node = 0, restartNode = 0;
-    bool whole = true;
+    uint32_t node = 0;
+    RestartPoint restart{.pushDown = shortStack_ > 0};
     Segment seg = global;
     for (;; ++steps) {
         if (steps >= maxSteps_) {
@@ -271,8 +293,7 @@ bool KdStackTracer::walkPass(const geometry::Ray& ray, Segment global, PassState
                 stack[top++ % slots] = {s.second, {s.thit, seg.tmax, s.axis, seg.maxAxis}};
             }
             node = descend(s, seg);
-            whole = whole && s.visit != Visit::Both;
-            if (shortStack_ > 0 && whole) restartNode = node;
+            restart.entered(s.visit, node);
             continue;
         }
         ++c.leaves;
@@ -284,10 +305,8 @@ bool KdStackTracer::walkPass(const geometry::Ray& ray, Segment global, PassState
             continue;
         }
         if (shortStack_ == 0 || pass.compare(seg.tmax, seg.maxAxis, global.tmax, global.maxAxis) >= 0) return true;
-        seg = {seg.tmax, global.tmax, seg.maxAxis, global.maxAxis};  // the short stack ran dry: restart
-        top = bottom = 0;
-        node = restartNode;
-        whole = true;
+        top = bottom = 0;  // the short stack ran dry: restart
+        node = restart.restart(seg, global);
         ++c.restarts;
     }
 }
@@ -299,13 +318,13 @@ bool KdStackTracer::walkPass(const geometry::Ray& ray, Segment global, PassState
 //
 // Push-down: while a descent has reached only one child at every node, the rest of the ray up to
 // the global tmax lies in the node it entered, so a restart may begin there; the first node with
-// both children reached ends that (`whole`). Restarting there with (exit, global tmax) takes the
+// both children reached ends that (RestartPoint). Restarting there with (exit, global tmax) takes the
 // steps a restart from the root would take below it: every ancestor sent the larger segment to
 // one child, the same one the smaller segment goes to.
 bool KdRestartTracer::walkPass(const geometry::Ray& ray, Segment global, PassState& pass, LeafVisitor& visitor,
                                geometry::TraversalCounters& c, int& steps) const {
-    uint32_t node = 0, restartNode = 0;
-    bool whole = true;
+    uint32_t node = 0;
+    RestartPoint restart{.pushDown = pushDown_};
     Segment seg = global;
     for (;; ++steps) {
         if (steps >= maxSteps_) {
@@ -317,16 +336,13 @@ bool KdRestartTracer::walkPass(const geometry::Ray& ray, Segment global, PassSta
         if (!n.isLeaf()) {
             const SplitStep s = stepInner(ray, n, node, seg, pass);
             node = descend(s, seg);  // the stack traversal's push, dropped
-            whole = whole && s.visit != Visit::Both;
-            if (pushDown_ && whole) restartNode = node;
+            restart.entered(s.visit, node);
             continue;
         }
         ++c.leaves;
         if (visitor.visit(n, seg.tmax) || pass.compare(seg.tmax, seg.maxAxis, global.tmax, global.maxAxis) >= 0)
             return true;
-        seg = {seg.tmax, global.tmax, seg.maxAxis, global.maxAxis};
-        node = restartNode;
-        whole = true;
+        node = restart.restart(seg, global);
         ++c.restarts;
     }
 }
