@@ -4,13 +4,16 @@
 # renders again with --counters and compares the JSON report's ray and traversal counters (not the
 # list of compiled-in features, which names what each binary can leave out).
 # A scene both binaries refuse (stress/empty.scene: no triangles) is reported as "refused by both".
-# usage: compare.sh OLD_VKRAY NEW_VKRAY [SCENE...]   (from the repository root; one line per case)
+# ACCELS="kd-stack kd-restart" narrows the accelerators; COUNTERS=no skips the counters (for
+# changes that lower them on purpose).
+# usage: [ACCELS=...] [COUNTERS=no] compare.sh OLD_VKRAY NEW_VKRAY [SCENE...]   (from the repository root)
 set -uo pipefail
 old=$1 new=$2
 shift 2
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
-accels=(brute bvh bvh-fast kd-stack kd-restart kd-backtrack)
+read -r -a accels <<< "${ACCELS:-brute bvh bvh-fast kd-stack kd-restart kd-backtrack}"
+withCounters=${COUNTERS:-yes}
 scenes=("$@")
 [ ${#scenes[@]} -gt 0 ] || scenes=(scenes/default.scene scenes/cornell.scene scenes/stress/*.scene)
 counters() {  # the report's gpu counters, without timings
@@ -30,6 +33,7 @@ for s in "${scenes[@]}"; do
         refused=$((refused + 1))
         continue
       fi
+      [ "$withCounters" = no ] && continue
       "$bin" render "$s" --accel "$a" "${size[@]}" -o "$tmp/$v-c.pfm" --counters --json 2>/dev/null | counters >"$tmp/$v.counters"
     done
     if [ $refused -eq 2 ] && cmp -s "$tmp/old.err" "$tmp/new.err"; then
@@ -40,6 +44,10 @@ for s in "${scenes[@]}"; do
     for f in "" -depth -primid -normal; do
       cmp -s "$tmp/old$f.pfm" "$tmp/new$f.pfm" || { result="DIFFERENT${f:-image}"; fail=1; }
     done
+    if [ "$withCounters" = no ]; then
+      echo "$s $a: $result"
+      continue
+    fi
     cmp -s "$tmp/old.counters" "$tmp/new.counters" || { result="$result counters-DIFFERENT"; fail=1; diff "$tmp/old.counters" "$tmp/new.counters"; }
     echo "$s $a: $result $(cat "$tmp/new.counters")"
   done
