@@ -41,6 +41,7 @@ Buffer::Buffer(const VulkanContext& ctx, vk::DeviceSize size, vk::BufferUsageFla
     }
     buffer_.bindMemory(*memory_, 0);
     auto flags = ctx.physicalDevice().getMemoryProperties().memoryTypes[type].propertyFlags;
+    deviceLocal_ = bool(flags & MP::eDeviceLocal);
     // Only coherent memory is written in place: it needs no flush/invalidate calls.
     if ((flags & MP::eHostVisible) && (flags & MP::eHostCoherent))
         mapped_ = memory_.mapMemory(0, VK_WHOLE_SIZE);

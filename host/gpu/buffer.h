@@ -27,6 +27,8 @@ public:
     vk::Buffer handle() const { return *buffer_; }
     vk::DeviceSize size() const { return size_; }
     bool hostVisible() const { return mapped_ != nullptr; }
+    // Whether the memory is the device's own (on lavapipe and integrated GPUs, also the host's).
+    bool deviceLocal() const { return deviceLocal_; }
     void* mapped() const { return mapped_; }
 
 private:
@@ -34,6 +36,7 @@ private:
     vk::raii::DeviceMemory memory_{nullptr};
     vk::DeviceSize size_ = 0;
     void* mapped_ = nullptr;  // persistently mapped when host-visible; unmapped by vkFreeMemory
+    bool deviceLocal_ = false;
 };
 
 // Records commands into a fresh primary command buffer, submits them and waits on a fence.

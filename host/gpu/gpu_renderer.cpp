@@ -14,6 +14,7 @@
 #include "core/timing.h"
 #include "gpu/buffer.h"
 #include "gpu/compute_kernel.h"
+#include "gpu/pixel_output.h"
 #include "gpu/scene_buffers.h"
 #include "render_kernels.h"  // generated at build time from shaders/render_*.comp
 #include "scene/camera.h"
@@ -32,9 +33,13 @@ constexpr auto kBindingTypes = [] {
                                                    : vk::DescriptorType::eUniformTexelBuffer;
     return types;
 }();
-// Few tiles per submission: progress is reported per submission, and read-back overlaps nothing
-// anyway; 4 tiles = 16 MiB of GpuPixel.
-constexpr uint32_t kMaxTilesPerSubmission = 4;
+// Tiles per submission. On a CPU device (lavapipe) few: a tile takes a good fraction of a second,
+// progress is reported per submission, and read-back overlaps nothing anyway; 4 tiles = 16 MiB of
+// GpuPixel. On a GPU a tile is far too small to fill the device (65,536 invocations), and each
+// submission waits on its fence: as many tiles as 256 MiB of GpuPixel, so that 1920x1080 (40 tiles)
+// is one submission.
+constexpr uint32_t kMaxTilesPerSubmissionCpu = 4;
+constexpr uint64_t kMaxBytesPerSubmission = uint64_t(256) << 20;
 
 struct Tile {
     uint32_t x, y, width, height;
@@ -160,16 +165,15 @@ private:
     vk::raii::QueryPool queries_{nullptr};
 };
 
-// Tiles per submission: at most kMaxTilesPerSubmission, and what one storage buffer holds.
+// Tiles per submission: the device kind's limit above, and what one storage buffer holds.
 uint32_t tilesPerSubmission(const VulkanContext& ctx, size_t tiles) {
     const uint64_t tileBytes = uint64_t(kTilePixels) * sizeof(GpuPixel);
-    return uint32_t(std::clamp<uint64_t>(
-        std::min<uint64_t>({tiles, kMaxTilesPerSubmission, ctx.info().maxStorageBufferRange / tileBytes}), 1,
-        kMaxTilesPerSubmission));
+    const uint64_t limit = ctx.info().type == "cpu" ? kMaxTilesPerSubmissionCpu : kMaxBytesPerSubmission / tileBytes;
+    return uint32_t(std::max<uint64_t>(
+        std::min<uint64_t>({tiles, limit, ctx.info().maxStorageBufferRange / tileBytes}), 1));
 }
 
-// Records the dispatches of tiles[first, first + count) into `cmd`, each writing its own slice of
-// the pixel buffer, then the barrier that makes the writes visible to the host.
+// Records the dispatches of `tiles` into `cmd`, each writing its own slice of the pixel buffer.
 void recordBatch(const vk::raii::CommandBuffer& cmd, const ComputeKernel& kernel, std::span<const Tile> tiles,
                  const GpuFrameParams& base) {
     for (size_t k = 0; k < tiles.size(); ++k) {
@@ -181,11 +185,6 @@ void recordBatch(const vk::raii::CommandBuffer& cmd, const ComputeKernel& kernel
         kernel.dispatch(cmd, &p, (t.width + VKRAY_WORKGROUP_X - 1) / VKRAY_WORKGROUP_X,
                         (t.height + VKRAY_WORKGROUP_Y - 1) / VKRAY_WORKGROUP_Y);
     }
-    // The host reads the pixels once the fence signals: make the kernel's writes visible to it.
-    vk::MemoryBarrier toHost{.srcAccessMask = vk::AccessFlagBits::eShaderWrite,
-                             .dstAccessMask = vk::AccessFlagBits::eHostRead};
-    cmd.pipelineBarrier(vk::PipelineStageFlagBits::eComputeShader, vk::PipelineStageFlagBits::eHost, {}, toHost,
-                        nullptr, nullptr);
 }
 
 // The resumable variant's records (VKRAY_BINDING_RESUME, _RESUME_RAYS): for `pixels` pixels of
@@ -200,10 +199,10 @@ struct ResumeBuffers {
                vk::BufferUsageFlagBits::eStorageBuffer, MemoryUse::DeviceLocal, "resumable pixels' rays") {}
 };
 
-void bindBuffers(ComputeKernel& kernel, const SceneBuffers& scene, const AccelBuffers& accel, const Buffer& pixels,
-                 const ResumeBuffers& resume) {
+void bindBuffers(ComputeKernel& kernel, const SceneBuffers& scene, const AccelBuffers& accel,
+                 const PixelOutput& pixels, const ResumeBuffers& resume) {
     std::array<ComputeKernel::Resource, VKRAY_BINDING_COUNT> r{};
-    r[VKRAY_BINDING_PIXELS].buffer = pixels.handle();
+    r[VKRAY_BINDING_PIXELS].buffer = pixels.target().handle();
     r[VKRAY_BINDING_RESUME].buffer = resume.records.handle();
     r[VKRAY_BINDING_RESUME_RAYS].buffer = resume.rays.handle();
     r[VKRAY_BINDING_TRIANGLE_TEXELS].view = scene.triangles.view.handle();
@@ -219,7 +218,7 @@ void bindBuffers(ComputeKernel& kernel, const SceneBuffers& scene, const AccelBu
 // Dispatches the tiles, `perSubmission` at a time into `pixels`, and reads each batch into `frame`.
 // A tile with pixels the driver's loop budget cut short is left for the resumable variant
 // (renderResumable) and added to `unfinished`.
-void renderTiles(const VulkanContext& ctx, const ComputeKernel& kernel, const Buffer& pixels,
+void renderTiles(const VulkanContext& ctx, const ComputeKernel& kernel, const PixelOutput& pixels,
                  std::span<const Tile> tiles, uint32_t perSubmission, const GpuFrameParams& base, Frame& frame,
                  GpuRenderReport& rep, const TileProgress& progress, std::vector<Tile>& unfinished) {
     const BatchTimer timer(ctx);
@@ -229,11 +228,12 @@ void renderTiles(const VulkanContext& ctx, const ComputeKernel& kernel, const Bu
         const vk::raii::CommandBuffer& cmd = commands.begin();
         timer.begin(cmd);
         recordBatch(cmd, kernel, batch, base);
-        timer.end(cmd);
+        timer.end(cmd);  // the kernels' time, not the copy's (PixelOutput)
+        pixels.recordToHost(cmd, batch.size() * kTilePixels * sizeof(GpuPixel));
         commands.submitAndWait();
         ++rep.submissions;
         rep.gpuMs += timer.batchMs();
-        const auto* src = static_cast<const GpuPixel*>(pixels.mapped());
+        const GpuPixel* src = pixels.pixels();
         for (size_t k = 0; k < batch.size(); ++k) {
             if (countFlagged(src + k * kTilePixels, batch[k], VKRAY_PIXEL_CUT_SHORT) > 0) unfinished.push_back(batch[k]);
             else readTile(src + k * kTilePixels, batch[k], rep.features, frame, rep);
@@ -262,7 +262,7 @@ uint32_t resumeStripRows(const VulkanContext& ctx, int maxDepth) {
 // Dispatches one strip with the resumable variant until none of its pixels is unfinished. Every
 // dispatch either gets each unfinished pixel further or flags it cut short, so the loop ends.
 void resumeStrip(const VulkanContext& ctx, const ComputeKernel& kernel, const ResumeBuffers& resume,
-                 const Buffer& pixels, const Tile& strip, const GpuFrameParams& base, GpuRenderReport& rep) {
+                 const PixelOutput& pixels, const Tile& strip, const GpuFrameParams& base, GpuRenderReport& rep) {
     const BatchTimer timer(ctx);
     for (bool fresh = true;; fresh = false) {
         OneShotCommands commands(ctx);
@@ -278,10 +278,11 @@ void resumeStrip(const VulkanContext& ctx, const ComputeKernel& kernel, const Re
         timer.begin(cmd);
         recordBatch(cmd, kernel, std::span<const Tile>(&strip, 1), base);
         timer.end(cmd);
+        pixels.recordToHost(cmd, kTilePixels * sizeof(GpuPixel));
         commands.submitAndWait();
         ++rep.resumeDispatches;
         if (rep.gpuMs >= 0.0) rep.gpuMs += timer.batchMs();
-        if (countFlagged(static_cast<const GpuPixel*>(pixels.mapped()), strip, VKRAY_PIXEL_UNFINISHED) == 0) return;
+        if (countFlagged(pixels.pixels(), strip, VKRAY_PIXEL_UNFINISHED) == 0) return;
     }
 }
 
@@ -289,7 +290,7 @@ void resumeStrip(const VulkanContext& ctx, const ComputeKernel& kernel, const Re
 // "Resumable pixels"), strip by strip, into `frame`.
 void renderResumable(const VulkanContext& ctx, ComputeKernel& kernel, const ShaderFeatures& features,
                      const SceneBuffers& scene,
-                     const AccelBuffers& accel, const Buffer& pixels, std::span<const Tile> tiles, int maxDepth,
+                     const AccelBuffers& accel, const PixelOutput& pixels, std::span<const Tile> tiles, int maxDepth,
                      const GpuFrameParams& base, Frame& frame, GpuRenderReport& rep, const TileProgress& progress) {
     const uint32_t rows = resumeStripRows(ctx, maxDepth);
     const ResumeBuffers resume(ctx, uint64_t(rows) * VKRAY_TILE_SIZE, uint64_t(maxDepth));
@@ -299,7 +300,7 @@ void renderResumable(const VulkanContext& ctx, ComputeKernel& kernel, const Shad
     for (size_t t = 0; t < tiles.size(); ++t) {
         for (const Tile& strip : splitIntoStrips(tiles[t], rows)) {
             resumeStrip(ctx, kernel, resume, pixels, strip, base, rep);  // the strip as a tile of its own
-            readTile(static_cast<const GpuPixel*>(pixels.mapped()), strip, features, frame, rep);
+            readTile(pixels.pixels(), strip, features, frame, rep);
         }
         if (progress) progress(uint32_t(t + 1), uint32_t(tiles.size()));
     }
@@ -408,8 +409,7 @@ Frame renderOnGpu(const VulkanContext& ctx, const Scene& scene, const RenderOpti
 
     const std::vector<Tile> tiles = splitIntoTiles(uint32_t(options.width), uint32_t(options.height));
     const uint32_t perSubmission = tilesPerSubmission(ctx, tiles.size());
-    Buffer pixels(ctx, uint64_t(perSubmission) * kTilePixels * sizeof(GpuPixel),
-                  vk::BufferUsageFlagBits::eStorageBuffer, MemoryUse::Readback, "pixels");
+    const PixelOutput pixels(ctx, uint64_t(perSubmission) * kTilePixels * sizeof(GpuPixel));
     const ResumeBuffers noResume(ctx, 0, 0);
     bindBuffers(kernel, sceneBuffers, accelBuffers, pixels, noResume);
 

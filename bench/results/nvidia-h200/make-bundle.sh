@@ -1,0 +1,25 @@
+#!/usr/bin/env bash
+# Packs what bench/results/gpu/device-run.sh needs on a GPU machine that has the NVIDIA driver but none
+# of vkray's Debian packages: the vkray binary, the GPU and stress test binaries, every shared library
+# they load that is not glibc's, and the Khronos validation layer.
+#   bash bench/results/gpu/make-bundle.sh BUILD_DIR BUNDLE [OTHER_VKRAY...]
+# OTHER_VKRAY: further vkray binaries (other builds, for A/B runs), copied in under their file names.
+set -eu
+build=$1; bundle=$2; shift 2
+rm -rf "$bundle"; mkdir -p "$bundle/lib" "$bundle/layers"
+bins=("$build/vkray" "$build/tests/vkray_gpu_tests" "$build/tests/vkray_stress_tests")
+cp "${bins[@]}" "$@" "$bundle/"
+strip "$bundle"/vkray*
+layer=/usr/lib/x86_64-linux-gnu/libVkLayer_khronos_validation.so
+for f in "${bins[@]}" "$layer" /usr/lib/x86_64-linux-gnu/libvulkan.so.1; do
+  ldd "$f" | awk '/=> \//{print $3}'
+done | sort -u | grep -vE '/(libc|libm|libpthread|libdl|librt|ld-linux[^/]*)\.so' | while read -r lib; do
+  cp -L "$lib" "$bundle/lib/"
+done
+cp -L /usr/lib/x86_64-linux-gnu/libvulkan.so.1 "$layer" "$bundle/lib/"
+cp /usr/share/vulkan/explicit_layer.d/VkLayer_khronos_validation.json "$bundle/layers/"
+sed -n 's/^CMAKE_HOME_DIRECTORY:INTERNAL=//p' "$build/CMakeCache.txt" > "$bundle/source-dir"
+strip --strip-unneeded "$bundle"/lib/*.so*
+# One compressed file: the libraries alone are larger than what may travel uncompressed.
+tar -C "$(dirname "$bundle")" -cJf "$bundle.tar.xz" "$(basename "$bundle")"
+du -sh "$bundle" "$bundle.tar.xz"
