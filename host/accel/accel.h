@@ -27,9 +27,10 @@ namespace vkray::accel {
 // The GPU render kernels, one per shaders/render_<kernelName()>.comp. gpu/gpu_renderer.cpp checks
 // at compile time that each has its SPIR-V, so a kernel named here and missing there fails the
 // build, not a render.
-enum class Kernel { Brute, Bvh, KdStack, KdRestart, KdBacktrack, KdPushDown, KdShortStack };
-inline constexpr std::array kKernels{Kernel::Brute,       Kernel::Bvh,        Kernel::KdStack,     Kernel::KdRestart,
-                                     Kernel::KdBacktrack, Kernel::KdPushDown, Kernel::KdShortStack};
+enum class Kernel { Brute, Bvh, KdStack, KdRestart, KdBacktrack, KdPushDown, KdShortStack, KdRopes };
+inline constexpr std::array kKernels{Kernel::Brute,      Kernel::Bvh,         Kernel::KdStack,
+                                     Kernel::KdRestart,  Kernel::KdBacktrack, Kernel::KdPushDown,
+                                     Kernel::KdShortStack, Kernel::KdRopes};
 
 constexpr std::string_view kernelName(Kernel k) {
     switch (k) {
@@ -39,6 +40,7 @@ constexpr std::string_view kernelName(Kernel k) {
     case Kernel::KdRestart: return "kd_restart";
     case Kernel::KdBacktrack: return "kd_backtrack";
     case Kernel::KdPushDown: return "kd_pushdown";
+    case Kernel::KdRopes: return "kd_ropes";
     case Kernel::KdShortStack: return "kd_shortstack";
     }
     return "";

@@ -30,6 +30,7 @@ const AccelEntry kAccels[] = {
     {"bvh-sah", Family::Bvh, bvh::Config::binnedSah()},
     {"kd-restart", Family::Kd, {}, kd::Traversal::Restart},
     {"kd-pushdown", Family::Kd, {}, kd::Traversal::PushDown},
+    {"kd-ropes", Family::Kd, {}, kd::Traversal::Ropes},
     {"kd-backtrack", Family::Kd, {}, kd::Traversal::Backtrack},
     {"kd-stack", Family::Kd, {}, kd::Traversal::Stack},
     {"kd-shortstack", Family::Kd, {}, kd::Traversal::ShortStack},
@@ -149,9 +150,10 @@ std::string structureKey(const AccelSpec& spec) {
     switch (spec.family) {
     case Family::Brute: return "brute";
     case Family::Bvh: return "bvh " + spec.bvh.describe();
-    case Family::Kd:
+    case Family::Kd:  // one tree for every kd traversal; kd-ropes adds its ropes to it
         return "kd " + spec.kd.describe() + " depth " + (spec.kd.maxDepth ? std::to_string(*spec.kd.maxDepth) : "auto") +
-               " duplication " + shortNumber(spec.kd.maxDuplication);
+               " duplication " + shortNumber(spec.kd.maxDuplication) +
+               (spec.kdTraversal == kd::Traversal::Ropes ? " with ropes" : "");
     }
     return spec.name;
 }

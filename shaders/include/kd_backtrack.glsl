@@ -23,30 +23,16 @@ KdNodeExtra kdExtraAt(uint i) {
 // Node i's parent link alone: the first of its two texels.
 uint kdParentOf(uint i) { return texelFetch(extraTexels, int(2u * i)).w; }
 
-// The exit of one slab of an ancestor's box, when it comes before (t1, a1). Unrolled by the caller:
-// no loop iterations.
-void kdClimbExit(KdRay r, uint axis, float exitPlane, inout float t1, inout uint a1, inout KdPass pass) {
-    if (r.parallel[axis]) return;
-    const float tFar = kdPlaneHit(r, axis, exitPlane);
-    if (kdCompare(pass, tFar, axis, t1, a1) < 0) {
-        t1 = tFar;
-        a1 = axis;
-    }
-}
-
 // One climbing step from `node`, an ancestor of the leaf just left: whether its box still holds part
 // of the segment past segMin (then the segment becomes that part and the walk descends from there);
 // else `node` moves to its parent. Only the box's exit is computed: the ancestor holds the leaf, so
-// the ray entered it no later than segMin (exitFromAncestor in kd_traversal.cpp).
+// the ray entered it no later than segMin (exitFromBox in kd_traversal.cpp).
 bool kdClimbStep(KdRay r, inout uint node, float segMin, uint minAxis, inout float segMax, inout uint maxAxis,
                  float globalMax, uint globalMaxAxis, inout KdPass pass) {
     const KdNodeExtra extra = kdExtraAt(node);
-    const vec3 exitPlane = mix(extra.lo, extra.hi, greaterThan(r.dir, vec3(0.0)));
     float t1 = globalMax;
     uint a1 = globalMaxAxis;
-    kdClimbExit(r, 0u, exitPlane.x, t1, a1, pass);
-    kdClimbExit(r, 1u, exitPlane.y, t1, a1, pass);
-    kdClimbExit(r, 2u, exitPlane.z, t1, a1, pass);
+    kdBoxExit(r, extra.lo, extra.hi, t1, a1, pass);
     if (kdCompare(pass, t1, a1, segMin, minAxis) > 0) {
         segMax = t1;
         maxAxis = a1;

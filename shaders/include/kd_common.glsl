@@ -190,6 +190,26 @@ bool kdClipBox(KdRay r, vec3 lo, vec3 hi, inout float tmin, inout uint tminAxis,
            kdCompare(p, tmin, tminAxis, tmax, tmaxAxis) <= 0;
 }
 
+// The exit of one slab of a box, when it comes before (t1, a1).
+void kdExitSlab(KdRay r, uint axis, float exitPlane, inout float t1, inout uint a1, inout KdPass pass) {
+    if (r.parallel[axis]) return;
+    const float tFar = kdPlaneHit(r, axis, exitPlane);
+    if (kdCompare(pass, tFar, axis, t1, a1) < 0) {
+        t1 = tFar;
+        a1 = axis;
+    }
+}
+
+// Where the ray leaves box [lo, hi], when before (t1, a1): only the far faces, for a box that holds
+// the point where the segment starts (kd-backtrack's ancestors; exitFromBox in kd_traversal.cpp).
+// Unrolled: no loop iterations.
+void kdBoxExit(KdRay r, vec3 lo, vec3 hi, inout float t1, inout uint a1, inout KdPass pass) {
+    const vec3 exitPlane = mix(lo, hi, greaterThan(r.dir, vec3(0.0)));
+    kdExitSlab(r, 0u, exitPlane.x, t1, a1, pass);
+    kdExitSlab(r, 1u, exitPlane.y, t1, a1, pass);
+    kdExitSlab(r, 2u, exitPlane.z, t1, a1, pass);
+}
+
 const int kKdFirst = 0, kKdSecond = 1, kKdBoth = 2, kKdPastFirst = 3;
 
 // One inner-node step: which children of inner node `index` the segment [tmin, tmax] reaches.

@@ -11,6 +11,13 @@
 // VKRAY_KD_PUSH_DOWN): a restart begins at the deepest node whose region holds the whole rest of
 // the ray, the last node a descent entered before it first reached both children of a node
 // (KdRestartTracer::walkPass explains why the steps below it are those of a restart from the root).
+//
+// kd-ropes is this walk going on by ropes (Popov, Guenther, Seidel and Slusallek, "Stackless KD-Tree
+// Traversal for High Performance GPU Ray Tracing", Eurographics 2007, section 3;
+// render_kd_ropes.comp defines VKRAY_KD_ROPES): each leaf has its box and, per face, the smallest
+// node holding that whole face on its far side, and every node's box (KdRopeRecord in the extra
+// binding). After a leaf the walk descends from the rope of the exit face, with the rest of the ray
+// clipped to that node's box, not from the root (kdFollowRope).
 #ifndef VKRAY_KD_RESTART_GLSL
 #define VKRAY_KD_RESTART_GLSL
 
@@ -23,6 +30,60 @@ const bool kKdPushDown = true;
 #else
 const bool kKdPushDown = false;
 #endif
+#ifdef VKRAY_KD_ROPES
+const bool kKdRopes = true;
+#else
+const bool kKdRopes = false;
+#endif
+
+// Whether the ray is inside box [lo, hi] at segMin, a point of its closed box (the exit of a leaf that
+// the box's face holds): each near plane of the other axes is hit at or before segMin, so only an
+// exact tie, ordered after segMin by the pass's ranks, puts the ray outside. The near plane of
+// segMin's own axis is segMin's plane. Parallel slabs hold the ray (the leaf's slab does).
+bool kdNearSlabHolds(KdRay r, uint axis, float nearPlane, float segMin, uint minAxis, inout KdPass pass) {
+    return axis == minAxis || r.parallel[axis] || kdCompare(pass, kdPlaneHit(r, axis, nearPlane), axis, segMin, minAxis) <= 0;
+}
+bool kdEntersAt(KdRay r, vec3 lo, vec3 hi, float segMin, uint minAxis, inout KdPass pass) {
+    const vec3 nearPlane = mix(hi, lo, greaterThan(r.dir, vec3(0.0)));
+    // Unrolled: no loop iterations.
+    return kdNearSlabHolds(r, 0u, nearPlane.x, segMin, minAxis, pass) &&
+           kdNearSlabHolds(r, 1u, nearPlane.y, segMin, minAxis, pass) &&
+           kdNearSlabHolds(r, 2u, nearPlane.z, segMin, minAxis, pass);
+}
+
+// kd-ropes after leaf `leaf`, whose exit the segment ends at: the rope of the face the ray leaves it
+// by, with the segment from the exit to the pass's end clipped to that node's box (a descent from
+// there crosses only the node's own splits); the root, as kd-restart, when in this pass's order of
+// tied planes the ray is not yet inside that node (it left the leaf exactly through an edge or
+// corner); VKRAY_KD_NO_ROPE off the root box. KdRestartTracer::walkPass is the CPU twin.
+uint kdFollowRope(KdRay r, uint leaf, float passMax, uint passMaxAxis, inout float segMin, inout uint minAxis,
+                  inout float segMax, inout uint maxAxis, inout KdPass pass) {
+    // maxAxis < 3: the pass's end would have ended the pass. Selects, not r.dir[maxAxis].
+    const bool up = (maxAxis == 0u ? r.dir.x : (maxAxis == 1u ? r.dir.y : r.dir.z)) > 0.0;
+    const int base = int(VKRAY_KD_ROPE_TEXELS * leaf);
+    uint rope;
+    if (maxAxis == 0u) {
+        rope = texelFetch(extraTexels, base + (up ? 1 : 0)).w;
+    } else {
+        const uvec4 yz = texelFetch(extraTexels, base + 2);
+        rope = maxAxis == 1u ? (up ? yz.y : yz.x) : (up ? yz.w : yz.z);
+    }
+    segMin = segMax;
+    minAxis = maxAxis;
+    segMax = passMax;
+    maxAxis = passMaxAxis;
+    if (rope == VKRAY_KD_NO_ROPE) return rope;
+    const int at = int(VKRAY_KD_ROPE_TEXELS * rope);
+    const vec3 lo = uintBitsToFloat(texelFetch(extraTexels, at).xyz), hi = uintBitsToFloat(texelFetch(extraTexels, at + 1).xyz);
+    if (kdEntersAt(r, lo, hi, segMin, minAxis, pass)) {
+        kdBoxExit(r, lo, hi, segMax, maxAxis, pass);
+        return rope;
+    }
+    countRestart();
+    segMax = passMax;
+    maxAxis = passMaxAxis;
+    return 0u;
+}
 
 bool kdWalkPass(KdRay r, WatertightRay w, const bool anyHit, float segMin, uint minAxis, float segMax,
                 uint maxAxis, inout KdPass pass, inout int steps, inout Hit best) {
@@ -47,6 +108,9 @@ bool kdWalkPass(KdRay r, WatertightRay w, const bool anyHit, float segMin, uint 
         kdVisitLeaf(n, w, anyHit, best);
         if (kdFinished(best, anyHit, segMax) || kdCompare(pass, segMax, maxAxis, globalMax, globalMaxAxis) >= 0) {
             passDone = true;
+        } else if (kKdRopes) {  // on from the rope of the exit face; none: the ray left the tree
+            node = kdFollowRope(r, node, globalMax, globalMaxAxis, segMin, minAxis, segMax, maxAxis, pass);
+            passDone = node == VKRAY_KD_NO_ROPE;
         } else {  // restart past this leaf, at the root (at the pushed-down node with push-down)
             node = kdRestart(restart, globalMax, globalMaxAxis, segMin, minAxis, segMax, maxAxis);
         }

@@ -9,6 +9,9 @@
 // View VKRAY_BINDING_EXTRA_TEXELS (RGBA32UI): KdNodeExtra[nodeCount] (32 bytes each), kd-backtrack only:
 //   parent link and node box (Foley and Sugerman 2005, section 4.2). Kept out of KdNode so that
 //   kd-stack and kd-restart read (and upload) 8 bytes per node, not 40.
+// Or, for kd-ropes only: KdRopeRecord[nodeCount] (48 bytes each): every node's box and each leaf's
+//   six ropes (Popov, Guenther, Seidel and Slusallek 2007, section 3.1), the same binding since no
+//   kernel reads both.
 //
 // KdNode is pbrt's 8-byte node (Pharr, Jakob, Humphreys, "Physically Based Rendering", 3rd ed.,
 // section 4.4.1), two 32-bit words:
@@ -62,6 +65,10 @@ using uint = uint32_t;
 
 // KdNodeExtra.parent of the root.
 #define VKRAY_KD_NO_PARENT 0xffffffffu
+// A rope across a face of the root box: the ray leaves the tree there.
+#define VKRAY_KD_NO_ROPE 0xffffffffu
+// Texels (RGBA32UI) of one KdRopeRecord record.
+#define VKRAY_KD_ROPE_TEXELS 3
 // Hard caps on one traversal's loop iterations (one iteration = one node visited, or one
 // backtracking step). A ray that reaches its cap is a runaway (a malformed tree, or a floating-point
 // case nobody foresaw): it ends as a miss and is counted (GpuPixel.capped), never hidden. Far above
@@ -80,6 +87,22 @@ VKRAY_KD_STRUCT(KdNodeExtra) {  // 32 bytes
     uint parent;  // VKRAY_KD_NO_PARENT for the root
     vec3 hi;
     uint pad0;
+};
+
+// A node's box and, for a leaf, its ropes: rope f = 2 axis + side (side 1: the face at hi[axis])
+// names the smallest node whose box holds the whole face f, on its other side ("optimised ropes",
+// Popov et al. 2007, section 3.1), or VKRAY_KD_NO_ROPE on the root box (and for inner nodes). The box
+// is read where a rope leads: the walk clips the rest of the ray to it. Texels: (lo, rope0),
+// (hi, rope1), (rope2, rope3, rope4, rope5).
+VKRAY_KD_STRUCT(KdRopeRecord) {  // 48 bytes
+    vec3 lo;
+    uint ropeLoX;
+    vec3 hi;
+    uint ropeHiX;
+    uint ropeLoY;
+    uint ropeHiY;
+    uint ropeLoZ;
+    uint ropeHiZ;
 };
 
 #ifdef __cplusplus
@@ -118,6 +141,15 @@ static_assert(sizeof(KdTreeHeader) == 32 && offsetof(KdTreeHeader, nodeCount) ==
               offsetof(KdTreeHeader, hi) == 16 && offsetof(KdTreeHeader, indexCount) == 28);
 static_assert(sizeof(KdNodeExtra) == 32 && offsetof(KdNodeExtra, parent) == 12 &&
               offsetof(KdNodeExtra, hi) == 16);
+static_assert(sizeof(KdRopeRecord) == 16 * VKRAY_KD_ROPE_TEXELS && offsetof(KdRopeRecord, ropeLoX) == 12 &&
+              offsetof(KdRopeRecord, hi) == 16 && offsetof(KdRopeRecord, ropeHiX) == 28 &&
+              offsetof(KdRopeRecord, ropeLoY) == 32 && offsetof(KdRopeRecord, ropeHiZ) == 44);
+
+// Rope f (2 axis + side) of a KdRopeRecord record.
+inline uint32_t kdRope(const KdRopeRecord& r, int face) {
+    const uint32_t ropes[6] = {r.ropeLoX, r.ropeHiX, r.ropeLoY, r.ropeHiY, r.ropeLoZ, r.ropeHiZ};
+    return ropes[face];
+}
 }  // namespace vkray::gpu
 #else
 #undef VKRAY_KD_STRUCT

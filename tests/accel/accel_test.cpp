@@ -19,7 +19,8 @@ namespace {
 
 TEST(Accel, EveryNameResolvesToItsFamilyAndTraversal) {
     for (const std::string name :
-         {"bvh", "bvh-fast", "bvh-hq", "kd-restart", "kd-pushdown", "kd-backtrack", "kd-stack", "kd-shortstack", "brute"})
+         {"bvh", "bvh-fast", "bvh-hq", "kd-restart", "kd-pushdown", "kd-ropes", "kd-backtrack", "kd-stack", "kd-shortstack",
+          "brute"})
         EXPECT_NE(std::find(accelNames().begin(), accelNames().end(), name), accelNames().end()) << name;
     EXPECT_EQ(resolveAccel("brute").family, Family::Brute);
     EXPECT_EQ(resolveAccel("bvh-hq").family, Family::Bvh);
@@ -29,6 +30,7 @@ TEST(Accel, EveryNameResolvesToItsFamilyAndTraversal) {
     EXPECT_EQ(resolveAccel("kd-restart").kdTraversal, kd::Traversal::Restart);
     EXPECT_EQ(resolveAccel("kd-backtrack").kdTraversal, kd::Traversal::Backtrack);
     EXPECT_EQ(resolveAccel("kd-pushdown").kdTraversal, kd::Traversal::PushDown);
+    EXPECT_EQ(resolveAccel("kd-ropes").kdTraversal, kd::Traversal::Ropes);
     EXPECT_EQ(resolveAccel("kd-shortstack").kdTraversal, kd::Traversal::ShortStack);
     EXPECT_EQ(resolveAccel("kd-shortstack").kdShortStack, VKRAY_KD_SHORT_STACK_SIZE);
     EXPECT_EQ(resolveAccel("kd-shortstack", {{"--kd-short-stack", 2.0}}).kdShortStack, 2);
@@ -89,7 +91,7 @@ TEST(AccelSpec, EveryTuningOptionIsRangeCheckedAndNamed) {
     // builder honours, not silently clamped.
     expectError("kd-restart", "--kd-max-depth", kd::KdConfig::kMaxDepthLimit + 1, "must be 1..56");
     expectError("kd-restart", "--kd-max-depth", 0, "must be 1..56");
-    expectError("bvh", "--kd-max-depth", 10, "applies to kd-restart, kd-pushdown, kd-backtrack, kd-stack, kd-shortstack only");
+    expectError("bvh", "--kd-max-depth", 10, "applies to kd-restart, kd-pushdown, kd-ropes, kd-backtrack, kd-stack, kd-shortstack only");
     expectError("kd-stack", "--aac-delta", 8, "applies to bvh, bvh-fast, bvh-hq only");
     expectError("brute", "--kd-empty-bonus", 0.5, "applies to");
     for (const TuningOption& o : tuningOptions()) EXPECT_EQ(o.flag.substr(0, 2), "--") << o.flag;
@@ -103,6 +105,7 @@ TEST(AccelSpec, StructureKeysTellWhichBuildsAreShared) {
     EXPECT_NE(structureKey(resolveAccel("bvh")), structureKey(resolveAccel("bvh-fast")));
     EXPECT_NE(structureKey(resolveAccel("bvh-sah")), structureKey(resolveAccel("bvh-fast")));
     EXPECT_EQ(structureKey(resolveAccel("kd-stack")), structureKey(resolveAccel("kd-backtrack")));
+    EXPECT_NE(structureKey(resolveAccel("kd-stack")), structureKey(resolveAccel("kd-ropes")));  // plus its ropes
     EXPECT_NE(structureKey(resolveAccel("kd-stack")),
               structureKey(resolveAccel("kd-stack", {{"--kd-intersection-cost", 5}})));
     EXPECT_NE(structureKey(resolveAccel("kd-stack")), structureKey(resolveAccel("kd-stack", {{"--kd-max-depth", 9}})));

@@ -82,7 +82,7 @@ TEST_P(IterationCap, RunawayRaysEndAndAreCounted) {
 
 INSTANTIATE_TEST_SUITE_P(Stress, IterationCap,
                          ::testing::Values(accel::Kernel::Bvh, accel::Kernel::KdStack, accel::Kernel::KdRestart,
-                                           accel::Kernel::KdPushDown, accel::Kernel::KdShortStack,
+                                           accel::Kernel::KdPushDown, accel::Kernel::KdShortStack, accel::Kernel::KdRopes,
                                            accel::Kernel::KdBacktrack),
                          [](const auto& info) { return std::string(accel::kernelName(info.param)); });
 

@@ -4,10 +4,12 @@
 #include <string>
 #include <utility>
 
+#include "accel/kd/kd_ropes.h"
 #include "accel/kd/kd_traversal.h"
 #include "accel/kd/sah_kd_builder.h"
 #include "core/error.h"
 #include "core/format.h"
+#include "core/timing.h"
 #include "geometry/brute_force.h"
 
 namespace vkray::accel {
@@ -19,7 +21,12 @@ public:
     KdAccel(const Scene& scene, const kd::KdConfig& config, kd::Traversal traversal, int shortStack,
             const BuildOptions& options)
         : traversal_(traversal), shortStack_(shortStack), config_(config),
-          build_(kd::buildSahKdTree(scene.triangles, config_, options.threads, options.progress)) {}
+          build_(kd::buildSahKdTree(scene.triangles, config_, options.threads, options.progress)) {
+        if (traversal_ != kd::Traversal::Ropes) return;
+        const auto start = Clock::now();
+        build_.tree.ropes = kd::buildRopes(build_.tree, options.threads);
+        ropesMs_ = msSince(start);
+    }
 
     std::unique_ptr<geometry::Tracer> makeTracer(const Scene& scene) const override {
         return kd::makeKdTracer(traversal_, build_.tree, geometry::triangleVertices(scene), VKRAY_KD_MAX_STEPS,
@@ -41,7 +48,8 @@ public:
         const std::vector<std::byte> nodeBytes = asBytes(t.nodes);
         data.nodes.insert(data.nodes.end(), nodeBytes.begin(), nodeBytes.end());
         data.indices = asBytes(t.indices);
-        if (usesExtra()) data.extra = asBytes(t.extra);
+        if (traversal_ == kd::Traversal::Backtrack) data.extra = asBytes(t.extra);
+        if (traversal_ == kd::Traversal::Ropes) data.extra = asBytes(t.ropes);
         return data;
     }
 
@@ -51,10 +59,9 @@ public:
         // What gpuData() would upload, counted without copying the arrays.
         const kd::KdTree& t = build_.tree;
         const size_t gpuBytes = sizeof(gpu::KdTreeHeader) + t.nodes.size() * sizeof(gpu::KdNode) +
-                                t.indices.size() * sizeof(uint32_t) +
-                                (usesExtra() ? t.extra.size() * sizeof(gpu::KdNodeExtra) : 0);
-        return {
-            {"build_ms", ms.totalMs, "ms"},
+                                t.indices.size() * sizeof(uint32_t) + extraBytes();
+        std::vector<AccelStat> stats = {
+            {"build_ms", ms.totalMs + ropesMs_, "ms"},
             {"build_events_ms", ms.eventsMs, "ms: bounds, events, sort"},
             {"build_split_ms", ms.treeMs, "ms: SAH splitting"},
             {"build_flatten_ms", ms.flattenMs, "ms: GPU arrays"},
@@ -69,12 +76,26 @@ public:
              "budget " + shortNumber(config_.maxDuplication)},
             {"sah_cost", f.sahCost, config_.describe()},
             {"gpu_bytes", double(gpuBytes), "bytes"},
+            {"extra_bytes", double(extraBytes()), extraWhat()},
         };
+        if (traversal_ == kd::Traversal::Ropes) stats.insert(stats.begin() + 4, {"build_ropes_ms", ropesMs_, "ms: ropes"});
+        return stats;
     }
 
 private:
-    // Parent links and node boxes: only kd-backtrack reads (and pays for) them.
-    bool usesExtra() const { return traversal_ == kd::Traversal::Backtrack; }
+    // Parent links and node boxes (kd-backtrack) or leaf boxes and ropes (kd-ropes): only the
+    // traversal that reads them uploads (and pays for) them.
+    size_t extraBytes() const {
+        const kd::KdTree& t = build_.tree;
+        if (traversal_ == kd::Traversal::Backtrack) return t.extra.size() * sizeof(gpu::KdNodeExtra);
+        if (traversal_ == kd::Traversal::Ropes) return t.ropes.size() * sizeof(gpu::KdRopeRecord);
+        return 0;
+    }
+    std::string extraWhat() const {
+        if (traversal_ == kd::Traversal::Backtrack) return "bytes: parent links and node boxes";
+        if (traversal_ == kd::Traversal::Ropes) return "bytes: node boxes and leaf ropes";
+        return "bytes: none";
+    }
     uint32_t maxLeafTriangles() const {
         uint32_t most = 0;
         for (const gpu::KdNode& n : build_.tree.nodes)
@@ -86,6 +107,7 @@ private:
     int shortStack_;
     kd::KdConfig config_;
     kd::KdBuildResult build_;
+    double ropesMs_ = 0.0;
 };
 
 }  // namespace
@@ -97,6 +119,7 @@ Kernel kdKernel(kd::Traversal traversal) {
     case kd::Traversal::Backtrack: return Kernel::KdBacktrack;
     case kd::Traversal::PushDown: return Kernel::KdPushDown;
     case kd::Traversal::ShortStack: return Kernel::KdShortStack;
+    case kd::Traversal::Ropes: return Kernel::KdRopes;
     }
     return Kernel::KdRestart;
 }

@@ -3,6 +3,8 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <stdexcept>
+#include <tuple>
 #include <utility>
 
 namespace vkray::accel::kd {
@@ -88,6 +90,38 @@ struct RestartPoint {
         return node;
     }
 };
+
+// Where the ray leaves box [lo, hi], or `within`'s end if sooner. Only the exit: the callers' boxes
+// hold the segment's start (kd-backtrack's ancestor holds the leaf just left; kd-ropes checks with
+// entersAt), so the near planes are hit at or before it, and a direction component of zero keeps
+// the ray inside that slab.
+std::pair<double, int> exitFromBox(const geometry::Ray& ray, const glm::vec3& lo, const glm::vec3& hi, Segment within,
+                                   PassState& pass) {
+    double exit = within.tmax;
+    int exitAxis = within.maxAxis;
+    for (int axis = 0; axis < 3; ++axis) {
+        if (ray.dir[axis] == 0.0) continue;
+        const double tFar = planeHit(ray, axis, ray.dir[axis] > 0.0 ? hi[axis] : lo[axis]);
+        if (pass.compare(tFar, axis, exit, exitAxis) < 0) {
+            exit = tFar;
+            exitAxis = axis;
+        }
+    }
+    return {exit, exitAxis};
+}
+
+// Whether the ray is inside box [lo, hi] at s.tmin, a point of the closed box (kd-ropes: the exit of
+// a leaf that the box's face holds): each near plane of the other axes is hit at or before it, so
+// only an exact tie ordered after s.tmin by the pass's ranks puts the ray outside. The near plane of
+// s.tmin's own axis is s.tmin's plane; a parallel slab holds the ray (the leaf's slab does).
+bool entersAt(const geometry::Ray& ray, const glm::vec3& lo, const glm::vec3& hi, const Segment& s, PassState& pass) {
+    for (int axis = 0; axis < 3; ++axis) {
+        if (axis == s.minAxis || ray.dir[axis] == 0.0) continue;
+        const double tNear = planeHit(ray, axis, ray.dir[axis] > 0.0 ? lo[axis] : hi[axis]);
+        if (pass.compare(tNear, axis, s.tmin, s.minAxis) > 0) return false;
+    }
+    return true;
+}
 
 // Relative slack of the stop rule below: far above the few ulps by which a triangle's t and a plane's
 // t round apart, far below any distance between leaves.
@@ -321,10 +355,15 @@ bool KdStackTracer::walkPass(const geometry::Ray& ray, Segment global, PassState
 // both children reached ends that (RestartPoint). Restarting there with (exit, global tmax) takes the
 // steps a restart from the root would take below it: every ancestor sent the larger segment to
 // one child, the same one the smaller segment goes to.
+//
+// Ropes: the rope's node holds the ray's point at the exit, and every ancestor above it sends
+// (exit, global tmax) towards it (kd_ropes.cpp); clipped to its box, the segment is the one a
+// restart from the root would bring there, so kd-ropes takes kd-restart's steps below it and
+// visits the same leaves in the same order.
 bool KdRestartTracer::walkPass(const geometry::Ray& ray, Segment global, PassState& pass, LeafVisitor& visitor,
                                geometry::TraversalCounters& c, int& steps) const {
     uint32_t node = 0;
-    RestartPoint restart{.pushDown = pushDown_};
+    RestartPoint restart{.pushDown = from_ == RestartFrom::PushDown};
     Segment seg = global;
     for (;; ++steps) {
         if (steps >= maxSteps_) {
@@ -342,33 +381,30 @@ bool KdRestartTracer::walkPass(const geometry::Ray& ray, Segment global, PassSta
         ++c.leaves;
         if (visitor.visit(n, seg.tmax) || pass.compare(seg.tmax, seg.maxAxis, global.tmax, global.maxAxis) >= 0)
             return true;
+        if (from_ == RestartFrom::Rope) {  // before the global end: the exit is a face of the leaf (maxAxis < 3)
+            const uint32_t rope = gpu::kdRope(tree_.ropes[node], 2 * seg.maxAxis + (ray.dir[seg.maxAxis] > 0.0 ? 1 : 0));
+            if (rope == VKRAY_KD_NO_ROPE) return true;
+            const Segment rest{seg.tmax, global.tmax, seg.maxAxis, global.maxAxis};
+            const gpu::KdRopeRecord& box = tree_.ropes[rope];
+            if (entersAt(ray, box.lo, box.hi, rest, pass)) {
+                node = rope;
+                seg = rest;
+                std::tie(seg.tmax, seg.maxAxis) = exitFromBox(ray, box.lo, box.hi, rest, pass);
+                continue;
+            }
+            // The ray leaves the leaf exactly through an edge or corner, and in this pass's order of
+            // the tied planes it is not yet inside the rope's node (a near face of it counts as
+            // crossed later): go on from the root, as kd-restart does.
+            node = 0;
+            seg = rest;
+            ++c.restarts;
+            continue;
+        }
         node = restart.restart(seg, global);
         ++c.restarts;
     }
 }
 
-namespace {
-
-// Where the ray leaves the box of an ancestor of the leaf it just left, or global's end if sooner.
-// Only the exit: the ancestor's box holds the leaf, so the ray entered it no later than the leaf's
-// exit (its near planes are hit at or before the leaf's, in the pass's order too), and a
-// direction component of zero keeps the ray inside that slab (the leaf's is within it).
-std::pair<double, int> exitFromAncestor(const geometry::Ray& ray, const gpu::KdNodeExtra& box, Segment global,
-                                        PassState& pass) {
-    double exit = global.tmax;
-    int exitAxis = global.maxAxis;
-    for (int axis = 0; axis < 3; ++axis) {
-        if (ray.dir[axis] == 0.0) continue;
-        const double tFar = planeHit(ray, axis, ray.dir[axis] > 0.0 ? box.hi[axis] : box.lo[axis]);
-        if (pass.compare(tFar, axis, exit, exitAxis) < 0) {
-            exit = tFar;
-            exitAxis = axis;
-        }
-    }
-    return {exit, exitAxis};
-}
-
-}  // namespace
 
 // Foley and Sugerman 4.2: after a leaf, backtrack() climbs the parent links, clipping the ray's
 // remaining segment (tmin, global tmax) to each ancestor's box, and descends from the first
@@ -389,7 +425,7 @@ bool KdBacktrackTracer::walkPass(const geometry::Ray& ray, Segment global, PassS
         if (climbing) {
             if (node == VKRAY_KD_NO_PARENT) return true;  // climbed past the root: nothing left
             const gpu::KdNodeExtra& e = tree_.extra[node];
-            const auto [exit, exitAxis] = exitFromAncestor(ray, e, global, pass);
+            const auto [exit, exitAxis] = exitFromBox(ray, e.lo, e.hi, global, pass);
             if (pass.compare(exit, exitAxis, seg.tmin, seg.minAxis) > 0) {
                 seg = {seg.tmin, exit, seg.minAxis, exitAxis};
                 climbing = false;
@@ -423,9 +459,12 @@ std::unique_ptr<KdTracer> makeKdTracer(kd::Traversal traversal, const KdTree& tr
         return std::make_unique<KdStackTracer>(tree, std::move(triangles), maxSteps,
                                                shortStack > 0 ? shortStack : VKRAY_KD_SHORT_STACK_SIZE);
     case kd::Traversal::Restart:
-        return std::make_unique<KdRestartTracer>(tree, std::move(triangles), maxSteps, false);
+        return std::make_unique<KdRestartTracer>(tree, std::move(triangles), maxSteps, RestartFrom::Root);
     case kd::Traversal::PushDown:
-        return std::make_unique<KdRestartTracer>(tree, std::move(triangles), maxSteps, true);
+        return std::make_unique<KdRestartTracer>(tree, std::move(triangles), maxSteps, RestartFrom::PushDown);
+    case kd::Traversal::Ropes:
+        if (tree.ropes.size() != tree.nodes.size()) throw std::logic_error("kd-ropes: the tree has no ropes (buildRopes)");
+        return std::make_unique<KdRestartTracer>(tree, std::move(triangles), maxSteps, RestartFrom::Rope);
     case kd::Traversal::Backtrack: return std::make_unique<KdBacktrackTracer>(tree, std::move(triangles), maxSteps);
     }
     return nullptr;

@@ -127,19 +127,27 @@ private:
     int shortStack_;
 };
 
+// Where kd-restart's walk goes on after a leaf: the root (Foley and Sugerman 4.1), the push-down
+// node (Horn, Sugerman, Houston and Hanrahan 2007, section 4.1), or the leaf's rope across the face
+// the ray leaves it by (Popov, Guenther, Seidel and Slusallek 2007, section 3; needs tree.ropes).
+enum class RestartFrom { Root, PushDown, Rope };
+
 // Stackless kd-restart (Foley and Sugerman 4.1): after a leaf, tmin = the leaf's exit and the search
-// starts again at the root. With push-down (Horn, Sugerman, Houston and Hanrahan 2007, section 4.1)
-// it starts again at the deepest node whose region holds the whole rest of the ray: the last node
-// the descent entered before it first reached both children of a node.
+// starts again at the root. With push-down it starts again at the deepest node whose region holds
+// the whole rest of the ray: the last node the descent entered before it first reached both
+// children of a node. With ropes it starts at the rope of the leaf's exit face, the smallest node
+// holding that whole face, with the rest of the ray clipped to that node's box (a descent from there
+// crosses only the node's own splits); a rope off the root box ends the walk.
 class KdRestartTracer final : public KdTracer {
 public:
-    KdRestartTracer(const KdTree& tree, std::vector<geometry::TriangleVertices> triangles, int maxSteps, bool pushDown)
-        : KdTracer(tree, std::move(triangles), maxSteps), pushDown_(pushDown) {}
+    KdRestartTracer(const KdTree& tree, std::vector<geometry::TriangleVertices> triangles, int maxSteps,
+                    RestartFrom from)
+        : KdTracer(tree, std::move(triangles), maxSteps), from_(from) {}
     bool walkPass(const geometry::Ray& ray, Segment segment, PassState& pass, LeafVisitor& visitor,
                   geometry::TraversalCounters& counters, int& steps) const override;
 
 private:
-    bool pushDown_;
+    RestartFrom from_;
 };
 
 // Stackless kd-backtrack (Foley and Sugerman 4.2): after a leaf, climb by parent links to the

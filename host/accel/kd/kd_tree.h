@@ -64,8 +64,10 @@ struct KdConfig {
 // Raytracer", Graphics Hardware 2005: the standard stack traversal (the baseline), the stackless
 // kd-restart (section 4.1) and kd-backtrack (section 4.2); kd-restart with push-down (Horn,
 // Sugerman, Houston and Hanrahan, "Interactive k-D Tree GPU Raytracing", I3D 2007, section 4.1), and
-// the stack traversal with a short stack that falls back to that restart (section 4.2).
-enum class Traversal { Stack, Restart, Backtrack, PushDown, ShortStack };
+// the stack traversal with a short stack that falls back to that restart (section 4.2); and
+// kd-restart that goes on from a leaf by its ropes (Popov, Guenther, Seidel and Slusallek,
+// "Stackless KD-Tree Traversal for High Performance GPU Ray Tracing", Eurographics 2007).
+enum class Traversal { Stack, Restart, Backtrack, PushDown, ShortStack, Ropes };
 
 // An axis-aligned box in float (the scene's precision; every split lies on a float).
 struct Box {
@@ -77,11 +79,13 @@ struct Box {
 
 // A built tree: the GPU arrays of shaders/shared/kd_layout.h. `extra` (parent links and node boxes)
 // is always filled on the CPU, where kd-backtrack needs it; only the kd-backtrack kernel uploads it.
+// `ropes` is filled only for kd-ropes (kd_ropes.h), after the build.
 struct KdTree {
     gpu::KdTreeHeader header{};
     std::vector<gpu::KdNode> nodes;
     std::vector<uint32_t> indices;
     std::vector<gpu::KdNodeExtra> extra;
+    std::vector<gpu::KdRopeRecord> ropes;
 
     Box rootBox() const { return Box{header.lo, header.hi}; }
     Box nodeBox(uint32_t node) const { return Box{extra[node].lo, extra[node].hi}; }

@@ -20,6 +20,7 @@
 
 #include <gtest/gtest.h>
 
+#include "accel/kd/kd_ropes.h"
 #include "accel/kd/kd_traversal.h"
 #include "geometry/brute_force.h"
 #include "kd_test_util.h"
@@ -30,6 +31,13 @@ namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
+// The tracer of `traversal` over `tree`; kd-ropes' needs the tree's ropes first.
+std::unique_ptr<KdTracer> tracerFor(kd::Traversal traversal, KdTree& tree, std::vector<geometry::TriangleVertices> tris,
+                                    int maxSteps = VKRAY_KD_MAX_STEPS) {
+    if (traversal == kd::Traversal::Ropes) tree.ropes = buildRopes(tree, 2);
+    return makeKdTracer(traversal, tree, std::move(tris), maxSteps);
+}
+
 struct Fixture {
     Scene scene;
     KdTree tree;
@@ -39,7 +47,7 @@ struct Fixture {
     Fixture(Scene s, kd::Traversal traversal) : scene(std::move(s)) {
         tree = buildSahKdTree(scene.triangles, KdConfig{}, 2).tree;
         brute = std::make_unique<geometry::BruteForceTracer>(scene);
-        kd = makeKdTracer(traversal, tree, geometry::triangleVertices(scene));
+        kd = tracerFor(traversal, tree, geometry::triangleVertices(scene));
     }
 };
 
@@ -183,7 +191,11 @@ TEST_P(KdTraversalTest, RaysThroughLeafCornersVisitEachLeafOnce) {
         f.kd->closest(ray, kInf, &mine);
         stack->closest(ray, kInf, &base);
         ASSERT_EQ(mine.capped, 0u);
-        ASSERT_EQ(mine.leaves, base.leaves) << "leaf " << i;
+        // kd-ropes compares fewer planes beyond the hit (only its ropes' nodes' own), so it may see
+        // no tie there and walk fewer passes; KdRopes.SameLeavesAsRestart checks its leaves.
+        if (GetParam() != kd::Traversal::Ropes) {
+            ASSERT_EQ(mine.leaves, base.leaves) << "leaf " << i;
+        }
         const geometry::TraversalCounters before = mine;
         f.kd->occluded(ray, kInf, &mine);
         ASSERT_EQ(mine.capped, before.capped);
@@ -219,7 +231,7 @@ TEST_P(KdTraversalTest, IterationCapEndsAndCountsARunawayRay) {
     t.nodes = {gpu::KdNode::inner(0, 0.0f, 0), gpu::KdNode::leaf(0, 0)};
     t.extra = {gpu::KdNodeExtra{{-1, -1, -1}, VKRAY_KD_NO_PARENT, {1, 1, 1}, 0},
                gpu::KdNodeExtra{{-1, -1, -1}, 0, {0, 1, 1}, 0}};
-    const auto tracer = makeKdTracer(GetParam(), t, {}, 500);
+    const auto tracer = tracerFor(GetParam(), t, {}, 500);
     const geometry::Ray ray{{-2.0, 0.1, 0.2}, {1.0, 0.0, 0.0}};
     geometry::TraversalCounters c;
     EXPECT_FALSE(tracer->closest(ray, kInf, &c).found());
@@ -245,7 +257,7 @@ TEST_P(KdTraversalTest, CountersAddUp) {
     EXPECT_GE(c.nodes, c.leaves);
     EXPECT_GT(c.leaves, 500u);
     EXPECT_GT(c.triangles, 0u);
-    if (GetParam() == kd::Traversal::Stack) {
+    if (GetParam() == kd::Traversal::Stack || GetParam() == kd::Traversal::Ropes) {
         EXPECT_EQ(c.restarts, 0u);
     } else if (GetParam() != kd::Traversal::ShortStack) {
         EXPECT_GT(c.restarts, 0u);
@@ -264,19 +276,21 @@ TEST_P(KdTraversalTest, EmptyNearChildIsPassed) {
         t.indices = {0};
         t.extra = {gpu::KdNodeExtra{{-1, -1, -1}, VKRAY_KD_NO_PARENT, {1, 1, 1}, 0},
                    gpu::KdNodeExtra{{-1, -1, -1}, 0, {0, 1, 1}, 0}, gpu::KdNodeExtra{{0, -1, -1}, 0, {1, 1, 1}, 0}};
-        const auto kd = makeKdTracer(GetParam(), t, geometry::triangleVertices(scene));
+        const auto kd = tracerFor(GetParam(), t, geometry::triangleVertices(scene));
         geometry::TraversalCounters c;
         const geometry::Hit hit = kd->closest({{-2.0, 0.1, 0.0}, {1.0, 0.0, 0.0}}, kInf, &c);
         EXPECT_EQ(hit.triangle, 0);
         EXPECT_DOUBLE_EQ(hit.t, 2.5);
         EXPECT_EQ(c.leaves, flagged ? 1u : 2u) << (flagged ? "flagged" : "unflagged");
-        // Unflagged: root, empty leaf, then the pop (stack), a restart at the root (restart), or a
-        // climbing step at the root and the root again (backtrack), and the far leaf.
-        // (push-down: the root reached both children, so the restart begins at the root too)
+        // Unflagged: root, empty leaf, then the pop (stack), the rope straight to the far leaf (ropes),
+        // a restart at the root (restart), or a climbing step at the root and the root again
+        // (backtrack), and the far leaf. (push-down: the root reached both children, so the restart
+        // begins at the root too)
         const bool stack = GetParam() == kd::Traversal::Stack || GetParam() == kd::Traversal::ShortStack;
-        const uint32_t unflagged = stack ? 3u : GetParam() == kd::Traversal::Backtrack ? 5u : 4u;
+        const bool ropes = GetParam() == kd::Traversal::Ropes;
+        const uint32_t unflagged = stack || ropes ? 3u : GetParam() == kd::Traversal::Backtrack ? 5u : 4u;
         EXPECT_EQ(c.nodes, flagged ? 2u : unflagged);
-        EXPECT_EQ(c.restarts, flagged || stack ? 0u : 1u);
+        EXPECT_EQ(c.restarts, flagged || stack || ropes ? 0u : 1u);
         // Going the other way the empty leaf lies beyond the triangle: never reached.
         geometry::TraversalCounters back;
         EXPECT_EQ(kd->closest({{2.0, 0.1, 0.0}, {-1.0, 0.0, 0.0}}, kInf, &back).triangle, 0);
@@ -308,6 +322,116 @@ TEST(KdPushDown, SameWalkAsRestartInFewerSteps) {
     std::printf("node steps: push-down %llu, restart %llu\n", (unsigned long long)pushed.nodes,
                 (unsigned long long)rooted.nodes);
     EXPECT_LT(pushed.nodes, rooted.nodes);
+}
+
+// Every leaf a walk reaches, with its exit, in order (all passes; never stops).
+class LeafLog final : public LeafVisitor {
+public:
+    explicit LeafLog(const KdTree& tree) : tree_(tree) {}
+    bool visit(const gpu::KdNode& leaf, double exit) override {
+        leaves.push_back({uint32_t(&leaf - tree_.nodes.data()), exit});
+        return false;
+    }
+    std::vector<std::pair<uint32_t, double>> leaves;
+
+private:
+    const KdTree& tree_;
+};
+
+// Ropes go on from a leaf where a restart from the root would arrive: the same hits as kd-restart,
+// and along the whole ray kd-restart's leaves in the same order, with in between only leaves that
+// hold no triangle (ropes lead onto empty leaves that kd-restart passes by their parents' flags) or
+// that the ray crosses in no length (a leaf thinner than the rounding of t, which kd-restart's
+// descent steps over); no restart, and fewer node steps than kd-restart and kd-stack in all.
+TEST(KdRopes, SameLeavesAsRestartInFewerSteps) {
+    const Fixture f(test::meshScene(), kd::Traversal::Ropes);
+    const auto vertices = geometry::triangleVertices(f.scene);
+    const auto restart = makeKdTracer(kd::Traversal::Restart, f.tree, vertices);
+    const auto stack = makeKdTracer(kd::Traversal::Stack, f.tree, vertices);
+    std::mt19937 rng(19);
+    geometry::TraversalCounters roped, rooted, stacked;
+    size_t extra = 0;
+    for (int k = 0; k < 2000; ++k) {
+        const geometry::Ray ray{test::randomPointIn(rng, f.tree.header.lo, f.tree.header.hi, 1.0), test::randomDirection(rng)};
+        geometry::TraversalCounters a, b, unused;
+        const geometry::Hit got = f.kd->closest(ray, kInf, &a), want = restart->closest(ray, kInf, &b);
+        stack->closest(ray, kInf, &stacked);
+        ASSERT_EQ(got.triangle, want.triangle) << "ray " << k;
+        ASSERT_EQ(got.t, want.t) << "ray " << k;
+        ASSERT_EQ(a.restarts, 0u) << "ray " << k;
+        LeafLog mine(f.tree), theirs(f.tree);
+        f.kd->walk(ray, {0.0, kInf}, mine, unused);
+        restart->walk(ray, {0.0, kInf}, theirs, unused);
+        size_t j = 0;
+        double lastExit = 0.0;
+        for (const auto& [leaf, exit] : mine.leaves) {
+            if (j < theirs.leaves.size() && theirs.leaves[j].first == leaf) {
+                ASSERT_EQ(theirs.leaves[j].second, exit) << "ray " << k << " leaf " << leaf;
+                ++j;
+            } else {
+                ASSERT_TRUE(f.tree.nodes[leaf].triangleCount() == 0 || exit == lastExit) << "ray " << k << " leaf " << leaf;
+                ++extra;
+            }
+            lastExit = exit;
+        }
+        ASSERT_EQ(j, theirs.leaves.size()) << "ray " << k << ": a leaf of kd-restart's walk was not reached";
+        roped.nodes += a.nodes;
+        rooted.nodes += b.nodes;
+    }
+    std::printf("node steps: ropes %llu, restart %llu, stack %llu; %zu leaves beyond kd-restart's\n",
+                (unsigned long long)roped.nodes, (unsigned long long)rooted.nodes, (unsigned long long)stacked.nodes, extra);
+    EXPECT_LT(roped.nodes, rooted.nodes);
+    EXPECT_LT(roped.nodes, stacked.nodes);
+}
+
+// Every rope of every leaf names the smallest node beyond its face: a node whose box starts at the
+// face's plane, holds the whole face, and is a leaf or split by a plane the face straddles; none on
+// the root box's faces.
+TEST(KdRopes, EachRopeIsTheSmallestNodeBeyondItsFace) {
+    const Fixture f(test::randomSoup(23, 3000), kd::Traversal::Ropes);
+    const KdTree& t = f.tree;
+    size_t ropes = 0, none = 0;
+    for (uint32_t i = 0; i < t.nodes.size(); ++i) {
+        if (!t.nodes[i].isLeaf()) {  // a rope may lead here: its box, no ropes of its own
+            ASSERT_EQ(t.ropes[i].lo, t.nodeBox(i).lo);
+            ASSERT_EQ(t.ropes[i].hi, t.nodeBox(i).hi);
+            for (int face = 0; face < 6; ++face) ASSERT_EQ(gpu::kdRope(t.ropes[i], face), VKRAY_KD_NO_ROPE);
+            continue;
+        }
+        const Box leaf = t.nodeBox(i);
+        ASSERT_EQ(t.ropes[i].lo, leaf.lo);
+        ASSERT_EQ(t.ropes[i].hi, leaf.hi);
+        for (int face = 0; face < 6; ++face) {
+            const int axis = face / 2;
+            const bool hi = face % 2 == 1;
+            const float c = hi ? leaf.hi[axis] : leaf.lo[axis];
+            const uint32_t r = gpu::kdRope(t.ropes[i], face);
+            ASSERT_EQ(r, ropeOf(t, leaf, face)) << "leaf " << i << " face " << face << ": top-down and per-leaf differ";
+            if (c == (hi ? t.header.hi[axis] : t.header.lo[axis])) {
+                ASSERT_EQ(r, VKRAY_KD_NO_ROPE) << "leaf " << i << " face " << face;
+                ++none;
+                continue;
+            }
+            ASSERT_LT(r, t.nodes.size()) << "leaf " << i << " face " << face;
+            const Box box = t.nodeBox(r);
+            ASSERT_EQ(hi ? box.lo[axis] : box.hi[axis], c) << "leaf " << i << " face " << face;
+            for (int a = 0; a < 3; ++a) {
+                if (a == axis) continue;
+                ASSERT_LE(box.lo[a], leaf.lo[a]) << "leaf " << i << " face " << face;
+                ASSERT_GE(box.hi[a], leaf.hi[a]) << "leaf " << i << " face " << face;
+            }
+            const gpu::KdNode& n = t.nodes[r];
+            if (!n.isLeaf()) {
+                ASSERT_NE(n.axis(), axis) << "leaf " << i << " face " << face << ": could go one level down";
+                ASSERT_LT(leaf.lo[n.axis()], n.split()) << "leaf " << i << " face " << face;
+                ASSERT_GT(leaf.hi[n.axis()], n.split()) << "leaf " << i << " face " << face;
+            }
+            ++ropes;
+        }
+    }
+    std::printf("%zu ropes, %zu faces on the root box\n", ropes, none);
+    EXPECT_GT(ropes, 1000u);
+    EXPECT_GT(none, 0u);
 }
 
 // The short stack between the two ends: with room for the whole depth it is the full stack (the
@@ -365,7 +489,7 @@ TEST_P(KdTraversalTest, RayInSplitPlaneFindsTriangleTouchingItFromAbove) {
     h.tree.indices = {1, 0};
     h.tree.extra = {boxOf({-1, -1, -1}, {1, 3, 1}, VKRAY_KD_NO_PARENT), boxOf({-1, -1, -1}, {0, 3, 1}, 0),
                     boxOf({0, -1, -1}, {1, 3, 1}, 0)};
-    const auto kd = makeKdTracer(GetParam(), h.tree, geometry::triangleVertices(h.scene));
+    const auto kd = tracerFor(GetParam(), h.tree, geometry::triangleVertices(h.scene));
     const geometry::BruteForceTracer brute(h.scene);
     for (const double dx : {0.0, -0.0}) {
         const geometry::Ray ray{{0.0, -1.0, 0.25}, {dx, 1.0, 0.0}};
@@ -396,7 +520,7 @@ TEST_P(KdTraversalTest, RayAlongTwoSplitPlanesNeedsFourPasses) {
     h.tree.extra = {boxOf(lo, hi, VKRAY_KD_NO_PARENT),  boxOf(lo, {0, 1, 5}, 0),        boxOf(lo, {0, 0, 5}, 1),
                     boxOf({-1, 0, -1}, {0, 1, 5}, 1),   boxOf({0, -1, -1}, hi, 0),      boxOf({0, -1, -1}, {1, 0, 5}, 4),
                     boxOf({0, 0, -1}, hi, 4)};
-    const auto kd = makeKdTracer(GetParam(), h.tree, geometry::triangleVertices(h.scene));
+    const auto kd = tracerFor(GetParam(), h.tree, geometry::triangleVertices(h.scene));
     const geometry::BruteForceTracer brute(h.scene);
     const geometry::Ray ray{{0.0, 0.0, -1.0}, {0.0, -0.0, 1.0}};
     const geometry::Hit want = brute.closest(ray, kInf);
@@ -423,7 +547,7 @@ TEST(KdClip, ZeroDirectionComponentsNeverMakeNaN) {
 
 INSTANTIATE_TEST_SUITE_P(Traversals, KdTraversalTest,
                          ::testing::Values(kd::Traversal::Stack, kd::Traversal::Restart, kd::Traversal::Backtrack,
-                                           kd::Traversal::PushDown, kd::Traversal::ShortStack),
+                                           kd::Traversal::PushDown, kd::Traversal::ShortStack, kd::Traversal::Ropes),
                          [](const auto& info) {
                              switch (info.param) {
                              case kd::Traversal::Stack: return std::string("Stack");
@@ -431,6 +555,7 @@ INSTANTIATE_TEST_SUITE_P(Traversals, KdTraversalTest,
                              case kd::Traversal::Backtrack: return std::string("Backtrack");
                              case kd::Traversal::PushDown: return std::string("PushDown");
                              case kd::Traversal::ShortStack: return std::string("ShortStack");
+                             case kd::Traversal::Ropes: return std::string("Ropes");
                              }
                              return std::string("Unknown");
                          });
