@@ -27,7 +27,7 @@ std::unique_ptr<BuiltAccel> buildAccel(const Scene& scene, const AccelSpec& spec
                                        const BuildOptions& options) {
     switch (spec.family) {
     case Family::Brute: return std::make_unique<BruteAccel>();
-    case Family::Bvh: return buildBvhAccel(scene, spec.bvh, options);
+    case Family::Bvh: return buildBvhAccel(scene, spec.bvh, spec.bvhStackless, options);
     case Family::Kd: return buildKdAccel(scene, spec.kd, spec.kdTraversal, spec.kdShortStack, options);
     }
     throw Error("accelerator '" + spec.name + "': unknown family");
@@ -36,7 +36,7 @@ std::unique_ptr<BuiltAccel> buildAccel(const Scene& scene, const AccelSpec& spec
 Kernel kernelOf(const AccelSpec& spec) {
     switch (spec.family) {
     case Family::Brute: return Kernel::Brute;
-    case Family::Bvh: return Kernel::Bvh;
+    case Family::Bvh: return spec.bvhStackless ? Kernel::BvhStackless : Kernel::Bvh;
     case Family::Kd: return kdKernel(spec.kdTraversal);
     }
     throw Error("accelerator '" + spec.name + "': unknown family");

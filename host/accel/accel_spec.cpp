@@ -16,6 +16,7 @@ struct AccelEntry {
     Family family;
     bvh::Config bvh;  // Family::Bvh: the preset
     kd::Traversal kdTraversal = kd::Traversal::Restart;
+    bool bvhStackless = false;
 };
 
 // Plain `bvh` is AAC-HQ with two passes of treelet restructuring (Karras and Aila 2013): camera
@@ -28,6 +29,8 @@ const AccelEntry kAccels[] = {
     {"bvh-fast", Family::Bvh, bvh::Config::aacFast()},
     {"bvh-hq", Family::Bvh, bvh::Config::aacHq()},
     {"bvh-sah", Family::Bvh, bvh::Config::binnedSah()},
+    // bvh's tree walked without a stack (Hapala et al. 2011; docs/bvh.md).
+    {"bvh-stackless", Family::Bvh, bvh::Config::aacHqRestructured(), {}, true},
     {"kd-restart", Family::Kd, {}, kd::Traversal::Restart},
     {"kd-pushdown", Family::Kd, {}, kd::Traversal::PushDown},
     {"kd-ropes", Family::Kd, {}, kd::Traversal::Ropes},
@@ -97,6 +100,7 @@ AccelSpec specOf(const AccelEntry& e) {
     spec.family = e.family;
     spec.bvh = e.bvh;
     spec.kdTraversal = e.kdTraversal;
+    spec.bvhStackless = e.bvhStackless;
     return spec;
 }
 

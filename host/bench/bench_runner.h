@@ -17,9 +17,8 @@ namespace vkray::bench {
 struct BenchOptions {
     std::vector<std::string> scenes;
     // Accelerators compared at the scene's maxdepth; each is built and traced on its own.
-    std::vector<std::string> accels = {"bvh",           "bvh-fast",   "bvh-hq",      "kd-stack",
-                                       "kd-shortstack", "kd-restart", "kd-pushdown", "kd-ropes",
-                                       "kd-backtrack"};
+    std::vector<std::string> accels = {"bvh",        "bvh-fast",    "bvh-hq",   "bvh-stackless", "kd-stack",
+                                       "kd-shortstack", "kd-restart", "kd-pushdown", "kd-ropes", "kd-backtrack"};
     int width = 0, height = 0;   // 0: the scene's own size
     // The camera of every scene: "scene", "close" or "EX,EY,EZ,CX,CY,CZ[,FOVY]" (scene/camera.h,
     // viewCamera).

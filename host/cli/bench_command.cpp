@@ -125,7 +125,7 @@ void registerBenchCommand(CLI::App& app, int& exitCode, int argc, const char* co
     auto args = std::make_shared<BenchArgs>();
     cmd->add_option("scenes", args->scenes, "Scene files")->required();
     cmd->add_option("--accel", args->accels,
-                    "Comma-separated accelerators (default bvh,bvh-fast,bvh-hq,kd-stack,kd-shortstack,kd-restart,kd-pushdown,kd-ropes,"
+                    "Comma-separated accelerators (default bvh,bvh-fast,bvh-hq,bvh-stackless,kd-stack,kd-shortstack,kd-restart,kd-pushdown,kd-ropes,"
                     "kd-backtrack)");
     cmd->add_option("--device", args->device, "Vulkan device: index or name substring (see `vkray devices`)");
     cmd->add_option("--size", args->size, "Image size WIDTHxHEIGHT (default: each scene's 'size')");

@@ -14,6 +14,11 @@
 // leaf's first slot in the triangle buffer, which the host fills in leaf order
 // (GpuAccelData.triangleOrder) so a leaf's triangles are contiguous. Unused child slots hold
 // VKRAY_BVH_NO_CHILD.
+//
+// bvh-stackless only: the view VKRAY_BINDING_INDEX_TEXELS (R32UI) holds one parent link per node,
+// parent << 2 | the node's slot in its parent, VKRAY_BVH_NO_PARENT for the root (after Hapala,
+// Davidovic, Wald, Havran and Slusallek, "Efficient Stack-less BVH Traversal for Ray Tracing",
+// SCCG 2011). The stack walk of `bvh` uploads none.
 #ifndef VKRAY_BVH_LAYOUT_H
 #define VKRAY_BVH_LAYOUT_H
 
@@ -43,6 +48,9 @@
 // An unused child slot: a leaf reference no tree can make (VKRAY_BVH_MAX_TRIANGLES keeps
 // first + count below 2^28 - 1).
 #define VKRAY_BVH_NO_CHILD 0xFFFFFFFFu
+// The root's parent link; a link packs a node index in 30 bits and a slot in 2.
+#define VKRAY_BVH_NO_PARENT 0xFFFFFFFFu
+#define VKRAY_BVH_MAX_LINKED_NODES (1u << 30)
 // Texels of VKRAY_BINDING_NODE_TEXELS (RGBA32UI) per node.
 #define VKRAY_BVH_NODE_TEXELS 7
 

@@ -98,7 +98,7 @@ add_test(NAME cli.render_accel.bvh
                  -o ${CLI_OUT}/default-bvh.png --stats)
 set_tests_properties(cli.render_accel.bvh PROPERTIES TIMEOUT 300 ENVIRONMENT "VKRAY_VALIDATION=1"
   FIXTURES_SETUP accel_bvh)
-foreach(accel bvh bvh-fast bvh-hq bvh-sah kd-stack kd-shortstack kd-restart kd-pushdown kd-ropes kd-backtrack)
+foreach(accel bvh bvh-fast bvh-hq bvh-sah bvh-stackless kd-stack kd-shortstack kd-restart kd-pushdown kd-ropes kd-backtrack)
   if(NOT accel STREQUAL "bvh")
     add_test(NAME cli.render_accel.${accel}
              COMMAND ${CLI_DIR}/expect_output.sh "accel ${accel}"
@@ -150,7 +150,7 @@ vkray_expect_error(kd_short_stack_range "--kd-short-stack must be 1..56 \\(got 0
 vkray_expect_error(kd_short_stack_kd_stack "--kd-short-stack applies to kd-shortstack only \\(--accel kd-stack\\)" render ${CLI_DATA}/one_triangle.scene --accel kd-stack --kd-short-stack 2 -o ${CLI_OUT}/x.png)
 vkray_expect_error(aac_delta_absurd "--aac-delta must be 1..1024" render ${CLI_DATA}/one_triangle.scene --aac-delta 1000000 -o ${CLI_OUT}/x.png)
 vkray_expect_error(treelet_passes "--bvh-treelet-passes must be 0..16" render ${CLI_DATA}/one_triangle.scene --bvh-treelet-passes 17 -o ${CLI_OUT}/x.png)
-vkray_expect_error(treelet_min_kd "--bvh-treelet-min applies to bvh, bvh-fast, bvh-hq, bvh-sah only \\(--accel kd-stack\\)" render ${CLI_DATA}/one_triangle.scene --accel kd-stack --bvh-treelet-min 4 -o ${CLI_OUT}/x.png)
+vkray_expect_error(treelet_min_kd "--bvh-treelet-min applies to bvh, bvh-fast, bvh-hq, bvh-sah, bvh-stackless only \\(--accel kd-stack\\)" render ${CLI_DATA}/one_triangle.scene --accel kd-stack --bvh-treelet-min 4 -o ${CLI_OUT}/x.png)
 
 # Hardened input: every case is one "error: " line naming the cause (and file:line where
 # there is one) and a non-zero exit, never a crash, a hang or a silently wrong image. Inputs too

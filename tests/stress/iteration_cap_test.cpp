@@ -33,9 +33,9 @@ Scene oneTriangleScene() {
 
 const glm::vec3 kLo(-2, -2, -1), kHi(2, 2, 1);
 
-accel::GpuAccelData cyclicBvh() {
+accel::GpuAccelData cyclicBvh(accel::Kernel kernel) {
     accel::GpuAccelData data;
-    data.kernel = accel::Kernel::Bvh;
+    data.kernel = kernel;
     // One node whose first child is a leaf (triangle slot 0) and whose second is itself: the leaf is
     // tested, the node popped again, forever.
     gpu::GpuBvhNode node{.loX = gpu::vec4(kLo.x), .hiX = gpu::vec4(kHi.x), .loY = gpu::vec4(kLo.y),
@@ -43,6 +43,8 @@ accel::GpuAccelData cyclicBvh() {
                          .child = gpu::uvec4(VKRAY_BVH_LEAF_BIT, 0u, VKRAY_BVH_NO_CHILD, VKRAY_BVH_NO_CHILD)};
     const std::vector<gpu::GpuBvhNode> nodes = {node};
     data.nodes = accel::asBytes(nodes);
+    // bvh-stackless: the root's parent link; the walk goes down into itself before it ever climbs.
+    if (kernel == accel::Kernel::BvhStackless) data.indices = accel::asBytes(std::vector<uint32_t>{VKRAY_BVH_NO_PARENT});
     return data;
 }
 
@@ -69,7 +71,8 @@ class IterationCap : public ::testing::TestWithParam<accel::Kernel> {};
 TEST_P(IterationCap, RunawayRaysEndAndAreCounted) {
     const Scene scene = oneTriangleScene();
     const accel::Kernel kernel = GetParam();
-    const accel::GpuAccelData data = kernel == accel::Kernel::Bvh ? cyclicBvh() : cyclicKd(kernel);
+    const bool bvh = kernel == accel::Kernel::Bvh || kernel == accel::Kernel::BvhStackless;
+    const accel::GpuAccelData data = bvh ? cyclicBvh(kernel) : cyclicKd(kernel);
     RenderOptions options{.width = kSize, .height = kSize, .maxDepth = 1};
     gpu::GpuRenderReport report;
     const Frame f = gpu::renderOnGpu(test::gpuContext(), scene, options, data, &report);
@@ -81,7 +84,7 @@ TEST_P(IterationCap, RunawayRaysEndAndAreCounted) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Stress, IterationCap,
-                         ::testing::Values(accel::Kernel::Bvh, accel::Kernel::KdStack, accel::Kernel::KdRestart,
+                         ::testing::Values(accel::Kernel::Bvh, accel::Kernel::BvhStackless, accel::Kernel::KdStack, accel::Kernel::KdRestart,
                                            accel::Kernel::KdPushDown, accel::Kernel::KdShortStack, accel::Kernel::KdRopes,
                                            accel::Kernel::KdBacktrack),
                          [](const auto& info) { return std::string(accel::kernelName(info.param)); });

@@ -28,19 +28,21 @@ BinaryTree buildTree(const PrimitiveSet& prims, const Config& config, PhaseLog& 
 
 class BvhAccel final : public accel::BuiltAccel {
 public:
-    BvhAccel(const Config& config, BuildResult result, int threads)
-        : config_(config), flat_(std::move(result.flat)), phases_(std::move(result.phases)),
+    BvhAccel(const Config& config, bool stackless, BuildResult result, int threads)
+        : config_(config), stackless_(stackless), flat_(std::move(result.flat)), phases_(std::move(result.phases)),
           totalMs_(result.totalMs), threads_(threads) {}
 
     std::unique_ptr<geometry::Tracer> makeTracer(const Scene& scene) const override {
-        return std::make_unique<BvhTracer>(flat_, scene.triangles);
+        return std::make_unique<BvhTracer>(flat_, scene.triangles, stackless_);
     }
 
     accel::GpuAccelData gpuData() const override {
         accel::GpuAccelData data;
-        data.kernel = accel::Kernel::Bvh;
+        data.kernel = stackless_ ? accel::Kernel::BvhStackless : accel::Kernel::Bvh;
         data.triangleOrder = flat_.triangleOrder;
-        data.nodes = accel::asBytes(gpuNodes(flat_));
+        const std::vector<gpu::GpuBvhNode> nodes = gpuNodes(flat_);
+        if (stackless_) data.indices = accel::asBytes(gpuParentLinks(nodes));
+        data.nodes = accel::asBytes(nodes);
         data.maxLeafTriangles = uint32_t(config_.maxLeafSize);
         return data;
     }
@@ -69,13 +71,15 @@ public:
         s.push_back({"sah_cost", flat.sahCost, sahUnit(config_)});
         const size_t wide = gpuNodeCount(flat);
         s.push_back({"gpu_nodes", double(wide), std::to_string(VKRAY_BVH_WIDTH) + "-wide nodes of the kernel"});
-        s.push_back({"gpu_bytes", double(wide * sizeof(gpu::GpuBvhNode)),
-                     "bytes: node buffer (triangles, reordered, are uploaded as usual)"});
+        s.push_back({"gpu_bytes", double(wide * (sizeof(gpu::GpuBvhNode) + (stackless_ ? sizeof(uint32_t) : 0))),
+                     stackless_ ? "bytes: node buffer and parent links (triangles, reordered, are uploaded as usual)"
+                                : "bytes: node buffer (triangles, reordered, are uploaded as usual)"});
         return s;
     }
 
 private:
     Config config_;
+    bool stackless_;
     FlatBvh flat_;
     std::vector<std::pair<std::string, double>> phases_;
     double totalMs_;
@@ -117,11 +121,11 @@ BuildResult buildFlatBvh(std::span<const Triangle> triangles, const Config& conf
 
 namespace vkray::accel {
 
-std::unique_ptr<BuiltAccel> buildBvhAccel(const Scene& scene, const bvh::Config& config,
+std::unique_ptr<BuiltAccel> buildBvhAccel(const Scene& scene, const bvh::Config& config, bool stackless,
                                           const BuildOptions& options) {
     if (config.builder == bvh::Config::Builder::Aac) bvh::validateAacConfig(config);
     bvh::BuildResult result = bvh::buildFlatBvh(scene.triangles, config, options.threads, options.progress);
-    return std::make_unique<bvh::BvhAccel>(config, std::move(result), options.threads);
+    return std::make_unique<bvh::BvhAccel>(config, stackless, std::move(result), options.threads);
 }
 
 }  // namespace vkray::accel

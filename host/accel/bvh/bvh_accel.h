@@ -15,7 +15,8 @@
 
 namespace vkray::accel {
 
-std::unique_ptr<BuiltAccel> buildBvhAccel(const Scene& scene, const bvh::Config& config,
+// `stackless`: walked with parent links instead of a stack (bvh-stackless), on the GPU and the CPU.
+std::unique_ptr<BuiltAccel> buildBvhAccel(const Scene& scene, const bvh::Config& config, bool stackless,
                                           const BuildOptions& options);
 
 }  // namespace vkray::accel

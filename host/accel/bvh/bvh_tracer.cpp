@@ -74,12 +74,83 @@ struct BvhTracer::BoxRay {
     }
 };
 
-BvhTracer::BvhTracer(const FlatBvh& bvh, std::span<const Triangle> triangles) : bvh_(bvh) {
+BvhTracer::BvhTracer(const FlatBvh& bvh, std::span<const Triangle> triangles, bool stackless) : bvh_(bvh) {
     triangles_.reserve(bvh_.triangleOrder.size());
     for (uint32_t k : bvh_.triangleOrder) triangles_.push_back(triangles[k]);
     // Near-first traversal keeps at most one far child per level, plus the root.
     stackSize_ = bvh_.maxDepth + 2;
+    if (!stackless) return;
+    parents_.assign(bvh_.nodes.size(), kPrimitive);
+    for (uint32_t i = 0; i < bvh_.nodes.size(); ++i)
+        if (bvh_.nodes[i].count == 0) parents_[i + 1] = parents_[bvh_.nodes[i].rightOrFirst] = i;
 }
+
+// The children of `inner` in the walk's order: along the axis on which their boxes' centres lie
+// furthest apart, the one on the side the ray comes from first (Hapala et al. order by the split
+// axis; a BVH built by clustering has none, and this is its nearest equivalent).
+BvhTracer::Order BvhTracer::order(uint32_t inner, const glm::dvec3& dir) const {
+    const uint32_t left = inner + 1, right = bvh_.nodes[inner].rightOrFirst;
+    const FlatNode &l = bvh_.nodes[left], &r = bvh_.nodes[right];
+    const glm::vec3 gap = (r.lo + r.hi) - (l.lo + l.hi);
+    const int axis = std::abs(gap.x) >= std::abs(gap.y) ? (std::abs(gap.x) >= std::abs(gap.z) ? 0 : 2)
+                                                          : (std::abs(gap.y) >= std::abs(gap.z) ? 1 : 2);
+    const bool leftFirst = (dir[axis] >= 0.0) == (gap[axis] >= 0.0f);
+    return leftFirst ? Order{left, right} : Order{right, left};
+}
+
+// Hapala et al. 2011, section 3: from the parent, a node that is entered is descended into (its
+// near child next) or, a leaf, tested; either way, once done, the walk moves to the far sibling
+// (from the near one) or up (from the far one). Coming up from a child: from the near child on to
+// its sibling, from the far one further up, until the root.
+template <class Limit, class Leaf>
+void BvhTracer::walkStackless(const BoxRay& boxRay, const glm::dvec3& dir, const Limit& limit, const Leaf& leaf,
+                              geometry::TraversalCounters& work) const {
+    enum class From { Parent, Sibling, Child };
+    double tEnter = 0.0;
+    ++work.nodes;
+    if (!boxRay.enters(bvh_.nodes[0], limit(), tEnter)) return;
+    if (bvh_.nodes[0].count > 0) {
+        ++work.leaves;
+        leaf(0u);
+        return;
+    }
+    uint32_t current = order(0, dir).nearChild;
+    From state = From::Parent;
+    for (;;) {
+        ++work.nodes;
+        if (state == From::Child) {
+            if (current == 0) return;
+            const uint32_t parent = parents_[current];
+            const Order o = order(parent, dir);
+            if (current == o.nearChild) {
+                current = o.farChild;
+                state = From::Sibling;
+            } else {
+                current = parent;
+            }
+            continue;
+        }
+        const FlatNode& node = bvh_.nodes[current];
+        const bool entered = boxRay.enters(node, limit(), tEnter);
+        if (entered && node.count == 0) {
+            current = order(current, dir).nearChild;
+            state = From::Parent;
+            continue;
+        }
+        if (entered) {
+            ++work.leaves;
+            if (leaf(current)) return;
+        }
+        if (state == From::Parent) {  // on to the far sibling
+            current = order(parents_[current], dir).farChild;
+            state = From::Sibling;
+        } else {  // the far one done: back up
+            current = parents_[current];
+            state = From::Child;
+        }
+    }
+}
+
 
 geometry::Hit BvhTracer::closest(const geometry::Ray& ray, double tmax, geometry::TraversalCounters* counters) const {
     geometry::Hit best;
@@ -89,7 +160,21 @@ geometry::Hit BvhTracer::closest(const geometry::Ray& ray, double tmax, geometry
     geometry::TraversalCounters work;
     // Hits must be below tmax until one is found, then at most its t (a tie may still win).
     const auto limit = [&] { return best.found() ? best.t : tmax; };
-
+    const auto testLeaf = [&](const FlatNode& node) {
+        for (uint32_t k = node.rightOrFirst; k < node.rightOrFirst + node.count; ++k) {
+            ++work.triangles;
+            const double hi = best.found() ? std::nextafter(best.t, kInf) : tmax;
+            const auto hit = wray.intersect(vertices(k), 0.0, hi);
+            if (!hit) continue;
+            if (!best.found() || hit->t < best.t || original(k) < best.triangle)
+                best = geometry::Hit{original(k), hit->t, hit->b0, hit->b1, hit->b2};
+        }
+    };
+    if (!parents_.empty()) {
+        walkStackless(boxRay, ray.dir, limit, [&](uint32_t node) { testLeaf(bvh_.nodes[node]); return false; }, work);
+        if (counters) *counters += work;
+        return best;
+    }
     TraversalStack stack(stackSize_);
     double tRoot = 0.0;
     if (boxRay.enters(bvh_.nodes[0], tmax, tRoot)) stack.push(0, tRoot);
@@ -100,14 +185,7 @@ geometry::Hit BvhTracer::closest(const geometry::Ray& ray, double tmax, geometry
         ++work.nodes;
         if (node.count > 0) {
             ++work.leaves;
-            for (uint32_t k = node.rightOrFirst; k < node.rightOrFirst + node.count; ++k) {
-                ++work.triangles;
-                const double hi = best.found() ? std::nextafter(best.t, kInf) : tmax;
-                const auto hit = wray.intersect(vertices(k), 0.0, hi);
-                if (!hit) continue;
-                if (!best.found() || hit->t < best.t || original(k) < best.triangle)
-                    best = geometry::Hit{original(k), hit->t, hit->b0, hit->b1, hit->b2};
-            }
+            testLeaf(node);
             continue;
         }
         const uint32_t left = e.node + 1, right = node.rightOrFirst;
@@ -138,6 +216,19 @@ bool BvhTracer::occluded(const geometry::Ray& ray, double tmax, geometry::Traver
     const geometry::WatertightRay wray(ray);
     geometry::TraversalCounters work;
     bool hit = false;
+    const auto testLeaf = [&](const FlatNode& node) {  // any hit ends the search: no ordering needed
+        for (uint32_t k = node.rightOrFirst; k < node.rightOrFirst + node.count && !hit; ++k) {
+            ++work.triangles;
+            hit = wray.intersect(vertices(k), 0.0, tmax).has_value();
+        }
+        return hit;
+    };
+    if (!parents_.empty()) {
+        walkStackless(boxRay, ray.dir, [tmax] { return tmax; }, [&](uint32_t node) { return testLeaf(bvh_.nodes[node]); },
+                      work);
+        if (counters) *counters += work;
+        return hit;
+    }
     TraversalStack stack(stackSize_);
     double tEnter = 0.0;
     if (boxRay.enters(bvh_.nodes[0], tmax, tEnter)) stack.push(0, tEnter);
@@ -145,12 +236,9 @@ bool BvhTracer::occluded(const geometry::Ray& ray, double tmax, geometry::Traver
         const uint32_t id = stack.pop().node;
         const FlatNode& node = bvh_.nodes[id];
         ++work.nodes;
-        if (node.count > 0) {  // any hit ends the search: no ordering needed
+        if (node.count > 0) {
             ++work.leaves;
-            for (uint32_t k = node.rightOrFirst; k < node.rightOrFirst + node.count && !hit; ++k) {
-                ++work.triangles;
-                hit = wray.intersect(vertices(k), 0.0, tmax).has_value();
-            }
+            testLeaf(node);
             continue;
         }
         if (boxRay.enters(bvh_.nodes[node.rightOrFirst], tmax, tEnter)) stack.push(node.rightOrFirst, tEnter);

@@ -9,6 +9,11 @@
 //   than the few ulps by which double-precision t or the watertight test's rounding of p - origin
 //   can move), so a box never rejects a ray that hits a triangle inside it. A direction component
 //   of +-0 is handled exactly: the ray stays in one plane, which lies inside the slab or not.
+// Stackless (bvh-stackless): Hapala, Davidovic, Wald, Havran and Slusallek, "Efficient Stack-less
+// BVH Traversal for Ray Tracing", SCCG 2011: a parent link per node and a three-state automaton
+// (from the parent, from the sibling, from a child) over the binary tree, children in an order
+// fixed per node and ray direction (the axis along which their boxes' centres lie furthest apart);
+// the same box and triangle tests as above, so the same answers.
 #pragma once
 
 #include <cstdint>
@@ -29,13 +34,23 @@ public:
     // Walks `bvh` (the GPU's arrays, which must outlive the tracer) and copies the scene's
     // triangles (triangle-identity order) into leaf order; boxes and vertices are widened to double
     // as they are tested, exactly as BruteForceTracer widens them.
-    BvhTracer(const FlatBvh& bvh, std::span<const Triangle> triangles);
+    BvhTracer(const FlatBvh& bvh, std::span<const Triangle> triangles, bool stackless = false);
 
     geometry::Hit closest(const geometry::Ray& ray, double tmax, geometry::TraversalCounters* counters = nullptr) const override;
     bool occluded(const geometry::Ray& ray, double tmax, geometry::TraversalCounters* counters = nullptr) const override;
 
 private:
     struct BoxRay;
+    struct Order {
+        uint32_t nearChild, farChild;
+    };
+
+    // Hapala et al.'s walk: `leaf(node)` for every leaf whose box the ray enters within `limit()`,
+    // until it returns true.
+    template <class Limit, class Leaf>
+    void walkStackless(const BoxRay& boxRay, const glm::dvec3& dir, const Limit& limit, const Leaf& leaf,
+                       geometry::TraversalCounters& work) const;
+    Order order(uint32_t inner, const glm::dvec3& dir) const;
 
     geometry::TriangleVertices vertices(uint32_t slot) const {
         const Triangle& t = triangles_[slot];
@@ -46,6 +61,7 @@ private:
     const FlatBvh& bvh_;
     std::vector<Triangle> triangles_;  // leaf order
     uint32_t stackSize_ = 0;           // deepest stack a traversal can need
+    std::vector<uint32_t> parents_;    // stackless: each node's parent (the root's: kPrimitive)
 };
 
 }  // namespace vkray::bvh

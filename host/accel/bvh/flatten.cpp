@@ -1,6 +1,7 @@
 #include "accel/bvh/flatten.h"
 
 #include <algorithm>
+#include <string>
 #include <vector>
 
 #include "core/error.h"
@@ -185,6 +186,20 @@ std::vector<gpu::GpuBvhNode> gpuNodes(const FlatBvh& flat) {
     out.reserve(flat.nodes.size() / 4 + 1);
     WideWriter(flat, out).write(0);
     return out;
+}
+
+std::vector<uint32_t> gpuParentLinks(const std::vector<gpu::GpuBvhNode>& nodes) {
+    if (nodes.size() > VKRAY_BVH_MAX_LINKED_NODES)
+        throw Error("the BVH has " + std::to_string(nodes.size()) + " 4-wide nodes; bvh-stackless's parent links name at most " +
+                    std::to_string(VKRAY_BVH_MAX_LINKED_NODES));
+    std::vector<uint32_t> links(nodes.size(), VKRAY_BVH_NO_PARENT);
+    for (size_t i = 0; i < nodes.size(); ++i)
+        for (uint32_t slot = 0; slot < VKRAY_BVH_WIDTH; ++slot) {
+            const uint32_t ref = nodes[i].child[slot];
+            if (ref != VKRAY_BVH_NO_CHILD && !(ref & VKRAY_BVH_LEAF_BIT) && ref < links.size())
+                links[ref] = uint32_t(i) << 2 | slot;
+        }
+    return links;
 }
 
 size_t gpuNodeCount(const FlatBvh& flat) {

@@ -3,6 +3,7 @@
 // hit, on random rays, on axis-parallel rays (direction components exactly +-0, many of them in
 // the planes of axis-aligned walls) and on rays aimed exactly at vertices and edge points.
 #include <cmath>
+#include <cstdio>
 #include <cstdint>
 #include <limits>
 #include <memory>
@@ -25,13 +26,16 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 struct Presets {
     std::string name;
     Config config;
+    bool stackless = false;
 };
 
 std::vector<Presets> presets() {
     return {{"bvh", Config::aacHqRestructured()},
             {"bvh-fast", Config::aacFast()},
             {"bvh-hq", Config::aacHq()},
-            {"bvh-sah", Config::binnedSah()}};
+            {"bvh-sah", Config::binnedSah()},
+            {"bvh-stackless", Config::aacHqRestructured(), true},
+            {"bvh-fast stackless", Config::aacFast(), true}};
 }
 
 std::vector<geometry::Ray> randomRays(uint32_t seed, int count) {
@@ -140,7 +144,7 @@ TEST(BvhTracer, SameHitsAsBruteForce) {
         for (const Presets& p : presets()) {
             SCOPED_TRACE(mesh.name + " / " + p.name);
             const FlatBvh flat = buildFlatBvh(mesh.scene.triangles, p.config).flat;
-            const BvhTracer bvh(flat, mesh.scene.triangles);
+            const BvhTracer bvh(flat, mesh.scene.triangles, p.stackless);
             Agreement random_, axis_, edges_;
             expectSameAsBruteForce(bvh, brute, random, tris, random_);
             expectSameAsBruteForce(bvh, brute, axis, tris, axis_);
@@ -158,6 +162,30 @@ TEST(BvhTracer, SameHitsAsBruteForce) {
             }
         }
     }
+}
+
+// Hapala et al.'s automaton tests the boxes the stack walk tests, in another order (fixed per node,
+// not nearest first), so it finds the same hits; it climbs back through every node it left, so it
+// takes more steps (each climb is one). On random rays through a sphere: the same answers, and no
+// more than 4x the steps.
+TEST(BvhTracer, StacklessWalkFindsTheSameHits) {
+    const Scene s = test::uvSphere({0.0f, 0.0f, 0.0f}, 1.0f, 60, 120);
+    const FlatBvh flat = buildFlatBvh(s.triangles, Config::aacHqRestructured()).flat;
+    const BvhTracer stack(flat, s.triangles), stackless(flat, s.triangles, true);
+    geometry::TraversalCounters a, b;
+    int hits = 0;
+    for (const geometry::Ray& ray : randomRays(9, 1000)) {
+        const geometry::Hit want = stack.closest(ray, kInf, &a), got = stackless.closest(ray, kInf, &b);
+        ASSERT_EQ(got.triangle, want.triangle);
+        ASSERT_EQ(got.t, want.t);
+        ASSERT_EQ(stackless.occluded(ray, 1.0), stack.occluded(ray, 1.0));
+        hits += want.found();
+    }
+    std::printf("steps: stack %llu, stackless %llu; leaves %llu, %llu\n", (unsigned long long)a.nodes,
+                (unsigned long long)b.nodes, (unsigned long long)a.leaves, (unsigned long long)b.leaves);
+    EXPECT_GT(hits, 200);
+    EXPECT_GT(b.nodes, a.nodes);
+    EXPECT_LT(b.nodes, 4 * a.nodes);
 }
 
 TEST(BvhTracer, CountsLessWorkThanBruteForce) {
