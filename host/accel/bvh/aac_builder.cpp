@@ -254,9 +254,13 @@ std::vector<MortonKey> mortonKeys(const PrimitiveSet& prims) {
 }  // namespace
 
 AacReduction::AacReduction(int delta, double epsilon)
-    : c(std::pow(double(delta), 0.5 + epsilon) / 2.0), alpha(0.5 - epsilon) {}
+    : c(std::pow(double(delta), 0.5 + epsilon) / 2.0), alpha(0.5 - epsilon) {
+    constexpr size_t kSmall = 4096;
+    small_.resize(kSmall);
+    for (size_t n = 0; n < kSmall; ++n) small_[n] = uint32_t(compute(n));
+}
 
-size_t AacReduction::operator()(size_t n) const {
+size_t AacReduction::compute(size_t n) const {
     // The tiny slack keeps f(delta) = delta / 2 exact despite pow's rounding.
     const double f = std::floor(c * std::pow(double(n), alpha) + 1e-9);
     return f < 1.0 ? 1 : size_t(f);
