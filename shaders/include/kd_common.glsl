@@ -201,7 +201,8 @@ void kdExitSlab(KdRay r, uint axis, float exitPlane, inout float t1, inout uint 
 }
 
 // Where the ray leaves box [lo, hi], when before (t1, a1): only the far faces, for a box that holds
-// the point where the segment starts (kd-backtrack's ancestors; exitFromBox in kd_traversal.cpp).
+// the point where the segment starts (kd-backtrack's ancestors, kd-ropes' rope nodes; exitFromBox in
+// kd_traversal.cpp).
 // Unrolled: no loop iterations.
 void kdBoxExit(KdRay r, vec3 lo, vec3 hi, inout float t1, inout uint a1, inout KdPass pass) {
     const vec3 exitPlane = mix(lo, hi, greaterThan(r.dir, vec3(0.0)));

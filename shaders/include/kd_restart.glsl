@@ -17,7 +17,7 @@
 // render_kd_ropes.comp defines VKRAY_KD_ROPES): each leaf has its box and, per face, the smallest
 // node holding that whole face on its far side, and every node's box (KdRopeRecord in the extra
 // binding). After a leaf the walk descends from the rope of the exit face, with the rest of the ray
-// clipped to that node's box, not from the root (kdFollowRope).
+// clipped to that node's box, not from the root (kdRopeOf, kdEnterRope).
 #ifndef VKRAY_KD_RESTART_GLSL
 #define VKRAY_KD_RESTART_GLSL
 
@@ -51,38 +51,32 @@ bool kdEntersAt(KdRay r, vec3 lo, vec3 hi, float segMin, uint minAxis, inout KdP
            kdNearSlabHolds(r, 2u, nearPlane.z, segMin, minAxis, pass);
 }
 
-// kd-ropes after leaf `leaf`, whose exit the segment ends at: the rope of the face the ray leaves it
-// by, with the segment from the exit to the pass's end clipped to that node's box (a descent from
-// there crosses only the node's own splits); the root, as kd-restart, when in this pass's order of
-// tied planes the ray is not yet inside that node (it left the leaf exactly through an edge or
-// corner); VKRAY_KD_NO_ROPE off the root box. KdRestartTracer::walkPass is the CPU twin.
-uint kdFollowRope(KdRay r, uint leaf, float passMax, uint passMaxAxis, inout float segMin, inout uint minAxis,
-                  inout float segMax, inout uint maxAxis, inout KdPass pass) {
-    // maxAxis < 3: the pass's end would have ended the pass. Selects, not r.dir[maxAxis].
-    const bool up = (maxAxis == 0u ? r.dir.x : (maxAxis == 1u ? r.dir.y : r.dir.z)) > 0.0;
+// kd-ropes: the rope of the face by which the ray leaves leaf `leaf` along `exitAxis` (< 3: the
+// pass's end would have ended the pass). Selects, not r.dir[exitAxis].
+uint kdRopeOf(KdRay r, uint leaf, uint exitAxis) {
+    const bool up = (exitAxis == 0u ? r.dir.x : (exitAxis == 1u ? r.dir.y : r.dir.z)) > 0.0;
     const int base = int(VKRAY_KD_ROPE_TEXELS * leaf);
-    uint rope;
-    if (maxAxis == 0u) {
-        rope = texelFetch(extraTexels, base + (up ? 1 : 0)).w;
-    } else {
-        const uvec4 yz = texelFetch(extraTexels, base + 2);
-        rope = maxAxis == 1u ? (up ? yz.y : yz.x) : (up ? yz.w : yz.z);
-    }
+    if (exitAxis == 0u) return texelFetch(extraTexels, base + (up ? 1 : 0)).w;
+    const uvec4 yz = texelFetch(extraTexels, base + 2);
+    return exitAxis == 1u ? (up ? yz.y : yz.x) : (up ? yz.w : yz.z);
+}
+
+// kd-ropes: goes on at node `rope` past the leaf whose exit the segment ends at, the segment from
+// the exit to the pass's end clipped to that node's box (a descent from there crosses only the
+// node's own splits). False, and the segment untouched, when in this pass's order of tied planes
+// the ray is not yet inside that node (it left the leaf exactly through an edge or corner): the
+// walk then restarts as kd-restart does. KdRestartTracer::walkPass is the CPU twin.
+bool kdEnterRope(KdRay r, uint rope, float passMax, uint passMaxAxis, inout float segMin, inout uint minAxis,
+                 inout float segMax, inout uint maxAxis, inout KdPass pass) {
+    const int at = int(VKRAY_KD_ROPE_TEXELS * rope);
+    const vec3 lo = uintBitsToFloat(texelFetch(extraTexels, at).xyz), hi = uintBitsToFloat(texelFetch(extraTexels, at + 1).xyz);
+    if (!kdEntersAt(r, lo, hi, segMax, maxAxis, pass)) return false;
     segMin = segMax;
     minAxis = maxAxis;
     segMax = passMax;
     maxAxis = passMaxAxis;
-    if (rope == VKRAY_KD_NO_ROPE) return rope;
-    const int at = int(VKRAY_KD_ROPE_TEXELS * rope);
-    const vec3 lo = uintBitsToFloat(texelFetch(extraTexels, at).xyz), hi = uintBitsToFloat(texelFetch(extraTexels, at + 1).xyz);
-    if (kdEntersAt(r, lo, hi, segMin, minAxis, pass)) {
-        kdBoxExit(r, lo, hi, segMax, maxAxis, pass);
-        return rope;
-    }
-    countRestart();
-    segMax = passMax;
-    maxAxis = passMaxAxis;
-    return 0u;
+    kdBoxExit(r, lo, hi, segMax, maxAxis, pass);
+    return true;
 }
 
 bool kdWalkPass(KdRay r, WatertightRay w, const bool anyHit, float segMin, uint minAxis, float segMax,
@@ -108,11 +102,16 @@ bool kdWalkPass(KdRay r, WatertightRay w, const bool anyHit, float segMin, uint 
         kdVisitLeaf(n, w, anyHit, best);
         if (kdFinished(best, anyHit, segMax) || kdCompare(pass, segMax, maxAxis, globalMax, globalMaxAxis) >= 0) {
             passDone = true;
-        } else if (kKdRopes) {  // on from the rope of the exit face; none: the ray left the tree
-            node = kdFollowRope(r, node, globalMax, globalMaxAxis, segMin, minAxis, segMax, maxAxis, pass);
-            passDone = node == VKRAY_KD_NO_ROPE;
-        } else {  // restart past this leaf, at the root (at the pushed-down node with push-down)
-            node = kdRestart(restart, globalMax, globalMaxAxis, segMin, minAxis, segMax, maxAxis);
+        } else {
+            // kd-ropes: on from the rope of the exit face; none: the ray left the tree. Otherwise (or
+            // when the rope's node does not hold the ray yet) restart past this leaf, at the root (at
+            // the pushed-down node with push-down).
+            const uint rope = kKdRopes ? kdRopeOf(r, node, maxAxis) : VKRAY_KD_NO_ROPE;
+            passDone = kKdRopes && rope == VKRAY_KD_NO_ROPE;
+            if (kKdRopes && !passDone && kdEnterRope(r, rope, globalMax, globalMaxAxis, segMin, minAxis, segMax, maxAxis, pass))
+                node = rope;
+            else if (!passDone)
+                node = kdRestart(restart, globalMax, globalMaxAxis, segMin, minAxis, segMax, maxAxis);
         }
     }
     return passDone;

@@ -1,6 +1,7 @@
 #include "accel/kd/kd_accel.h"
 
 #include <algorithm>
+#include <span>
 #include <string>
 #include <utility>
 
@@ -48,8 +49,8 @@ public:
         const std::vector<std::byte> nodeBytes = asBytes(t.nodes);
         data.nodes.insert(data.nodes.end(), nodeBytes.begin(), nodeBytes.end());
         data.indices = asBytes(t.indices);
-        if (traversal_ == kd::Traversal::Backtrack) data.extra = asBytes(t.extra);
-        if (traversal_ == kd::Traversal::Ropes) data.extra = asBytes(t.ropes);
+        const Extra e = extra();
+        data.extra.assign(e.bytes.begin(), e.bytes.end());
         return data;
     }
 
@@ -59,7 +60,7 @@ public:
         // What gpuData() would upload, counted without copying the arrays.
         const kd::KdTree& t = build_.tree;
         const size_t gpuBytes = sizeof(gpu::KdTreeHeader) + t.nodes.size() * sizeof(gpu::KdNode) +
-                                t.indices.size() * sizeof(uint32_t) + extraBytes();
+                                t.indices.size() * sizeof(uint32_t) + extra().bytes.size();
         std::vector<AccelStat> stats = {
             {"build_ms", ms.totalMs + ropesMs_, "ms"},
             {"build_events_ms", ms.eventsMs, "ms: bounds, events, sort"},
@@ -76,25 +77,26 @@ public:
              "budget " + shortNumber(config_.maxDuplication)},
             {"sah_cost", f.sahCost, config_.describe()},
             {"gpu_bytes", double(gpuBytes), "bytes"},
-            {"extra_bytes", double(extraBytes()), extraWhat()},
+            {"extra_bytes", double(extra().bytes.size()), extra().what},
         };
         if (traversal_ == kd::Traversal::Ropes) stats.insert(stats.begin() + 4, {"build_ropes_ms", ropesMs_, "ms: ropes"});
         return stats;
     }
 
 private:
-    // Parent links and node boxes (kd-backtrack) or leaf boxes and ropes (kd-ropes): only the
+    // Parent links and node boxes (kd-backtrack) or node boxes and leaf ropes (kd-ropes): only the
     // traversal that reads them uploads (and pays for) them.
-    size_t extraBytes() const {
+    struct Extra {
+        std::span<const std::byte> bytes;
+        const char* what;
+    };
+    Extra extra() const {
         const kd::KdTree& t = build_.tree;
-        if (traversal_ == kd::Traversal::Backtrack) return t.extra.size() * sizeof(gpu::KdNodeExtra);
-        if (traversal_ == kd::Traversal::Ropes) return t.ropes.size() * sizeof(gpu::KdRopeRecord);
-        return 0;
-    }
-    std::string extraWhat() const {
-        if (traversal_ == kd::Traversal::Backtrack) return "bytes: parent links and node boxes";
-        if (traversal_ == kd::Traversal::Ropes) return "bytes: node boxes and leaf ropes";
-        return "bytes: none";
+        switch (traversal_) {
+        case kd::Traversal::Backtrack: return {std::as_bytes(std::span(t.extra)), "bytes: parent links and node boxes"};
+        case kd::Traversal::Ropes: return {std::as_bytes(std::span(t.ropes)), "bytes: node boxes and leaf ropes"};
+        default: return {{}, "bytes: none"};
+        }
     }
     uint32_t maxLeafTriangles() const {
         uint32_t most = 0;

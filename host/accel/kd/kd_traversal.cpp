@@ -83,9 +83,13 @@ struct RestartPoint {
         whole = whole && visit != Visit::Both;
         if (whole) node = child;
     }
-    // The segment from the leaf's exit to the pass's end; returns the node to descend from.
+    // The segment from the leaf's exit, where `seg` ends, to the pass's end.
+    static Segment rest(const Segment& seg, const Segment& global) {
+        return {seg.tmax, global.tmax, seg.maxAxis, global.maxAxis};
+    }
+    // The rest of the pass (above); returns the node to descend from.
     uint32_t restart(Segment& seg, const Segment& global) {
-        seg = {seg.tmax, global.tmax, seg.maxAxis, global.maxAxis};
+        seg = rest(seg, global);
         whole = true;
         return node;
     }
@@ -384,21 +388,16 @@ bool KdRestartTracer::walkPass(const geometry::Ray& ray, Segment global, PassSta
         if (from_ == RestartFrom::Rope) {  // before the global end: the exit is a face of the leaf (maxAxis < 3)
             const uint32_t rope = gpu::kdRope(tree_.ropes[node], 2 * seg.maxAxis + (ray.dir[seg.maxAxis] > 0.0 ? 1 : 0));
             if (rope == VKRAY_KD_NO_ROPE) return true;
-            const Segment rest{seg.tmax, global.tmax, seg.maxAxis, global.maxAxis};
             const gpu::KdRopeRecord& box = tree_.ropes[rope];
-            if (entersAt(ray, box.lo, box.hi, rest, pass)) {
+            if (entersAt(ray, box.lo, box.hi, RestartPoint::rest(seg, global), pass)) {
                 node = rope;
-                seg = rest;
-                std::tie(seg.tmax, seg.maxAxis) = exitFromBox(ray, box.lo, box.hi, rest, pass);
+                seg = RestartPoint::rest(seg, global);
+                std::tie(seg.tmax, seg.maxAxis) = exitFromBox(ray, box.lo, box.hi, seg, pass);
                 continue;
             }
             // The ray leaves the leaf exactly through an edge or corner, and in this pass's order of
             // the tied planes it is not yet inside the rope's node (a near face of it counts as
-            // crossed later): go on from the root, as kd-restart does.
-            node = 0;
-            seg = rest;
-            ++c.restarts;
-            continue;
+            // crossed later): it restarts from the root, as kd-restart does.
         }
         node = restart.restart(seg, global);
         ++c.restarts;
