@@ -189,7 +189,7 @@ Structure prepareStructure(const Scene& scene, const RenderOptions& options, con
 
 // Renders with the structure `spec` names: on the GPU of `ctx`, or on the CPU reference when there
 // is none. Fills the build and render parts of `report`. On the GPU the kernel's pipeline is
-// created on a thread while the structure is built (LLVM compiles it on lavapipe: tens of ms).
+// created on a thread while the structure is built (tens of ms on lavapipe).
 Frame renderFrame(const Scene& scene, const RenderOptions& options, const accel::AccelSpec& spec,
                   const gpu::VulkanContext* ctx, AccelFiles& files, bool showProgress, RenderReport& report) {
     std::optional<gpu::KernelCache> kernels;

@@ -320,13 +320,14 @@ void throwIfCutShort(const VulkanContext& ctx, const Scene& scene, accel::Kernel
                 ", or another device; no image was written");
 }
 
-// With VKRAY_KERNEL_DIR set, render_<kernel>.spv from that folder (docs/architecture.md, "Shaders"):
-// a kernel edit is then timed against the built-in one without rebuilding vkray. Empty when unset.
-std::vector<uint32_t> kernelFromDir(accel::Kernel kernel) {
+// With VKRAY_KERNEL_DIR set, render_<kernel>.spv (render_<kernel>_resumable.spv for the resumable
+// variant) from that folder (docs/architecture.md, "Shaders"): a kernel edit is then timed against
+// the built-in one without rebuilding vkray. Empty when unset.
+std::vector<uint32_t> kernelFromDir(accel::Kernel kernel, bool resumable) {
     const char* dir = std::getenv("VKRAY_KERNEL_DIR");
     if (!dir || !*dir) return {};
-    const std::filesystem::path file =
-        std::filesystem::path(dir) / ("render_" + std::string(accel::kernelName(kernel)) + ".spv");
+    const std::filesystem::path file = std::filesystem::path(dir) / ("render_" + std::string(accel::kernelName(kernel)) +
+                                                                     (resumable ? "_resumable.spv" : ".spv"));
     std::ifstream in(file, std::ios::binary | std::ios::ate);
     if (!in) throw Error("VKRAY_KERNEL_DIR: cannot open " + file.string());
     const std::streamsize size = in.tellg();
@@ -355,24 +356,28 @@ ShaderFeatures renderFeatures(const Scene& scene, const RenderOptions& options, 
 
 double prepareKernel(const Scene& scene, const RenderOptions& options, accel::Kernel kernel, KernelCache& kernels) {
     const auto start = Clock::now();
-    kernels.kernel(kernel, renderFeatures(scene, options, 1).specialization());
+    kernels.kernel(kernel, renderFeatures(scene, options, 1));
     return msSince(start);
 }
 
 KernelCache::KernelCache(const VulkanContext& ctx) : ctx_(ctx) {}
 KernelCache::~KernelCache() = default;
 
-std::span<const uint32_t> KernelCache::spirv(accel::Kernel kernel) {
-    auto it = spirvFromFiles_.find(kernel);
-    if (it == spirvFromFiles_.end()) it = spirvFromFiles_.emplace(kernel, kernelFromDir(kernel)).first;
+std::span<const uint32_t> KernelCache::spirv(accel::Kernel kernel, bool resumable) {
+    auto it = spirvFromFiles_.find({kernel, resumable});
+    if (it == spirvFromFiles_.end())
+        it = spirvFromFiles_.emplace(std::pair{kernel, resumable}, kernelFromDir(kernel, resumable)).first;
     if (!it->second.empty()) return it->second;
-    return generated::kRenderKernels[kernelIndex(kernel)].code;
+    const generated::RenderKernelSpirv& k = generated::kRenderKernels[kernelIndex(kernel)];
+    return resumable ? k.resumable : k.code;
 }
 
-ComputeKernel& KernelCache::kernel(accel::Kernel kernel, const Specialization& spec) {
-    auto& slot = kernels_[{kernel, spec.values}];
+ComputeKernel& KernelCache::kernel(accel::Kernel kernel, const ShaderFeatures& features) {
+    const Specialization spec = features.specialization();
+    auto& slot = kernels_[{{kernel, features.resumable}, spec.values}];
     if (!slot)
-        slot = std::make_unique<ComputeKernel>(ctx_, spirv(kernel), kBindingTypes, sizeof(GpuFrameParams), spec);
+        slot = std::make_unique<ComputeKernel>(ctx_, spirv(kernel, features.resumable), kBindingTypes,
+                                               sizeof(GpuFrameParams), spec);
     return *slot;
 }
 
@@ -404,7 +409,7 @@ Frame renderOnGpu(const VulkanContext& ctx, const Scene& scene, const RenderOpti
     rep.features = renderFeatures(scene, options, accel.maxLeafTriangles, accel.kdShortStack);
     std::optional<KernelCache> ownKernels;
     if (!kernels) kernels = &ownKernels.emplace(ctx);
-    ComputeKernel& kernel = kernels->kernel(accel.kernel, rep.features.specialization());
+    ComputeKernel& kernel = kernels->kernel(accel.kernel, rep.features);
     rep.pipelineMs = msSince(start);
 
     const std::vector<Tile> tiles = splitIntoTiles(uint32_t(options.width), uint32_t(options.height));
@@ -426,7 +431,7 @@ Frame renderOnGpu(const VulkanContext& ctx, const Scene& scene, const RenderOpti
     if (!unfinished.empty()) {
         ShaderFeatures resumable = rep.features;
         resumable.resumable = true;
-        ComputeKernel& again = kernels->kernel(accel.kernel, resumable.specialization());
+        ComputeKernel& again = kernels->kernel(accel.kernel, resumable);
         renderResumable(ctx, again, resumable, sceneBuffers, accelBuffers, pixels, unfinished, options.maxDepth,
                         baseParams, frame, rep, progress);
     }

@@ -49,8 +49,9 @@ struct GpuRenderReport {
 
 using TileProgress = std::function<void(uint32_t tilesDone, uint32_t tilesTotal)>;
 
-// Render pipelines kept from one render to the next. Creating one costs 0.1-1 s on lavapipe (LLVM
-// compiles the SPIR-V), more than a small render: a benchmark that renders each configuration
+// Render pipelines kept from one render to the next. Creating one costs 25-60 ms on lavapipe (Mesa
+// translates and optimises the SPIR-V; LLVM compiles it at the first dispatch, 0.3 s unless Mesa's
+// disk cache has it), as much as a small render: a benchmark that renders each configuration
 // several times creates each (kernel, specialization) pipeline once. Renders that share a cache
 // must not run at the same time (a kernel has one descriptor set).
 class KernelCache {
@@ -60,17 +61,19 @@ public:
     KernelCache(const KernelCache&) = delete;
     KernelCache& operator=(const KernelCache&) = delete;
 
-    // The pipeline of `kernel` specialised with `spec`. Its SPIR-V is the built-in one, or with
-    // VKRAY_KERNEL_DIR set render_<kernel>.spv from that folder, read once per cache.
-    ComputeKernel& kernel(accel::Kernel kernel, const Specialization& spec);
+    // The pipeline of `kernel` for `features`: its plain or resumable SPIR-V (features.resumable),
+    // specialised with features.specialization(). The SPIR-V is the built-in one, or with
+    // VKRAY_KERNEL_DIR set render_<kernel>[_resumable].spv from that folder, read once per cache.
+    ComputeKernel& kernel(accel::Kernel kernel, const ShaderFeatures& features);
     size_t size() const { return kernels_.size(); }
 
 private:
-    std::span<const uint32_t> spirv(accel::Kernel kernel);
+    using Variant = std::pair<accel::Kernel, bool>;  // the kernel, resumable
+    std::span<const uint32_t> spirv(accel::Kernel kernel, bool resumable);
 
     const VulkanContext& ctx_;
-    std::map<accel::Kernel, std::vector<uint32_t>> spirvFromFiles_;
-    std::map<std::pair<accel::Kernel, std::vector<std::pair<uint32_t, uint32_t>>>, std::unique_ptr<ComputeKernel>> kernels_;
+    std::map<Variant, std::vector<uint32_t>> spirvFromFiles_;
+    std::map<std::pair<Variant, std::vector<std::pair<uint32_t, uint32_t>>>, std::unique_ptr<ComputeKernel>> kernels_;
 };
 
 // What the kernel of a render of `scene` with `options` is specialised with, for a structure whose
@@ -79,8 +82,8 @@ private:
 ShaderFeatures renderFeatures(const Scene& scene, const RenderOptions& options, uint32_t maxLeafTriangles,
                               uint32_t kdShortStack = 0);
 
-// Creates in `kernels` the pipeline that a render of `scene` with `kernel` will use, so that LLVM
-// compiles it while the structure is built: for a structure whose leaves all hold at most
+// Creates in `kernels` the pipeline that a render of `scene` with `kernel` will use, so that the
+// driver compiles it while the structure is built: for a structure whose leaves all hold at most
 // VKRAY_SINGLE_SLOT_LEAF_LIMIT triangles (any BVH; a kd-tree with larger leaves gets its own
 // pipeline in the render). Returns the milliseconds it took.
 double prepareKernel(const Scene& scene, const RenderOptions& options, accel::Kernel kernel, KernelCache& kernels);

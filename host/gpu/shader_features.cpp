@@ -35,7 +35,6 @@ Specialization ShaderFeatures::specialization() const {
     s.set(VKRAY_SPEC_HAS_SMOOTH_NORMALS, smoothNormals);
     s.set(VKRAY_SPEC_COUNT_TRAVERSAL, countTraversal);
     s.set(VKRAY_SPEC_LEAF_SLOTS, singleSlotLeaves ? 1u : 4u);
-    s.set(VKRAY_SPEC_RESUMABLE, resumable);
     s.set(VKRAY_SPEC_PRIMARY_AOVS, primaryAovs);
     s.set(VKRAY_SPEC_KD_SHORT_STACK, uint32_t(kdShortStack));
     return s;

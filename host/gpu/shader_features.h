@@ -26,8 +26,9 @@ struct ShaderFeatures {
     // Leaf loop: one triangle per iteration unless a leaf holds more than
     // VKRAY_SINGLE_SLOT_LEAF_LIMIT (then four, for lavapipe's loop budget).
     bool singleSlotLeaves = true;
-    // Resumable pixels (VKRAY_SPEC_RESUMABLE): specialised only for tiles the plain kernel could not
-    // finish within the driver's loop budget.
+    // Resumable pixels: the kernel's resumable variant (its own SPIR-V, compiled with
+    // VKRAY_RESUMABLE_KERNEL), used only for tiles the plain kernel could not finish within the
+    // driver's loop budget.
     bool resumable = false;
     // kd-shortstack's stack entries (VKRAY_SPEC_KD_SHORT_STACK; the other kernels ignore it).
     int kdShortStack = VKRAY_KD_SHORT_STACK_SIZE;

@@ -14,8 +14,14 @@
 
 layout(constant_id = VKRAY_SPEC_COUNT_TRAVERSAL) const bool COUNT_TRAVERSAL = false;
 // The resumable variant (render_main.glsl, "Resumable pixels"): a traversal cut short is taken up
-// again in the next dispatch instead of flagging the pixel.
-layout(constant_id = VKRAY_SPEC_RESUMABLE) const bool RESUMABLE = false;
+// again in the next dispatch instead of flagging the pixel. Compiled apart (the build defines
+// VKRAY_RESUMABLE_KERNEL for its second SPIR-V of every kernel), not specialised: lavapipe works
+// through the whole SPIR-V before it folds a specialization constant.
+#ifdef VKRAY_RESUMABLE_KERNEL
+const bool RESUMABLE = true;
+#else
+const bool RESUMABLE = false;
+#endif
 
 bool gLoopCutShort = false;
 // Resumable variant: brute force's interrupted traversal (the next slot, 0 = none, and the best hit

@@ -68,19 +68,20 @@ using uvec4 = glm::uvec4;
 // uint: triangles a leaf loop tests per iteration, 1 or 4 (leaf_triangles.glsl): 1 unless the
 // structure has a leaf of more than VKRAY_SINGLE_SLOT_LEAF_LIMIT triangles.
 #define VKRAY_SPEC_LEAF_SLOTS 7
-// bool: the resumable variant (render_main.glsl, "Resumable pixels"): a pixel whose loops run out of
-// the driver's loop budget saves where it is (VKRAY_BINDING_RESUME, _RESUME_RAYS) and goes on in the
-// next dispatch. Off, the saving is compiled out and such a pixel is flagged VKRAY_PIXEL_CUT_SHORT.
-#define VKRAY_SPEC_RESUMABLE 8
+// (Not a specialization constant: the resumable variant of render_main.glsl, "Resumable pixels", in
+// which a pixel whose loops run out of the driver's loop budget saves where it is
+// (VKRAY_BINDING_RESUME, _RESUME_RAYS) and goes on in the next dispatch, is a SPIR-V of its own,
+// compiled with VKRAY_RESUMABLE_KERNEL defined. In the plain one such a pixel is flagged
+// VKRAY_PIXEL_CUT_SHORT.)
 // The resumable variant's own loop budget: passes of a subgroup through its loops' headers per
 // dispatch, below llvmpipe's 65535 to leave room for the few fixed-count loops it does not count.
 #define VKRAY_RESUMABLE_LOOP_BUDGET 60000u
 // bool: write the primary hit's depth, normal and triangle identity (GpuPixel); off when nothing
 // reads them (a render that saves no AOV, a timing run), so the kernel stores 7 words a pixel, not 16.
-#define VKRAY_SPEC_PRIMARY_AOVS 9
+#define VKRAY_SPEC_PRIMARY_AOVS 8
 // int: kd-shortstack's stack entries (kd_stack.glsl; --kd-short-stack, default VKRAY_KD_SHORT_STACK_SIZE).
-#define VKRAY_SPEC_KD_SHORT_STACK 10
-#define VKRAY_SPEC_COUNT 11
+#define VKRAY_SPEC_KD_SHORT_STACK 9
+#define VKRAY_SPEC_COUNT 10
 #define VKRAY_SINGLE_SLOT_LEAF_LIMIT 128
 
 // ---- GpuPixel.flags ------------------------------------------------------------------------------
