@@ -36,7 +36,7 @@ std::unique_ptr<BuiltAccel> buildAccel(const Scene& scene, const AccelSpec& spec
 Kernel kernelOf(const AccelSpec& spec) {
     switch (spec.family) {
     case Family::Brute: return Kernel::Brute;
-    case Family::Bvh: return spec.bvhStackless ? Kernel::BvhStackless : Kernel::Bvh;
+    case Family::Bvh: return bvhKernel(spec.bvh, spec.bvhStackless);
     case Family::Kd: return kdKernel(spec.kdTraversal);
     }
     throw Error("accelerator '" + spec.name + "': unknown family");

@@ -27,16 +27,17 @@ namespace vkray::accel {
 // The GPU render kernels, one per shaders/render_<kernelName()>.comp. gpu/gpu_renderer.cpp checks
 // at compile time that each has its SPIR-V, so a kernel named here and missing there fails the
 // build, not a render.
-enum class Kernel { Brute, Bvh, BvhStackless, KdStack, KdRestart, KdBacktrack, KdPushDown, KdShortStack, KdRopes };
-inline constexpr std::array kKernels{Kernel::Brute,       Kernel::Bvh,          Kernel::BvhStackless,
-                                     Kernel::KdStack,     Kernel::KdRestart,    Kernel::KdBacktrack,
-                                     Kernel::KdPushDown,  Kernel::KdShortStack, Kernel::KdRopes};
+enum class Kernel { Brute, Bvh, BvhStackless, BvhSphere, KdStack, KdRestart, KdBacktrack, KdPushDown, KdShortStack, KdRopes };
+inline constexpr std::array kKernels{Kernel::Brute,      Kernel::Bvh,         Kernel::BvhStackless, Kernel::BvhSphere,
+                                     Kernel::KdStack,    Kernel::KdRestart,   Kernel::KdBacktrack,  Kernel::KdPushDown,
+                                     Kernel::KdShortStack, Kernel::KdRopes};
 
 constexpr std::string_view kernelName(Kernel k) {
     switch (k) {
     case Kernel::Brute: return "brute";
     case Kernel::Bvh: return "bvh";
     case Kernel::BvhStackless: return "bvh_stackless";
+    case Kernel::BvhSphere: return "bvh_sphere";
     case Kernel::KdStack: return "kd_stack";
     case Kernel::KdRestart: return "kd_restart";
     case Kernel::KdBacktrack: return "kd_backtrack";

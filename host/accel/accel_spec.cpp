@@ -31,6 +31,9 @@ const AccelEntry kAccels[] = {
     {"bvh-sah", Family::Bvh, bvh::Config::binnedSah()},
     // bvh's tree walked without a stack (Hapala et al. 2011; docs/bvh.md).
     {"bvh-stackless", Family::Bvh, bvh::Config::aacHqRestructured(), {}, true},
+    // AAC-HQ with sphere containers instead of boxes: Mahmuda 2017's box/sphere experiment
+    // (docs/bvh.md, "Sphere containers").
+    {"bvh-sphere", Family::Bvh, bvh::Config::aacHqSpheres()},
     {"kd-restart", Family::Kd, {}, kd::Traversal::Restart},
     {"kd-pushdown", Family::Kd, {}, kd::Traversal::PushDown},
     {"kd-ropes", Family::Kd, {}, kd::Traversal::Ropes},
@@ -48,6 +51,8 @@ bool isAac(const AccelSpec& s) {
 bool isKd(const AccelSpec& s) { return s.family == Family::Kd; }
 bool isKdShortStack(const AccelSpec& s) { return isKd(s) && s.kdTraversal == kd::Traversal::ShortStack; }
 bool isBvh(const AccelSpec& s) { return s.family == Family::Bvh; }
+// Treelet restructuring prices boxes: not for sphere containers.
+bool isBoxBvh(const AccelSpec& s) { return isBvh(s) && s.bvh.container == bvh::Config::Container::Box; }
 
 // A leaf range is clustered by an all-pairs search, O(delta^2) per merge: the bound keeps a typo from
 // turning a build into hours. The kd costs' bound keeps their products finite.
@@ -58,9 +63,9 @@ const TuningOption kTuning[] = {
      0.0, 0.5, true, false, "--aac-epsilon must be in [0, 0.5) (alpha = 1/2 - epsilon must stay positive)",
      [](AccelSpec& s, double v) { s.bvh.epsilon = v; }},
     {"--bvh-treelet-passes", "BVH: treelet restructuring passes after the build, 0 = none (overrides the preset)",
-     isBvh, 0, 16, false, true, "", [](AccelSpec& s, double v) { s.bvh.treeletPasses = int(v); }},
+     isBoxBvh, 0, 16, false, true, "", [](AccelSpec& s, double v) { s.bvh.treeletPasses = int(v); }},
     {"--bvh-treelet-min", "BVH: smallest subtree, in triangles, whose root is restructured (overrides the preset)",
-     isBvh, 1, 1e9, false, true, "", [](AccelSpec& s, double v) { s.bvh.treeletMinPrimitives = int(v); }},
+     isBoxBvh, 1, 1e9, false, true, "", [](AccelSpec& s, double v) { s.bvh.treeletMinPrimitives = int(v); }},
     {"--kd-traversal-cost", "kd-tree SAH: cost of a traversal step (overrides the default)", isKd, 0.0, 1e9,
      true, false, "--kd-traversal-cost and --kd-intersection-cost must be finite and not negative",
      [](AccelSpec& s, double v) { s.kd.traversalCost = v; }},

@@ -1,6 +1,8 @@
 // What the two walks of the 4-wide BVH share (bvh_traversal.glsl, the stack walk of `bvh`;
-// bvh_stackless.glsl, `bvh-stackless`): the node fetch through the texel view, the slab test of a
-// node's four children, and leaf references. Layout: shared/bvh_layout.h.
+// bvh_stackless.glsl, `bvh-stackless`): the node fetch through the texel view, the test of a node's
+// four children, and leaf references. Layout: shared/bvh_layout.h. A kernel that defines
+// VKRAY_BVH_SPHERES before including this (render_bvh_sphere.comp) walks sphere containers
+// (GpuBvhSphereNode) instead of boxes: only the node type, its fetch and its test change.
 #ifndef VKRAY_BVH_COMMON_GLSL
 #define VKRAY_BVH_COMMON_GLSL
 
@@ -10,6 +12,25 @@
 #include "shared/bvh_layout.h"
 #include "trace_status.glsl"
 
+#ifdef VKRAY_BVH_SPHERES
+#define BvhNode GpuBvhSphereNode
+#else
+#define BvhNode GpuBvhNode
+#endif
+
+#ifdef VKRAY_BVH_SPHERES
+// Node `index`, through the nodes' texel view.
+GpuBvhSphereNode loadBvhNode(uint index) {
+    const int k = int(uint(VKRAY_BVH_SPHERE_NODE_TEXELS) * index);
+    GpuBvhSphereNode n;
+    n.centreX = uintBitsToFloat(texelFetch(nodeTexels, k));
+    n.centreY = uintBitsToFloat(texelFetch(nodeTexels, k + 1));
+    n.centreZ = uintBitsToFloat(texelFetch(nodeTexels, k + 2));
+    n.radius = uintBitsToFloat(texelFetch(nodeTexels, k + 3));
+    n.child = texelFetch(nodeTexels, k + 4);
+    return n;
+}
+#else
 // Node `index`, through the nodes' texel view.
 GpuBvhNode loadBvhNode(uint index) {
     const int k = int(uint(VKRAY_BVH_NODE_TEXELS) * index);
@@ -23,23 +44,29 @@ GpuBvhNode loadBvhNode(uint index) {
     n.child = texelFetch(nodeTexels, k + 6);
     return n;
 }
+#endif
 
 // Below this magnitude a direction component counts as zero: its inverse would overflow.
 const float kFlatDirection = 1.0e-30;
 
-// Per-ray constants of the slab test. A direction component of +-0 gets inverse 0 (never inf, so
-// no 0 * inf = NaN can reach min/max) and a flag: the ray then stays in the plane x_a = origin_a,
-// which is inside the slab for every t or for none.
+// Per-ray constants of the node tests. Slab test: a direction component of +-0 gets inverse 0
+// (never inf, so no 0 * inf = NaN can reach min/max) and a flag: the ray then stays in the plane
+// x_a = origin_a, which is inside the slab for every t or for none. Each kernel keeps only what its
+// test reads.
 struct BoxRay {
     vec3 origin;
     vec3 inv;
     bvec3 flat_;
     vec3 flatExit;  // +inf on a flat axis, 0 otherwise: added to that axis' exit distances
+    vec3 dir;       // sphere test
+    float invDirLength2;
 };
 
 BoxRay makeBoxRay(vec3 origin, vec3 dir) {
     BoxRay r;
     r.origin = origin;
+    r.dir = dir;
+    r.invDirLength2 = 1.0 / dot(dir, dir);
     r.flat_ = lessThan(abs(dir), vec3(kFlatDirection));
     r.inv = mix(1.0 / dir, vec3(0.0), r.flat_);
     r.flatExit = mix(vec3(0.0), vec3(kInfinity), r.flat_);
@@ -62,6 +89,27 @@ void slab4(vec4 lo, vec4 hi, float origin, float inv, bool flatAxis, float flatE
     outside = flatAxis ? dl * dh : vec4(0.0);
 }
 
+#ifdef VKRAY_BVH_SPHERES
+// Which of the node's children's spheres the ray meets for t in [0, tLimit]; tEnter = where it
+// enters each. From the squared distance of the centre to the ray's line, not the quadratic's
+// discriminant, which cancels catastrophically for spheres small against their distance (Haines,
+// Günther and Akenine-Möller, "Precision Improvements for Ray/Sphere Intersection", Ray Tracing
+// Gems, 2019). The radius is widened by the few ulps of |centre - origin| that the line's closest
+// point can be off by, so a sphere never rejects a ray that meets it.
+bvec4 hitsChildren(GpuBvhSphereNode n, BoxRay r, float tLimit, out vec4 tEnter) {
+    const vec4 ox = n.centreX - r.origin.x, oy = n.centreY - r.origin.y, oz = n.centreZ - r.origin.z;
+    const vec4 tc = (ox * r.dir.x + oy * r.dir.y + oz * r.dir.z) * r.invDirLength2;  // closest approach
+    const vec4 lx = ox - tc * r.dir.x, ly = oy - tc * r.dir.y, lz = oz - tc * r.dir.z;
+    const vec4 dist2 = lx * lx + ly * ly + lz * lz;
+    const vec4 radius = n.radius * kRoundingSlack + 1.0e-6 * (abs(ox) + abs(oy) + abs(oz));
+    const vec4 h2 = radius * radius - dist2;
+    const vec4 half_ = sqrt(max(h2, vec4(0.0)) * r.invDirLength2);
+    tEnter = max(tc - half_, vec4(0.0));
+    const vec4 tExit = min(tc + half_, vec4(tLimit)) * kRoundingSlack;
+    return bvec4(uvec4(lessThanEqual(tEnter, tExit)) * uvec4(greaterThanEqual(h2, vec4(0.0))) *
+                 uvec4(notEqual(n.child, uvec4(VKRAY_BVH_NO_CHILD))));
+}
+#else
 // Which of the node's children the ray meets for t in [0, tLimit]; tEnter = where it enters each.
 bvec4 hitsChildren(GpuBvhNode n, BoxRay r, float tLimit, out vec4 tEnter) {
     vec4 nearX, farX, nearY, farY, nearZ, farZ, outX, outY, outZ;
@@ -75,6 +123,7 @@ bvec4 hitsChildren(GpuBvhNode n, BoxRay r, float tLimit, out vec4 tEnter) {
     return bvec4(uvec4(lessThanEqual(tEnter, tExit)) * uvec4(lessThanEqual(outside, vec4(0.0))) *
                  uvec4(notEqual(n.child, uvec4(VKRAY_BVH_NO_CHILD))));
 }
+#endif
 
 // Leaves are runs of the triangle buffer in leaf order: Hit.triangle is a slot of it.
 uint slotTriangle(uint slot) { return slot; }

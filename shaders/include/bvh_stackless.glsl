@@ -54,7 +54,7 @@ Hit bvhStacklessTrace(vec3 origin, vec3 dir, float tmax, const bool anyHit) {
         uint leaf = VKRAY_BVH_NO_CHILD;
         for (; budgetLeft() && !done && leaf == VKRAY_BVH_NO_CHILD && iteration < VKRAY_BVH_MAX_ITERATIONS; ++iteration) {
             countNode();
-            const GpuBvhNode n = loadBvhNode(node);
+            const BvhNode n = loadBvhNode(node);
             vec4 tEnter;
             const bvec4 hit = hitsChildren(n, boxRay, best.t, tEnter);
             const int next = bvhNextChild(hit, anyHit ? vec4(0.0) : tEnter, from);

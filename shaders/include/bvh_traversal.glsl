@@ -82,7 +82,7 @@ Hit bvhTrace(vec3 origin, vec3 dir, float tmax, const bool anyHit) {
              ++iteration) {
             if (haveRef) {
                 countNode();
-                const GpuBvhNode n = loadBvhNode(ref);
+                const BvhNode n = loadBvhNode(ref);
                 vec4 tEnter;
                 const bvec4 hit = hitsChildren(n, boxRay, best.t, tEnter);
                 vec4 key;

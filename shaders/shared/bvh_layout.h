@@ -53,6 +53,7 @@
 #define VKRAY_BVH_MAX_LINKED_NODES (1u << 30)
 // Texels of VKRAY_BINDING_NODE_TEXELS (RGBA32UI) per node.
 #define VKRAY_BVH_NODE_TEXELS 7
+#define VKRAY_BVH_SPHERE_NODE_TEXELS 5
 
 #ifdef __cplusplus
 namespace vkray::gpu {
@@ -68,7 +69,18 @@ VKRAY_BVH_STRUCT(GpuBvhNode) {  // 112 bytes: seven 16-byte slots
     uvec4 child;    // children 0-3: references, VKRAY_BVH_NO_CHILD where unused
 };
 
+// bvh-sphere (sphere containers, after Mahmuda 2017's box/sphere experiment): the same tree shape
+// and references, each child bounded by a sphere instead of a box. The host rounds every radius
+// up (accel/bvh/sphere_bounds.h); an unused slot's sphere is never tested.
+VKRAY_BVH_STRUCT(GpuBvhSphereNode) {  // 80 bytes: five 16-byte slots
+    vec4 centreX, centreY, centreZ;  // children 0-3: sphere centres
+    vec4 radius;
+    uvec4 child;
+};
+
 #ifdef __cplusplus
+static_assert(sizeof(GpuBvhSphereNode) == 16 * VKRAY_BVH_SPHERE_NODE_TEXELS && offsetof(GpuBvhSphereNode, radius) == 48 &&
+              offsetof(GpuBvhSphereNode, child) == 64);
 static_assert(sizeof(GpuBvhNode) == 16 * VKRAY_BVH_NODE_TEXELS && offsetof(GpuBvhNode, hiX) == 16 &&
               offsetof(GpuBvhNode, loY) == 32 && offsetof(GpuBvhNode, loZ) == 64 &&
               offsetof(GpuBvhNode, child) == 96);

@@ -19,7 +19,7 @@ namespace {
 
 TEST(Accel, EveryNameResolvesToItsFamilyAndTraversal) {
     for (const std::string name :
-         {"bvh", "bvh-fast", "bvh-hq", "bvh-stackless", "kd-restart", "kd-pushdown", "kd-ropes", "kd-backtrack", "kd-stack", "kd-shortstack",
+         {"bvh", "bvh-fast", "bvh-hq", "bvh-stackless", "bvh-sphere", "kd-restart", "kd-pushdown", "kd-ropes", "kd-backtrack", "kd-stack", "kd-shortstack",
           "brute"})
         EXPECT_NE(std::find(accelNames().begin(), accelNames().end(), name), accelNames().end()) << name;
     EXPECT_EQ(resolveAccel("brute").family, Family::Brute);
@@ -92,7 +92,9 @@ TEST(AccelSpec, EveryTuningOptionIsRangeCheckedAndNamed) {
     expectError("kd-restart", "--kd-max-depth", kd::KdConfig::kMaxDepthLimit + 1, "must be 1..56");
     expectError("kd-restart", "--kd-max-depth", 0, "must be 1..56");
     expectError("bvh", "--kd-max-depth", 10, "applies to kd-restart, kd-pushdown, kd-ropes, kd-backtrack, kd-stack, kd-shortstack only");
-    expectError("kd-stack", "--aac-delta", 8, "applies to bvh, bvh-fast, bvh-hq, bvh-stackless only");
+    expectError("kd-stack", "--aac-delta", 8, "applies to bvh, bvh-fast, bvh-hq, bvh-stackless, bvh-sphere only");
+    // Treelet restructuring prices boxes.
+    expectError("bvh-sphere", "--bvh-treelet-passes", 2, "applies to bvh, bvh-fast, bvh-hq, bvh-sah, bvh-stackless only");
     expectError("brute", "--kd-empty-bonus", 0.5, "applies to");
     for (const TuningOption& o : tuningOptions()) EXPECT_EQ(o.flag.substr(0, 2), "--") << o.flag;
 }

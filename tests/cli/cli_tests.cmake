@@ -98,7 +98,7 @@ add_test(NAME cli.render_accel.bvh
                  -o ${CLI_OUT}/default-bvh.png --stats)
 set_tests_properties(cli.render_accel.bvh PROPERTIES TIMEOUT 300 ENVIRONMENT "VKRAY_VALIDATION=1"
   FIXTURES_SETUP accel_bvh)
-foreach(accel bvh bvh-fast bvh-hq bvh-sah bvh-stackless kd-stack kd-shortstack kd-restart kd-pushdown kd-ropes kd-backtrack)
+foreach(accel bvh bvh-fast bvh-hq bvh-sah bvh-stackless bvh-sphere kd-stack kd-shortstack kd-restart kd-pushdown kd-ropes kd-backtrack)
   if(NOT accel STREQUAL "bvh")
     add_test(NAME cli.render_accel.${accel}
              COMMAND ${CLI_DIR}/expect_output.sh "accel ${accel}"

@@ -51,7 +51,7 @@ TEST_P(BvhOnGpu, SameHitsAndImageAsReferenceAndBrute) {
     const auto built = accel::buildAccel(scene, accel::resolveAccel(c.accel));
     gpu::GpuRenderReport report;
     const Frame gpuFrame = gpu::renderOnGpu(test::gpuContext(), scene, options, built->gpuData(), &report);
-    EXPECT_EQ(report.kernel, c.accel == "bvh-stackless" ? "bvh_stackless" : "bvh");
+    EXPECT_EQ(report.kernel, c.accel == "bvh-stackless" ? "bvh_stackless" : c.accel == "bvh-sphere" ? "bvh_sphere" : "bvh");
     EXPECT_EQ(report.pixelsCutShort, 0u);
     EXPECT_EQ(report.cappedRays, 0u);
     // The CPU reference traces with the same BVH on the CPU, which answers exactly as brute force
@@ -99,7 +99,10 @@ INSTANTIATE_TEST_SUITE_P(Scenes, BvhOnGpu,
                                            BvhCase{"bunny.scene", 160, 120, "bvh-hq", false},
                                            BvhCase{"cornell.scene", 128, 128, "bvh-stackless", true},
                                            BvhCase{"objects.scene", 128, 96, "bvh-stackless", true},
-                                           BvhCase{"bunny.scene", 160, 120, "bvh-stackless", false}),
+                                           BvhCase{"bunny.scene", 160, 120, "bvh-stackless", false},
+                                           BvhCase{"cornell.scene", 128, 128, "bvh-sphere", true},
+                                           BvhCase{"objects.scene", 128, 96, "bvh-sphere", true},
+                                           BvhCase{"bunny.scene", 160, 120, "bvh-sphere", false}),
                          [](const auto& info) {
                              std::string name = std::filesystem::path(info.param.file).stem().string() + "_" +
                                                 info.param.accel;

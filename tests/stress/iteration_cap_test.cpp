@@ -43,6 +43,13 @@ accel::GpuAccelData cyclicBvh(accel::Kernel kernel) {
                          .child = gpu::uvec4(VKRAY_BVH_LEAF_BIT, 0u, VKRAY_BVH_NO_CHILD, VKRAY_BVH_NO_CHILD)};
     const std::vector<gpu::GpuBvhNode> nodes = {node};
     data.nodes = accel::asBytes(nodes);
+    if (kernel == accel::Kernel::BvhSphere) {  // the same two children as spheres holding the box
+        const glm::vec3 c = 0.5f * (kLo + kHi);
+        const float r = glm::length(kHi - kLo);
+        const gpu::GpuBvhSphereNode sphere{.centreX = gpu::vec4(c.x), .centreY = gpu::vec4(c.y),
+                                           .centreZ = gpu::vec4(c.z), .radius = gpu::vec4(r), .child = node.child};
+        data.nodes = accel::asBytes(std::vector<gpu::GpuBvhSphereNode>{sphere});
+    }
     // bvh-stackless: the root's parent link; the walk goes down into itself before it ever climbs.
     if (kernel == accel::Kernel::BvhStackless) data.indices = accel::asBytes(std::vector<uint32_t>{VKRAY_BVH_NO_PARENT});
     return data;
@@ -71,7 +78,7 @@ class IterationCap : public ::testing::TestWithParam<accel::Kernel> {};
 TEST_P(IterationCap, RunawayRaysEndAndAreCounted) {
     const Scene scene = oneTriangleScene();
     const accel::Kernel kernel = GetParam();
-    const bool bvh = kernel == accel::Kernel::Bvh || kernel == accel::Kernel::BvhStackless;
+    const bool bvh = kernel == accel::Kernel::Bvh || kernel == accel::Kernel::BvhStackless || kernel == accel::Kernel::BvhSphere;
     const accel::GpuAccelData data = bvh ? cyclicBvh(kernel) : cyclicKd(kernel);
     RenderOptions options{.width = kSize, .height = kSize, .maxDepth = 1};
     gpu::GpuRenderReport report;
@@ -84,7 +91,7 @@ TEST_P(IterationCap, RunawayRaysEndAndAreCounted) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Stress, IterationCap,
-                         ::testing::Values(accel::Kernel::Bvh, accel::Kernel::BvhStackless, accel::Kernel::KdStack, accel::Kernel::KdRestart,
+                         ::testing::Values(accel::Kernel::Bvh, accel::Kernel::BvhStackless, accel::Kernel::BvhSphere, accel::Kernel::KdStack, accel::Kernel::KdRestart,
                                            accel::Kernel::KdPushDown, accel::Kernel::KdShortStack, accel::Kernel::KdRopes,
                                            accel::Kernel::KdBacktrack),
                          [](const auto& info) { return std::string(accel::kernelName(info.param)); });

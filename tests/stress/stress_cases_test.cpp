@@ -31,8 +31,9 @@
 namespace vkray {
 namespace {
 
-const std::vector<std::string> kAccels = {"brute",         "bvh-fast",   "bvh-hq",      "bvh-stackless", "kd-stack",
-                                          "kd-shortstack", "kd-restart", "kd-pushdown", "kd-ropes",      "kd-backtrack"};
+const std::vector<std::string> kAccels = {"brute",      "bvh-fast",      "bvh-hq",     "bvh-stackless",
+                                          "bvh-sphere", "kd-stack",      "kd-shortstack", "kd-restart",
+                                          "kd-pushdown", "kd-ropes",     "kd-backtrack"};
 
 struct StressCase {
     std::string name;  // test name

@@ -13,6 +13,7 @@
 
 #include "core/fork_join.h"
 #include "accel/bvh/morton.h"
+#include "accel/bvh/sphere_bounds.h"
 #include "core/parallel_alloc.h"
 #include "core/error.h"
 
@@ -30,15 +31,18 @@ constexpr size_t kParallelRange = 1024;
 // search over all partners, the clustering's inner loop, runs as vector instructions.
 struct ClusterScratch {
     std::vector<float> lox, loy, loz, hix, hiy, hiz;
+    std::vector<float> cx, cy, cz, r;  // sphere containers: the clusters' spheres
     std::vector<float> merged;      // findBestMatch: area of the box merging cluster i with each j
     std::vector<uint32_t> closest;  // position of each cluster's closest partner
     std::vector<float> distance;    // area of the box merging it with that partner
     std::vector<uint8_t> stale;     // closest partner merged away: search again
 
     // Room for `count` clusters; grows only (most calls are small ranges of delta primitives).
-    void reserve(size_t count) {
+    void reserve(size_t count, bool spheres) {
         if (lox.size() < count)
             for (std::vector<float>* v : {&lox, &loy, &loz, &hix, &hiy, &hiz, &merged, &distance}) v->resize(count);
+        if (spheres && cx.size() < count)
+            for (std::vector<float>* v : {&cx, &cy, &cz, &r}) v->resize(count);
         if (closest.size() < count) closest.resize(count);
         if (stale.size() < count) stale.resize(count);
         std::fill_n(stale.begin(), count, uint8_t(0));
@@ -48,8 +52,12 @@ struct ClusterScratch {
         lox[i] = b.lo.x, loy[i] = b.lo.y, loz[i] = b.lo.z;
         hix[i] = b.hi.x, hiy[i] = b.hi.y, hiz[i] = b.hi.z;
     }
-    void move(size_t from, size_t to) {
+    Sphere sphere(size_t i) const { return Sphere{{cx[i], cy[i], cz[i]}, r[i]}; }
+    void setSphere(size_t i, const Sphere& sp) { cx[i] = sp.centre.x, cy[i] = sp.centre.y, cz[i] = sp.centre.z, r[i] = sp.radius; }
+    void move(size_t from, size_t to, bool spheres) {
         for (std::vector<float>* v : {&lox, &loy, &loz, &hix, &hiy, &hiz, &distance}) (*v)[to] = (*v)[from];
+        if (spheres)
+            for (std::vector<float>* v : {&cx, &cy, &cz, &r}) (*v)[to] = (*v)[from];
         closest[to] = closest[from];
     }
 };
@@ -59,7 +67,8 @@ public:
     AacBuilder(const PrimitiveSet& prims, const Config& config, std::vector<MortonKey> sortedKeys,
                CollapsedTree* collapsed)
         : prims_(prims), config_(config), keys_(std::move(sortedKeys)), collapsed_(collapsed),
-          reduce_(config.delta, config.epsilon), leafReduction_(reduce_(size_t(config.delta))) {}
+          spheres_(config.container == Config::Container::Sphere), reduce_(config.delta, config.epsilon),
+          leafReduction_(reduce_(size_t(config.delta))) {}
 
     BinaryTree build() {
         const size_t n = keys_.size();
@@ -69,13 +78,15 @@ public:
         resizeFirstTouched(nodes_, 2 * n - 1);
         resizeFirstTouched(clusters_, n);
         resizeFirstTouched(free_, n);
+        if (spheres_) resizeFirstTouched(sphereOf_, 2 * n - 1);
         if (collapsed_) recorder_.emplace(config_, 2 * n - 1);
         makePrimitiveNodes();
         const size_t k = buildRange(0, n);
-        combine(0, k, 1);
+        combineClusters(0, k, 1);
         tree.root = clusters_[0];
-        if (collapsed_) *collapsed_ = recorder_->finish(tree.root, nodes_[tree.root].box);
+        if (collapsed_) *collapsed_ = recorder_->finish(tree.root, area(tree.root));
         tree.nodes = std::move(nodes_);
+        tree.spheres = std::move(sphereOf_);
         return tree;
     }
 
@@ -93,7 +104,14 @@ private:
                 nodes_[i].box = prims_.boxes[prim];
                 nodes_[i].child[0] = prim;
                 nodes_[i].child[1] = kPrimitive;
-                if (recorder_) recorder_->primitive(uint32_t(i), nodes_[i].box);
+                if (recorder_ && !spheres_) recorder_->primitive(uint32_t(i), nodes_[i].box.halfArea());
+            }
+        });
+        if (!spheres_) return;
+        tbb::parallel_for(tbb::blocked_range<size_t>(0, n), [&](const tbb::blocked_range<size_t>& r) {
+            for (size_t i = r.begin(); i < r.end(); ++i) {
+                sphereOf_[i] = prims_.spheres[nodes_[i].child[0]];
+                if (recorder_) recorder_->primitive(uint32_t(i), sphereOf_[i].halfArea());
             }
         });
     }
@@ -118,7 +136,7 @@ private:
             const size_t slots = begin == 0 ? n - 1 : n;
             for (size_t i = begin; i < end; ++i) clusters_[i] = uint32_t(i);
             for (size_t i = 0; i < slots; ++i) free_[begin + i] = uint32_t(first + i);
-            return combine(begin, n, leafReduction_);
+            return combineClusters(begin, n, leafReduction_);
         }
         const size_t mid = splitPoint(begin, end);
         size_t left = 0, right = 0;
@@ -129,7 +147,7 @@ private:
                   clusters_.begin() + std::ptrdiff_t(begin + left));
         std::copy(free_.begin() + std::ptrdiff_t(mid), free_.begin() + std::ptrdiff_t(mid + right),
                   free_.begin() + std::ptrdiff_t(begin + spare(begin, left)));
-        return combine(begin, left + right, reduce_(n));
+        return combineClusters(begin, left + right, reduce_(n));
     }
 
     // Where [begin, end) splits: the first position whose code has the highest differing bit set
@@ -146,14 +164,22 @@ private:
     // The paper's CombineClusters on clusters_[begin, begin + count): merges the closest pair until
     // `target` clusters remain, which it leaves at clusters_[begin, begin + target); the merges
     // take the first free slots of free_[begin, ...), the rest move to its front.
+    // Spheres or boxes decided once per call, so the box clustering's loops carry no test of it.
+    size_t combineClusters(size_t begin, size_t count, size_t target) {
+        return spheres_ ? combine<true>(begin, count, target) : combine<false>(begin, count, target);
+    }
+
+    template <bool Spheres>
     size_t combine(size_t begin, size_t count, size_t target) {
         if (count <= target) return count;
         thread_local ClusterScratch s;
         std::span<uint32_t> ids(clusters_.data() + begin, count);
         uint32_t* slot = free_.data() + begin;
-        s.reserve(count);
+        s.reserve(count, Spheres);
         for (size_t i = 0; i < count; ++i) s.setBox(i, nodes_[ids[i]].box);
-        for (size_t i = 0; i < count; ++i) findBestMatch(s, count, i);
+        if constexpr (Spheres)
+            for (size_t i = 0; i < count; ++i) s.setSphere(i, sphereOf_[ids[i]]);
+        for (size_t i = 0; i < count; ++i) findBestMatch<Spheres>(s, count, i);
 
         size_t k = count;
         while (k > target) {
@@ -167,15 +193,17 @@ private:
             nodes_[node].box = box;
             nodes_[node].child[0] = ids[a];
             nodes_[node].child[1] = ids[b];
-            if (recorder_) recorder_->inner(node, box, ids[a], ids[b]);
+            if constexpr (Spheres) sphereOf_[node] = mergeSpheres(s.sphere(a), s.sphere(b));
+            if (recorder_) recorder_->inner(node, Spheres ? sphereOf_[node].halfArea() : box.halfArea(), ids[a], ids[b]);
 
             // The merged cluster takes the lower position, the last cluster fills the higher one.
             const size_t lo = std::min(a, b), hi = std::max(a, b), last = k - 1;
             ids[lo] = node;
             s.setBox(lo, box);
+            if constexpr (Spheres) s.setSphere(lo, sphereOf_[node]);
             if (hi != last) {
                 ids[hi] = ids[last];
-                s.move(last, hi);
+                s.move(last, hi, Spheres);
             }
             --k;
             if (k == 1) break;
@@ -191,7 +219,7 @@ private:
             for (size_t i = 0; i < k; ++i)
                 if (s.stale[i]) {
                     s.stale[i] = 0;
-                    findBestMatch(s, k, i);
+                    findBestMatch<Spheres>(s, k, i);
                 }
         }
         // count - k merges took count - k slots; the spare(begin, k) left move to the front.
@@ -199,11 +227,37 @@ private:
         return k;
     }
 
-    // The partner of cluster i among the first k whose merged box has the smallest area (the
-    // paper's distance function d); ties to the lowest position. The areas first, for every j in
-    // one loop without branches (vectorised; the same operations, in the same order, as
-    // Aabb::merged(a, b).halfArea() of two non-empty boxes), then the smallest.
+    // Half the surface area of node `id`'s container.
+    double area(size_t id) const { return spheres_ ? sphereOf_[id].halfArea() : nodes_[id].box.halfArea(); }
+
+    // The partner of cluster i among the first k whose merged container has the smallest area (the
+    // paper's distance function d; Mahmuda 2017's "areaWithClosest", for boxes or spheres); ties
+    // to the lowest position.
+    template <bool Spheres>
     static void findBestMatch(ClusterScratch& s, size_t k, size_t i) {
+        if constexpr (Spheres) {
+            mergedSphereAreas(s, k, i);
+        } else {
+            mergedBoxAreas(s, k, i);
+        }
+        float best = std::numeric_limits<float>::infinity();
+        uint32_t partner = i == 0 ? 1u : 0u;
+        float* __restrict area = s.merged.data();
+        area[i] = best;  // not its own partner
+        for (size_t j = 0; j < k; ++j) {
+            if (area[j] < best) {
+                best = area[j];
+                partner = uint32_t(j);
+            }
+        }
+        s.closest[i] = partner;
+        s.distance[i] = best;
+    }
+
+    // The areas of cluster i's box merged with every cluster's, in one loop without branches
+    // (vectorised; the same operations, in the same order, as Aabb::merged(a, b).halfArea() of two
+    // non-empty boxes).
+    static void mergedBoxAreas(ClusterScratch& s, size_t k, size_t i) {
         const float lx = s.lox[i], ly = s.loy[i], lz = s.loz[i], hx = s.hix[i], hy = s.hiy[i], hz = s.hiz[i];
         const float* __restrict lox = s.lox.data();
         const float* __restrict loy = s.loy.data();
@@ -218,17 +272,21 @@ private:
             const float dz = std::max(hz, hiz[j]) - std::min(lz, loz[j]);
             area[j] = dx * dy + dy * dz + dz * dx;
         }
-        float best = std::numeric_limits<float>::infinity();
-        uint32_t partner = i == 0 ? 1u : 0u;
-        area[i] = best;  // not its own partner
+    }
+
+    // The same for spheres: the radius of the sphere merging i's with each (mergedRadius), squared
+    // (the area's constant factor orders nothing).
+    static void mergedSphereAreas(ClusterScratch& s, size_t k, size_t i) {
+        const float x = s.cx[i], y = s.cy[i], z = s.cz[i], ri = s.r[i];
+        const float* __restrict cx = s.cx.data();
+        const float* __restrict cy = s.cy.data();
+        const float* __restrict cz = s.cz.data();
+        const float* __restrict r = s.r.data();
+        float* __restrict area = s.merged.data();
         for (size_t j = 0; j < k; ++j) {
-            if (area[j] < best) {
-                best = area[j];
-                partner = uint32_t(j);
-            }
+            const float m = mergedRadius(x, y, z, ri, cx[j], cy[j], cz[j], r[j]);
+            area[j] = m * m;
         }
-        s.closest[i] = partner;
-        s.distance[i] = best;
     }
 
     const PrimitiveSet& prims_;
@@ -239,6 +297,8 @@ private:
     std::vector<BinaryNode> nodes_;    // primitives at [0, n), then merges in the slots of their ranges
     std::vector<uint32_t> clusters_;   // per range, its current clusters (node ids)
     std::vector<uint32_t> free_;       // per range, its unused merge slots
+    bool spheres_;                     // sphere containers: every node's sphere in sphereOf_
+    std::vector<Sphere> sphereOf_;
     AacReduction reduce_;              // f
     size_t leafReduction_;             // f(delta), computed once: every range of at most delta primitives asks for it
 };

@@ -49,6 +49,20 @@ struct Aabb {
     }
 };
 
+// Bounding sphere in float, for bvh-sphere's containers (the box/sphere experiment of Mahmuda 2017,
+// section 5.3.2): every sphere is rounded outwards when made (sphere_bounds.h), so it holds what it
+// bounds in exact arithmetic.
+struct Sphere {
+    glm::vec3 centre{0.0f};
+    float radius = -1.0f;  // < 0: empty
+
+    bool empty() const { return radius < 0.0f; }
+    // Half the surface area, 2 pi r^2, so that the SAH and AAC's distance compare spheres with
+    // boxes (Aabb::halfArea) in the same unit: a convex body's chance of being hit by a random ray
+    // is proportional to its surface area.
+    float halfArea() const { return empty() ? 0.0f : 6.2831853f * radius * radius; }
+};
+
 // Surface-area-heuristic constants (Goldsmith and Salmon 1987; MacDonald and Booth 1990): the cost
 // of a tree is sum over inner nodes of Ct * A(node) plus sum over leaves of Ci * |leaf| * A(leaf),
 // divided by A(root). Ct = Ci = 1 prices one node visit (two child slab tests) like one
@@ -66,6 +80,11 @@ struct SahConstants {
 struct Config {
     enum class Builder { Aac, BinnedSah };
     Builder builder = Builder::Aac;
+    // What bounds a node: a box, or (bvh-sphere, AAC only, no treelets) a sphere, which AAC's
+    // distance, the leaf collapse and the traversals then use instead (Mahmuda 2017's container
+    // types).
+    enum class Container { Box, Sphere };
+    Container container = Container::Box;
 
     // AAC: the downward phase stops at ranges of at most `delta` primitives (paper's delta, Mahmuda
     // 2017's "threshold"); each level keeps f(n) = c * n^alpha clusters of its n primitives, with
@@ -100,6 +119,12 @@ struct Config {
         c.treeletMinPrimitives = 8;
         return c;
     }
+    // AAC-HQ with sphere containers (bvh-sphere).
+    static Config aacHqSpheres() {
+        Config c = aacHq();
+        c.container = Container::Sphere;
+        return c;
+    }
     static Config binnedSah() {
         Config c;
         c.builder = Builder::BinnedSah;
@@ -129,6 +154,7 @@ struct BinaryNode {
 
 struct BinaryTree {
     std::vector<BinaryNode> nodes;
+    std::vector<Sphere> spheres;  // sphere containers only: per node, its bounding sphere
     uint32_t root = 0;
     uint32_t primitives = 0;
 };
@@ -145,6 +171,7 @@ struct FlatNode {
 // depth-first nodes; triangle slot k of the leaves holds scene triangle triangleOrder[k].
 struct FlatBvh {
     std::vector<FlatNode> nodes;
+    std::vector<Sphere> spheres;  // sphere containers only: per node, the sphere the tracers test (not the box)
     std::vector<uint32_t> triangleOrder;
     uint32_t leaves = 0;
     uint32_t maxDepth = 0;  // root = depth 0

@@ -38,11 +38,15 @@ public:
 
     accel::GpuAccelData gpuData() const override {
         accel::GpuAccelData data;
-        data.kernel = stackless_ ? accel::Kernel::BvhStackless : accel::Kernel::Bvh;
+        data.kernel = accel::bvhKernel(config_, stackless_);
         data.triangleOrder = flat_.triangleOrder;
-        const std::vector<gpu::GpuBvhNode> nodes = gpuNodes(flat_);
-        if (stackless_) data.indices = accel::asBytes(gpuParentLinks(nodes));
-        data.nodes = accel::asBytes(nodes);
+        if (spheres()) {
+            data.nodes = accel::asBytes(gpuSphereNodes(flat_));
+        } else {
+            const std::vector<gpu::GpuBvhNode> nodes = gpuNodes(flat_);
+            if (stackless_) data.indices = accel::asBytes(gpuParentLinks(nodes));
+            data.nodes = accel::asBytes(nodes);
+        }
         data.maxLeafTriangles = uint32_t(config_.maxLeafSize);
         return data;
     }
@@ -71,13 +75,16 @@ public:
         s.push_back({"sah_cost", flat.sahCost, sahUnit(config_)});
         const size_t wide = gpuNodeCount(flat);
         s.push_back({"gpu_nodes", double(wide), std::to_string(VKRAY_BVH_WIDTH) + "-wide nodes of the kernel"});
-        s.push_back({"gpu_bytes", double(wide * (sizeof(gpu::GpuBvhNode) + (stackless_ ? sizeof(uint32_t) : 0))),
+        const size_t nodeBytes = spheres() ? sizeof(gpu::GpuBvhSphereNode) : sizeof(gpu::GpuBvhNode);
+        s.push_back({"gpu_bytes", double(wide * (nodeBytes + (stackless_ ? sizeof(uint32_t) : 0))),
                      stackless_ ? "bytes: node buffer and parent links (triangles, reordered, are uploaded as usual)"
                                 : "bytes: node buffer (triangles, reordered, are uploaded as usual)"});
         return s;
     }
 
 private:
+    bool spheres() const { return config_.container == Config::Container::Sphere; }
+
     Config config_;
     bool stackless_;
     FlatBvh flat_;
@@ -90,7 +97,8 @@ private:
 
 std::string Config::describe() const {
     const std::string builderText = builder == Builder::Aac
-                                        ? "AAC delta=" + shortNumber(delta) + " epsilon=" + shortNumber(epsilon)
+                                        ? "AAC delta=" + shortNumber(delta) + " epsilon=" + shortNumber(epsilon) +
+                                              (container == Container::Sphere ? ", sphere containers" : "")
                                         : "binned SAH, " + std::to_string(sahBins) + " bins";
     const std::string treelets = treeletPasses > 0 ? "; " + std::to_string(treeletPasses) +
                                                          " treelet passes from " + std::to_string(treeletMinPrimitives) + " triangles"
@@ -104,7 +112,8 @@ BuildResult buildFlatBvh(std::span<const Triangle> triangles, const Config& conf
     PhaseLog log(std::move(progress));
     tbb::task_arena arena(threads > 0 ? threads : tbb::task_arena::automatic);
     FlatBvh flat = arena.execute([&] {
-        const PrimitiveSet prims = log.run("primitives", 0.05, [&] { return primitivesOf(triangles); });
+        const bool spheres = config.container == Config::Container::Sphere;
+        const PrimitiveSet prims = log.run("primitives", 0.05, [&] { return primitivesOf(triangles, spheres); });
         // AAC records the leaf collapse while it clusters, unless restructuring changes the tree after.
         const bool collapseInBuild = config.builder == Config::Builder::Aac && config.treeletPasses == 0;
         CollapsedTree collapsed;
@@ -121,9 +130,17 @@ BuildResult buildFlatBvh(std::span<const Triangle> triangles, const Config& conf
 
 namespace vkray::accel {
 
+Kernel bvhKernel(const bvh::Config& config, bool stackless) {
+    if (config.container == bvh::Config::Container::Sphere) return Kernel::BvhSphere;
+    return stackless ? Kernel::BvhStackless : Kernel::Bvh;
+}
+
 std::unique_ptr<BuiltAccel> buildBvhAccel(const Scene& scene, const bvh::Config& config, bool stackless,
                                           const BuildOptions& options) {
     if (config.builder == bvh::Config::Builder::Aac) bvh::validateAacConfig(config);
+    if (config.container == bvh::Config::Container::Sphere &&
+        (config.builder != bvh::Config::Builder::Aac || config.treeletPasses > 0 || stackless))
+        throw Error("sphere containers are built by AAC and walked with a stack: no binned SAH, treelets or stackless walk");
     bvh::BuildResult result = bvh::buildFlatBvh(scene.triangles, config, options.threads, options.progress);
     return std::make_unique<bvh::BvhAccel>(config, stackless, std::move(result), options.threads);
 }

@@ -1,6 +1,7 @@
 // Entry point of the bvh family for accel/accel.cpp, and the whole build (builder, leaf collapse,
-// flattening) for tests and benchmarks. The presets (bvh, bvh-fast, bvh-hq, bvh-sah) and their
-// overrides are resolved in accel/accel_spec.cpp; this file builds whatever Config it is given.
+// flattening) for tests and benchmarks. The presets (bvh, bvh-fast, bvh-hq, bvh-sah, bvh-stackless,
+// bvh-sphere) and their overrides are resolved in accel/accel_spec.cpp; this file builds whatever
+// Config it is given.
 #pragma once
 
 #include <memory>
@@ -14,6 +15,9 @@
 #include "core/phase_log.h"
 
 namespace vkray::accel {
+
+// The kernel that walks a BVH of `config` (its container), with a stack or, `stackless`, parent links.
+Kernel bvhKernel(const bvh::Config& config, bool stackless);
 
 // `stackless`: walked with parent links instead of a stack (bvh-stackless), on the GPU and the CPU.
 std::unique_ptr<BuiltAccel> buildBvhAccel(const Scene& scene, const bvh::Config& config, bool stackless,

@@ -45,15 +45,22 @@ struct BvhTracer::BoxRay {
     glm::dvec3 origin, inv;
     bool flat[3];  // direction component +-0 (or so small its inverse overflows)
 
-    explicit BoxRay(const geometry::Ray& ray) : origin(ray.origin) {
+    explicit BoxRay(const geometry::Ray& ray) : origin(ray.origin), dir(ray.dir) {
         for (int a = 0; a < 3; ++a) {
             inv[a] = 1.0 / ray.dir[a];
             flat[a] = std::isinf(inv[a]);
         }
     }
 
-    // Whether the ray meets the box within t in [0, limit]; tEnter = where it enters (widened).
-    bool enters(const FlatNode& node, double limit, double& tEnter) const {
+    glm::dvec3 dir;
+
+    // Whether the ray meets the container of node i (its box, or its sphere when the tree has
+    // spheres) within t in [0, limit]; tEnter = where it enters (widened).
+    bool enters(const FlatBvh& bvh, uint32_t i, double limit, double& tEnter) const {
+        return bvh.spheres.empty() ? entersBox(bvh.nodes[i], limit, tEnter) : entersSphere(bvh.spheres[i], limit, tEnter);
+    }
+
+    bool entersBox(const FlatNode& node, double limit, double& tEnter) const {
         const glm::dvec3 lo(node.lo), hi(node.hi);
         double tNear = -kInf, tFar = kInf;
         for (int a = 0; a < 3; ++a) {
@@ -71,6 +78,25 @@ struct BvhTracer::BoxRay {
         tFar += kSlabSlack * std::abs(tFar);
         tEnter = tNear;
         return tNear <= tFar && tFar >= 0.0 && tNear <= limit;
+    }
+
+    // The sphere test from the centre's squared distance to the ray's line (as the GPU kernel does,
+    // bvh_common.glsl), the radius widened by kSlabSlack and by far more than the rounding of that
+    // distance, the interval as the slab test widens it.
+    bool entersSphere(const Sphere& sphere, double limit, double& tEnter) const {
+        const glm::dvec3 oc = glm::dvec3(sphere.centre) - origin;
+        const double a = glm::dot(dir, dir), tc = glm::dot(oc, dir) / a;
+        const glm::dvec3 l = oc - tc * dir;
+        const double radius = double(sphere.radius) * (1.0 + kSlabSlack) +
+                              1e-12 * (std::abs(oc.x) + std::abs(oc.y) + std::abs(oc.z));
+        const double h2 = radius * radius - glm::dot(l, l);
+        if (h2 < 0.0) return false;
+        const double half = std::sqrt(h2 / a);
+        double tNear = tc - half, tFar = tc + half;
+        tNear -= kSlabSlack * std::abs(tNear);
+        tFar += kSlabSlack * std::abs(tFar);
+        tEnter = tNear;
+        return tFar >= 0.0 && tNear <= limit;
     }
 };
 
@@ -108,7 +134,7 @@ void BvhTracer::walkStackless(const BoxRay& boxRay, const glm::dvec3& dir, const
     enum class From { Parent, Sibling, Child };
     double tEnter = 0.0;
     ++work.nodes;
-    if (!boxRay.enters(bvh_.nodes[0], limit(), tEnter)) return;
+    if (!boxRay.enters(bvh_, 0, limit(), tEnter)) return;
     if (bvh_.nodes[0].count > 0) {
         ++work.leaves;
         leaf(0u);
@@ -131,7 +157,7 @@ void BvhTracer::walkStackless(const BoxRay& boxRay, const glm::dvec3& dir, const
             continue;
         }
         const FlatNode& node = bvh_.nodes[current];
-        const bool entered = boxRay.enters(node, limit(), tEnter);
+        const bool entered = boxRay.enters(bvh_, current, limit(), tEnter);
         if (entered && node.count == 0) {
             current = order(current, dir).nearChild;
             state = From::Parent;
@@ -177,7 +203,7 @@ geometry::Hit BvhTracer::closest(const geometry::Ray& ray, double tmax, geometry
     }
     TraversalStack stack(stackSize_);
     double tRoot = 0.0;
-    if (boxRay.enters(bvh_.nodes[0], tmax, tRoot)) stack.push(0, tRoot);
+    if (boxRay.enters(bvh_, 0, tmax, tRoot)) stack.push(0, tRoot);
     while (!stack.empty()) {
         const StackEntry e = stack.pop();
         if (e.tEnter > limit()) continue;  // a closer hit was found after it was pushed
@@ -190,8 +216,8 @@ geometry::Hit BvhTracer::closest(const geometry::Ray& ray, double tmax, geometry
         }
         const uint32_t left = e.node + 1, right = node.rightOrFirst;
         double tl = 0.0, tr = 0.0;
-        const bool hitLeft = boxRay.enters(bvh_.nodes[left], limit(), tl);
-        const bool hitRight = boxRay.enters(bvh_.nodes[right], limit(), tr);
+        const bool hitLeft = boxRay.enters(bvh_, left, limit(), tl);
+        const bool hitRight = boxRay.enters(bvh_, right, limit(), tr);
         if (hitLeft && hitRight) {  // the nearer child is popped first
             if (tl <= tr) {
                 stack.push(right, tr);
@@ -231,7 +257,7 @@ bool BvhTracer::occluded(const geometry::Ray& ray, double tmax, geometry::Traver
     }
     TraversalStack stack(stackSize_);
     double tEnter = 0.0;
-    if (boxRay.enters(bvh_.nodes[0], tmax, tEnter)) stack.push(0, tEnter);
+    if (boxRay.enters(bvh_, 0, tmax, tEnter)) stack.push(0, tEnter);
     while (!stack.empty() && !hit) {
         const uint32_t id = stack.pop().node;
         const FlatNode& node = bvh_.nodes[id];
@@ -241,8 +267,8 @@ bool BvhTracer::occluded(const geometry::Ray& ray, double tmax, geometry::Traver
             testLeaf(node);
             continue;
         }
-        if (boxRay.enters(bvh_.nodes[node.rightOrFirst], tmax, tEnter)) stack.push(node.rightOrFirst, tEnter);
-        if (boxRay.enters(bvh_.nodes[id + 1], tmax, tEnter)) stack.push(id + 1, tEnter);
+        if (boxRay.enters(bvh_, node.rightOrFirst, tmax, tEnter)) stack.push(node.rightOrFirst, tEnter);
+        if (boxRay.enters(bvh_, id + 1, tmax, tEnter)) stack.push(id + 1, tEnter);
     }
     if (counters) *counters += work;
     return hit;

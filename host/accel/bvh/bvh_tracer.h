@@ -9,6 +9,9 @@
 //   than the few ulps by which double-precision t or the watertight test's rounding of p - origin
 //   can move), so a box never rejects a ray that hits a triangle inside it. A direction component
 //   of +-0 is handled exactly: the ray stays in one plane, which lies inside the slab or not.
+// - a tree with sphere containers (bvh-sphere, FlatBvh::spheres) is walked the same way with a
+//   sphere test instead of the slab test, from the centre's distance to the ray's line, the radius
+//   and the interval widened alike.
 // Stackless (bvh-stackless): Hapala, Davidovic, Wald, Havran and Slusallek, "Efficient Stack-less
 // BVH Traversal for Ray Tracing", SCCG 2011: a parent link per node and a three-state automaton
 // (from the parent, from the sibling, from a child) over the binary tree, children in an order

@@ -35,6 +35,7 @@ public:
             gatherPrimitives(id, first);
             std::sort(out_.triangleOrder.begin() + first, out_.triangleOrder.begin() + first + count);
             out_.nodes[slot] = makeNode(node.box, first, count);
+            if (!tree_.spheres.empty()) out_.spheres[slot] = tree_.spheres[id];
             return depth;
         }
         const uint32_t left = node.child[0], right = node.child[1];
@@ -46,6 +47,7 @@ public:
         const uint32_t rightSlot = slot + 1 + below.flatNodes;
         const uint32_t rightFirst = first + below.primitives;
         out_.nodes[slot] = makeNode(node.box, rightSlot, 0);
+        if (!tree_.spheres.empty()) out_.spheres[slot] = tree_.spheres[id];
         uint32_t dl = 0, dr = 0;
         forkJoin(depth < kParallelDepth, [&] { dl = write(left, slot + 1, first, depth + 1); },
                  [&] { dr = write(right, rightSlot, rightFirst, depth + 1); });
@@ -85,15 +87,44 @@ uint32_t leafRef(const FlatNode& leaf) {
     return VKRAY_BVH_LEAF_BIT | ((leaf.count - 1) << VKRAY_BVH_COUNT_SHIFT) | leaf.rightOrFirst;
 }
 
-float halfArea(const FlatNode& n) {
-    const glm::vec3 d = n.hi - n.lo;
+// Half the surface area of flat node i's container: its box, or its sphere.
+float halfArea(const FlatBvh& flat, uint32_t i) {
+    if (!flat.spheres.empty()) return flat.spheres[i].halfArea();
+    const glm::vec3 d = flat.nodes[i].hi - flat.nodes[i].lo;
     return d.x * d.y + d.y * d.z + d.z * d.x;
 }
 
-// Collapses the binary flat tree into VKRAY_BVH_WIDTH-wide nodes, depth-first.
+// Child slot k of a wide node: the bounds of flat node i (its box, or its sphere).
+void setBounds(gpu::GpuBvhNode& node, int k, const FlatBvh& flat, uint32_t i) {
+    const FlatNode& box = flat.nodes[i];
+    node.loX[k] = box.lo.x;
+    node.loY[k] = box.lo.y;
+    node.loZ[k] = box.lo.z;
+    node.hiX[k] = box.hi.x;
+    node.hiY[k] = box.hi.y;
+    node.hiZ[k] = box.hi.z;
+}
+void setBounds(gpu::GpuBvhSphereNode& node, int k, const FlatBvh& flat, uint32_t i) {
+    const Sphere& sphere = flat.spheres[i];
+    node.centreX[k] = sphere.centre.x;
+    node.centreY[k] = sphere.centre.y;
+    node.centreZ[k] = sphere.centre.z;
+    node.radius[k] = sphere.radius;
+}
+
+template <class Node>
+Node emptyNode() {
+    Node node{};
+    node.child = gpu::uvec4(VKRAY_BVH_NO_CHILD);
+    return node;
+}
+
+// Collapses the binary flat tree into VKRAY_BVH_WIDTH-wide nodes (GpuBvhNode or, for sphere
+// containers, GpuBvhSphereNode), depth-first.
+template <class Node>
 class WideWriter {
 public:
-    WideWriter(const FlatBvh& flat, std::vector<gpu::GpuBvhNode>& out) : flat_(flat), out_(out) {}
+    WideWriter(const FlatBvh& flat, std::vector<Node>& out) : flat_(flat), out_(out) {}
 
     // The wide node of binary inner node `i` and, below it, its subtrees; returns its index.
     uint32_t write(uint32_t i) {
@@ -101,10 +132,10 @@ public:
         out_.emplace_back();
         uint32_t kids[VKRAY_BVH_WIDTH];
         const int n = gather(i, kids);
-        gpu::GpuBvhNode node = emptyNode();
+        Node node = emptyNode<Node>();
         for (int k = 0; k < n; ++k) {
             const FlatNode& kid = flat_.nodes[kids[k]];
-            setBox(node, k, kid);
+            setBounds(node, k, flat_, kids[k]);
             node.child[k] = kid.count > 0 ? leafRef(kid) : write(kids[k]);
         }
         out_[self] = node;
@@ -121,21 +152,6 @@ public:
         return total;
     }
 
-    static gpu::GpuBvhNode emptyNode() {
-        gpu::GpuBvhNode node{};
-        node.child = gpu::uvec4(VKRAY_BVH_NO_CHILD);
-        return node;
-    }
-
-    static void setBox(gpu::GpuBvhNode& node, int k, const FlatNode& box) {
-        node.loX[k] = box.lo.x;
-        node.loY[k] = box.lo.y;
-        node.loZ[k] = box.lo.z;
-        node.hiX[k] = box.hi.x;
-        node.hiY[k] = box.hi.y;
-        node.hiZ[k] = box.hi.z;
-    }
-
 private:
     // The children of inner node i's wide node: its two children, then, while fewer than the width,
     // the inner one of largest surface area replaced by its own two (the choice of Wald, Benthin and
@@ -148,10 +164,9 @@ private:
             int widest = -1;
             float widestArea = -1.0f;
             for (int k = 0; k < n; ++k) {
-                const FlatNode& kid = flat_.nodes[kids[k]];
-                if (kid.count == 0 && halfArea(kid) > widestArea) {
+                if (flat_.nodes[kids[k]].count == 0 && halfArea(flat_, kids[k]) > widestArea) {
                     widest = k;
-                    widestArea = halfArea(kid);
+                    widestArea = halfArea(flat_, kids[k]);
                 }
             }
             if (widest < 0) break;
@@ -165,27 +180,35 @@ private:
     }
 
     const FlatBvh& flat_;
-    std::vector<gpu::GpuBvhNode>& out_;
+    std::vector<Node>& out_;
 };
 
-}  // namespace
-
-std::vector<gpu::GpuBvhNode> gpuNodes(const FlatBvh& flat) {
-    std::vector<gpu::GpuBvhNode> out;
+template <class Node>
+std::vector<Node> wideNodes(const FlatBvh& flat) {
+    std::vector<Node> out;
     if (flat.nodes.empty()) return out;
     if (flat.triangleOrder.size() > VKRAY_BVH_MAX_TRIANGLES)
         throw Error("the BVH holds " + std::to_string(flat.triangleOrder.size()) +
                     " triangles; its GPU layout addresses at most " + std::to_string(VKRAY_BVH_MAX_TRIANGLES));
     if (flat.nodes[0].count > 0) {  // the root is a leaf: one node with one child
-        gpu::GpuBvhNode node = WideWriter::emptyNode();
-        WideWriter::setBox(node, 0, flat.nodes[0]);
+        Node node = emptyNode<Node>();
+        setBounds(node, 0, flat, 0);
         node.child[0] = leafRef(flat.nodes[0]);
         out.push_back(node);
         return out;
     }
     out.reserve(flat.nodes.size() / 4 + 1);
-    WideWriter(flat, out).write(0);
+    WideWriter<Node>(flat, out).write(0);
     return out;
+}
+
+}  // namespace
+
+std::vector<gpu::GpuBvhNode> gpuNodes(const FlatBvh& flat) { return wideNodes<gpu::GpuBvhNode>(flat); }
+
+std::vector<gpu::GpuBvhSphereNode> gpuSphereNodes(const FlatBvh& flat) {
+    if (flat.spheres.size() != flat.nodes.size()) throw Error("internal: a BVH without spheres has no sphere nodes");
+    return wideNodes<gpu::GpuBvhSphereNode>(flat);
 }
 
 std::vector<uint32_t> gpuParentLinks(const std::vector<gpu::GpuBvhNode>& nodes) {
@@ -206,7 +229,7 @@ size_t gpuNodeCount(const FlatBvh& flat) {
     if (flat.nodes.empty()) return 0;
     if (flat.nodes[0].count > 0) return 1;
     std::vector<gpu::GpuBvhNode> unused;
-    return WideWriter(flat, unused).count(0);
+    return WideWriter<gpu::GpuBvhNode>(flat, unused).count(0);
 }
 
 FlatBvh flatten(const BinaryTree& tree, const CollapsedTree& collapsed) {
@@ -214,6 +237,7 @@ FlatBvh flatten(const BinaryTree& tree, const CollapsedTree& collapsed) {
     flat.sahCost = collapsed.sahCost;
     if (tree.nodes.empty()) return flat;
     resizeFirstTouched(flat.nodes, collapsed.nodes[tree.root].flatNodes);
+    if (!tree.spheres.empty()) resizeFirstTouched(flat.spheres, flat.nodes.size());
     resizeFirstTouched(flat.triangleOrder, tree.primitives);
     flat.maxDepth = Flattener(tree, collapsed, flat).write(tree.root, 0, 0, 0);
     flat.leaves = uint32_t((flat.nodes.size() + 1) / 2);  // a full binary tree: leaves = inner nodes + 1

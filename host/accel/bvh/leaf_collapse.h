@@ -24,19 +24,23 @@ struct CollapsedTree {
     double sahCost = 0.0;              // of the collapsed tree, divided by the root's area
 };
 
+// Half the surface area of node `id`'s container: its box, or its sphere when the tree has spheres.
+double containerArea(const BinaryTree& tree, uint32_t id);
+
 // Subtrees build as oneTBB tasks near the root; the result does not depend on the thread count.
 CollapsedTree collapseLeaves(const BinaryTree& tree, const Config& config);
 
 // The same collapse, recorded while a builder makes the tree bottom-up (every node after both its
 // children): no pass over the finished tree, whose nodes are then read again far from any cache.
 // primitive() and inner() may run on several threads for distinct nodes; finish() once, after all.
-// The AAC builder records it when no restructuring follows (aac_builder.h).
+// The AAC builder records it when no restructuring follows (aac_builder.h). `area`: half the
+// surface area of the node's container (containerArea()).
 class CollapseRecorder {
 public:
     CollapseRecorder(const Config& config, size_t nodes);
-    void primitive(uint32_t id, const Aabb& box);
-    void inner(uint32_t id, const Aabb& box, uint32_t left, uint32_t right);
-    CollapsedTree finish(uint32_t root, const Aabb& rootBox);
+    void primitive(uint32_t id, double area);
+    void inner(uint32_t id, double area, uint32_t left, uint32_t right);
+    CollapsedTree finish(uint32_t root, double rootArea);
 
 private:
     const Config& config_;

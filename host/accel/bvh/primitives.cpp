@@ -4,6 +4,7 @@
 #include <tbb/parallel_for.h>
 #include <tbb/parallel_reduce.h>
 
+#include "accel/bvh/sphere_bounds.h"
 #include "core/parallel_alloc.h"
 
 namespace vkray::bvh {
@@ -15,10 +16,11 @@ struct BoundsPair {
 
 }  // namespace
 
-PrimitiveSet primitivesOf(std::span<const Triangle> triangles) {
+PrimitiveSet primitivesOf(std::span<const Triangle> triangles, bool spheres) {
     PrimitiveSet set;
     resizeFirstTouched(set.boxes, triangles.size());
     resizeFirstTouched(set.centroids, triangles.size());
+    if (spheres) resizeFirstTouched(set.spheres, triangles.size());
     using Range = tbb::blocked_range<size_t>;
     const BoundsPair all = tbb::parallel_reduce(
         Range(0, triangles.size(), 4096), BoundsPair{},
@@ -31,6 +33,7 @@ PrimitiveSet primitivesOf(std::span<const Triangle> triangles) {
                 box.grow(t.p2);
                 set.boxes[i] = box;
                 set.centroids[i] = (t.p0 + t.p1 + t.p2) / 3.0f;
+                if (spheres) set.spheres[i] = triangleSphere(t);
                 acc.boxes.grow(box);
                 acc.centroids.grow(set.centroids[i]);
             }

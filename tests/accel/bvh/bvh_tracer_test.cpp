@@ -29,13 +29,20 @@ struct Presets {
     bool stackless = false;
 };
 
+Config spheres(Config c) {
+    c.container = Config::Container::Sphere;
+    return c;
+}
+
 std::vector<Presets> presets() {
     return {{"bvh", Config::aacHqRestructured()},
             {"bvh-fast", Config::aacFast()},
             {"bvh-hq", Config::aacHq()},
             {"bvh-sah", Config::binnedSah()},
             {"bvh-stackless", Config::aacHqRestructured(), true},
-            {"bvh-fast stackless", Config::aacFast(), true}};
+            {"bvh-fast stackless", Config::aacFast(), true},
+            {"bvh-sphere", Config::aacHqSpheres()},
+            {"bvh-fast spheres", spheres(Config::aacFast())}};
 }
 
 std::vector<geometry::Ray> randomRays(uint32_t seed, int count) {
