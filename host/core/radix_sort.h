@@ -24,8 +24,8 @@ inline constexpr uint32_t kBuckets = 1u << kDigitBits;
 inline constexpr size_t kBlock = size_t(1) << 16;
 
 // One stable counting-sort pass on the digit at `shift`, from `in` to `out`.
-template <class T, class Key>
-void countingPass(const std::vector<T>& in, std::vector<T>& out, int shift, const Key& key) {
+template <class T, class A, class Key>
+void countingPass(const std::vector<T, A>& in, std::vector<T, A>& out, int shift, const Key& key) {
     const size_t n = in.size(), blocks = (n + kBlock - 1) / kBlock;
     const auto digit = [&](const T& v) { return uint32_t(key(v) >> shift) & (kBuckets - 1); };
     // counts[b * kBuckets + d]: keys of block b with digit d; becomes the first output slot.
@@ -51,9 +51,9 @@ void countingPass(const std::vector<T>& in, std::vector<T>& out, int shift, cons
 }  // namespace radix_detail
 
 // Sorts `values` stably by bits [lowBit, lowBit + bits) of key(value), a uint64_t.
-template <class T, class Key>
-void radixSortBits(std::vector<T>& values, int lowBit, int bits, const Key& key) {
-    std::vector<T> scratch;
+template <class T, class A, class Key>
+void radixSortBits(std::vector<T, A>& values, int lowBit, int bits, const Key& key) {
+    std::vector<T, A> scratch;
     resizeFirstTouched(scratch, values.size());
     for (int done = 0; done < bits; done += radix_detail::kDigitBits) {
         radix_detail::countingPass(values, scratch, lowBit + done, key);

@@ -64,7 +64,7 @@ struct ClusterScratch {
 
 class AacBuilder {
 public:
-    AacBuilder(const PrimitiveSet& prims, const Config& config, std::vector<MortonKey> sortedKeys,
+    AacBuilder(const PrimitiveSet& prims, const Config& config, BuildArray<MortonKey> sortedKeys,
                CollapsedTree* collapsed)
         : prims_(prims), config_(config), keys_(std::move(sortedKeys)), collapsed_(collapsed),
           spheres_(config.container == Config::Container::Sphere), reduce_(config.delta, config.epsilon),
@@ -291,21 +291,21 @@ private:
 
     const PrimitiveSet& prims_;
     const Config& config_;
-    std::vector<MortonKey> keys_;      // sorted by code
+    BuildArray<MortonKey> keys_;       // sorted by code
     CollapsedTree* collapsed_;         // where the recorded collapse goes, if asked for
     std::optional<CollapseRecorder> recorder_;
-    std::vector<BinaryNode> nodes_;    // primitives at [0, n), then merges in the slots of their ranges
-    std::vector<uint32_t> clusters_;   // per range, its current clusters (node ids)
-    std::vector<uint32_t> free_;       // per range, its unused merge slots
+    BuildArray<BinaryNode> nodes_;    // primitives at [0, n), then merges in the slots of their ranges
+    BuildArray<uint32_t> clusters_;   // per range, its current clusters (node ids)
+    BuildArray<uint32_t> free_;       // per range, its unused merge slots
     bool spheres_;                     // sphere containers: every node's sphere in sphereOf_
     std::vector<Sphere> sphereOf_;
     AacReduction reduce_;              // f
     size_t leafReduction_;             // f(delta), computed once: every range of at most delta primitives asks for it
 };
 
-std::vector<MortonKey> mortonKeys(const PrimitiveSet& prims) {
-    const std::vector<uint32_t> codes = mortonCodes(prims.centroids, prims.centroidBounds);
-    std::vector<MortonKey> keys;
+BuildArray<MortonKey> mortonKeys(const PrimitiveSet& prims) {
+    const BuildArray<uint32_t> codes = mortonCodes(prims.centroids, prims.centroidBounds);
+    BuildArray<MortonKey> keys;
     resizeFirstTouched(keys, codes.size());
     tbb::parallel_for(size_t(0), codes.size(), [&](size_t i) { keys[i] = (MortonKey(codes[i]) << 32) | i; });
     return keys;
@@ -337,7 +337,7 @@ void validateAacConfig(const Config& config) {
 
 BinaryTree buildAac(const PrimitiveSet& prims, const Config& config, PhaseLog& log, CollapsedTree* collapsed) {
     validateAacConfig(config);
-    std::vector<MortonKey> keys = log.run("morton", 0.1, [&] { return mortonKeys(prims); });
+    BuildArray<MortonKey> keys = log.run("morton", 0.1, [&] { return mortonKeys(prims); });
     log.run("sort", 0.2, [&] { radixSortByCode(keys); });
     return log.run("cluster", 0.85, [&] { return AacBuilder(prims, config, std::move(keys), collapsed).build(); });
 }

@@ -14,6 +14,7 @@
 
 #include <glm/glm.hpp>
 
+#include "core/parallel_alloc.h"
 #include "shared/bvh_layout.h"
 
 namespace vkray::bvh {
@@ -153,7 +154,7 @@ struct BinaryNode {
 };
 
 struct BinaryTree {
-    std::vector<BinaryNode> nodes;
+    BuildArray<BinaryNode> nodes;
     std::vector<Sphere> spheres;  // sphere containers only: per node, its bounding sphere
     uint32_t root = 0;
     uint32_t primitives = 0;
@@ -170,7 +171,7 @@ struct FlatNode {
 // The flattened tree the CPU tracer walks and gpuNodes() (flatten.h) turns into the GPU layout:
 // depth-first nodes; triangle slot k of the leaves holds scene triangle triangleOrder[k].
 struct FlatBvh {
-    std::vector<FlatNode> nodes;
+    BuildArray<FlatNode> nodes;
     std::vector<Sphere> spheres;  // sphere containers only: per node, the sphere the tracers test (not the box)
     std::vector<uint32_t> triangleOrder;
     uint32_t leaves = 0;

@@ -88,7 +88,7 @@ void CollapseRecorder::inner(uint32_t id, double area, uint32_t left, uint32_t r
 
 CollapsedTree CollapseRecorder::finish(uint32_t root, double rootArea) {
     out_.sahCost = normalised(cost_[root], rootArea);
-    std::vector<double>().swap(cost_);
+    BuildArray<double>().swap(cost_);
     return std::move(out_);
 }
 

@@ -20,7 +20,7 @@ struct CollapsedNode {
 };
 
 struct CollapsedTree {
-    std::vector<CollapsedNode> nodes;  // indexed like BinaryTree::nodes
+    BuildArray<CollapsedNode> nodes;  // indexed like BinaryTree::nodes
     double sahCost = 0.0;              // of the collapsed tree, divided by the root's area
 };
 
@@ -45,7 +45,7 @@ public:
 private:
     const Config& config_;
     CollapsedTree out_;
-    std::vector<double> cost_;  // per node: SAH cost of its collapsed subtree, not yet divided by the root's area
+    BuildArray<double> cost_;  // per node: SAH cost of its collapsed subtree, not yet divided by the root's area
 };
 
 // The collapse's rule for one node of `count` primitives whose box has half-area `area` and whose

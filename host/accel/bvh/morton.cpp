@@ -36,8 +36,8 @@ uint32_t mortonCode(const glm::vec3& p, const Aabb& bounds) {
     return (expandBits(x) << 2) | (expandBits(y) << 1) | expandBits(z);
 }
 
-std::vector<uint32_t> mortonCodes(std::span<const glm::vec3> centroids, const Aabb& centroidBounds) {
-    std::vector<uint32_t> codes;
+BuildArray<uint32_t> mortonCodes(std::span<const glm::vec3> centroids, const Aabb& centroidBounds) {
+    BuildArray<uint32_t> codes;
     resizeFirstTouched(codes, centroids.size());
     tbb::parallel_for(tbb::blocked_range<size_t>(0, centroids.size(), 4096), [&](const auto& r) {
         for (size_t i = r.begin(); i < r.end(); ++i) codes[i] = mortonCode(centroids[i], centroidBounds);
@@ -45,7 +45,7 @@ std::vector<uint32_t> mortonCodes(std::span<const glm::vec3> centroids, const Aa
     return codes;
 }
 
-void radixSortByCode(std::vector<MortonKey>& keys) {
+void radixSortByCode(BuildArray<MortonKey>& keys) {
     radixSortBits(keys, 32, kMortonBits, [](MortonKey k) { return k; });
 }
 

@@ -27,7 +27,7 @@ uint32_t expandBits(uint32_t v);
 uint32_t mortonCode(const glm::vec3& p, const Aabb& bounds);
 
 // Codes of all centroids within their common bounds, computed in parallel.
-std::vector<uint32_t> mortonCodes(std::span<const glm::vec3> centroids, const Aabb& centroidBounds);
+BuildArray<uint32_t> mortonCodes(std::span<const glm::vec3> centroids, const Aabb& centroidBounds);
 
 // A primitive keyed by its code: code in the high 32 bits, primitive index in the low 32 bits.
 using MortonKey = uint64_t;
@@ -38,6 +38,6 @@ inline uint32_t keyPrimitive(MortonKey k) { return uint32_t(k); }
 // radix sort of 10-bit digits (three passes for 30-bit codes; Mahmuda 2017, section 2.8). Each pass
 // histograms and scatters fixed blocks in parallel (oneTBB); the blocks do not depend on the thread
 // count, and a stable sort has one answer anyway.
-void radixSortByCode(std::vector<MortonKey>& keys);
+void radixSortByCode(BuildArray<MortonKey>& keys);
 
 }  // namespace vkray::bvh

@@ -12,8 +12,8 @@
 namespace vkray::bvh {
 
 struct PrimitiveSet {
-    std::vector<Aabb> boxes;           // per triangle, in triangle-identity order
-    std::vector<glm::vec3> centroids;  // (p0 + p1 + p2) / 3
+    BuildArray<Aabb> boxes;           // per triangle, in triangle-identity order
+    BuildArray<glm::vec3> centroids;  // (p0 + p1 + p2) / 3
     std::vector<Sphere> spheres;       // sphere containers only: per triangle, its smallest sphere
     Aabb bounds;                       // of all boxes
     Aabb centroidBounds;               // of all centroids (Morton codes and SAH bins live in it)

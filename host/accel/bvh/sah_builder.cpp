@@ -177,7 +177,7 @@ private:
     const PrimitiveSet& prims_;
     const Config& config_;
     std::vector<uint32_t> order_;  // primitive indices; each node owns a contiguous run
-    std::vector<BinaryNode> nodes_;
+    BuildArray<BinaryNode> nodes_;
 };
 
 }  // namespace

@@ -45,13 +45,13 @@ TEST(Morton, RadixSortEqualsStableSortAcrossBlocks) {
     // codes must keep their order.
     for (size_t n : {size_t(0), size_t(1), size_t(1000), size_t(65536), size_t(200003)}) {
         std::uniform_int_distribution<uint32_t> code(0, n > 1000 ? (1u << kMortonBits) - 1 : 7u);
-        std::vector<MortonKey> keys(n);
+        BuildArray<MortonKey> keys(n);
         for (size_t i = 0; i < n; ++i) keys[i] = (MortonKey(code(rng)) << 32) | i;
-        std::vector<MortonKey> expected = keys;
+        std::vector<MortonKey> expected(keys.begin(), keys.end());
         std::stable_sort(expected.begin(), expected.end(),
                          [](MortonKey a, MortonKey b) { return keyCode(a) < keyCode(b); });
         radixSortByCode(keys);
-        EXPECT_EQ(keys, expected) << n << " keys";
+        EXPECT_EQ(std::vector<MortonKey>(keys.begin(), keys.end()), expected) << n << " keys";
     }
 }
 
