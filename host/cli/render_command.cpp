@@ -274,6 +274,7 @@ void runRender(const RenderArgs& args) {
     report.output = out.string();
     report.aovs = aovFiles;
     report.options = options;
+    report.totalMs = msSince(t0);
     report.accel = spec.name;
     report.triangles = scene.triangles.size();
     report.materials = scene.materials.size();

@@ -17,6 +17,12 @@ double builtMs(const RenderReport& r) {
     return r.buildMs;
 }
 
+std::string formatMs(double ms) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%.1f ms", ms);
+    return text;
+}
+
 // Compiled-in and left-out kernel features, each sorted by name.
 std::pair<std::string, std::string> featureLists(const gpu::ShaderFeatures& features) {
     std::vector<std::pair<std::string, bool>> list = features.list();
@@ -94,6 +100,7 @@ std::string reportJson(const RenderReport& r) {
     j["origin"] = r.origin;
     j["load_ms"] = r.loadMs;
     j["render_ms"] = r.renderMs;
+    j["total_ms"] = r.totalMs;
     j["output"] = r.output;
     for (const auto& [name, file] : r.aovs) j["aov"][name] = file;
     return j.dump(2);
@@ -103,7 +110,13 @@ void printReport(const RenderReport& r, bool stats) {
     std::printf("device:      %s\n", r.device.c_str());
     std::printf("resolution:  %dx%d, maxdepth %d, accel %s\n", r.options.width, r.options.height,
                 r.options.maxDepth, r.accel.c_str());
-    std::printf("render time: %.1f ms\n", r.renderMs);
+    // The render, and beside it what else the command spent: a big scene's load and build can
+    // take longer than its render.
+    const std::string structure = r.accelFile && r.accelFile->loaded
+                                      ? "structure loaded " + formatMs(r.accelFile->ms)
+                                      : "build " + formatMs(r.buildMs);
+    std::printf("render time: %s (load %s, %s; total %s)\n", formatMs(r.renderMs).c_str(),
+                formatMs(r.loadMs).c_str(), structure.c_str(), formatMs(r.totalMs).c_str());
     std::printf("output:      %s\n", r.output.c_str());
     for (const auto& [name, file] : r.aovs) std::printf("aov %-7s  %s\n", name.c_str(), file.c_str());
     if (r.accelFile)

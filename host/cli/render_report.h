@@ -34,6 +34,7 @@ struct RenderReport {
     size_t triangles = 0, materials = 0, lights = 0;
     std::array<double, 3> origin{};  // Scene::origin: where the scene's local floats are measured from
     double loadMs = 0.0, renderMs = 0.0;
+    double totalMs = 0.0;  // the whole command until the images are written: load, build, render, output
     std::optional<gpu::GpuRenderReport> gpu;  // GPU renders only
 };
 

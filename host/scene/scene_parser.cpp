@@ -9,6 +9,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "core/error.h"
+#include "core/suggest.h"
 #include "scene/generators.h"
 #include "scene/mesh_file.h"
 #include "scene/scene_builder.h"
@@ -198,7 +199,11 @@ void Parser::unknownCommand(const SceneLine& line) const {
         if (lower(c.name) == lower(line.command()))
             line.fail("unknown command " + quoted(line.command()) + " (did you mean '" + std::string(c.name) +
                       "'? commands are case-sensitive)");
-    line.fail("unknown command " + quoted(line.command()));
+    std::vector<std::string_view> names;
+    for (const Command& c : kCommands) names.push_back(c.name);
+    if (const std::optional<std::string> near = closestName(line.command(), names))
+        line.fail("unknown command " + quoted(line.command()) + " (did you mean '" + *near + "'?)");
+    line.fail("unknown command " + quoted(line.command()) + " (the commands are listed in docs/scene-format.md)");
 }
 
 uint32_t Parser::currentMaterial() {

@@ -37,7 +37,12 @@ const std::string kCamera = "camera 0 0 5 0 0 0 0 1 0 ";
 INSTANTIATE_TEST_SUITE_P(
     Commands, SceneErrors,
     testing::Values(
-        ErrorCase{"# ok\nfoo 1 2\n", 2, 1, "unknown command 'foo'"},
+        ErrorCase{"# ok\nfoo 1 2\n", 2, 1, "unknown command 'foo' (the commands are listed in docs/scene-format.md)"},
+        ErrorCase{"sphre 1 2 3 1\n", 1, 1, "unknown command 'sphre' (did you mean 'sphere'?)"},
+        ErrorCase{"vertx 1 2 3\n", 1, 1, "(did you mean 'vertex'?)"},
+        ErrorCase{"difuse 1 1 1\n", 1, 1, "(did you mean 'diffuse'?)"},
+        ErrorCase{"ambiant 1 1 1\n", 1, 1, "(did you mean 'ambient'?)"},
+        ErrorCase{"shinyness 10\n", 1, 1, "(did you mean 'shininess'?)"},
         ErrorCase{"PushTransform\n", 1, 1, "did you mean 'pushTransform'?"},
         ErrorCase{"  Vertex 1 2 3\n", 1, 3, "did you mean 'vertex'?"},
         ErrorCase{"vertex 1 2\n", 1, 1, "expected 3 numbers after 'vertex' (x y z), got 2"},
