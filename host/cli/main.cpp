@@ -1,11 +1,51 @@
-// vkray: command-line entry point. The one place errors become a message and an exit code.
+// vkray: command-line entry point. The one place errors become a message and an exit code: one
+// "error: " line on stderr, exit 2 for a wrong command line (usage), 1 for everything else.
 #include <cstdio>
 #include <exception>
+#include <optional>
+#include <string>
+#include <vector>
 
 #include <CLI/CLI.hpp>
 
 #include "cli/commands.h"
 #include "core/error.h"
+#include "core/suggest.h"
+
+namespace {
+
+constexpr int kUsageExit = 2;
+
+// CLI11's message for a wrong command line, as one line with where to look. Unexpected arguments
+// are listed in the order given (CLI11 2.1's message reverses them).
+std::string usageMessage(const CLI::App& app, const CLI::ParseError& e) {
+    std::string message = e.what(), command = "vkray";
+    const std::vector<CLI::App*> parsed = app.get_subcommands();
+    for (const CLI::App* sub : parsed) command += " " + sub->get_name();
+    const std::vector<std::string> extras = app.remaining(true);
+    if (parsed.empty() && !extras.empty()) {  // not a subcommand: a typo, or no command at all
+        std::vector<std::string> names;
+        for (const CLI::App* sub : app.get_subcommands({})) names.push_back(sub->get_name());
+        const std::optional<std::string> near = vkray::closestName(extras.front(), names);
+        return "unknown command '" + extras.front() + "' (" + (near ? "did you mean '" + *near + "'?" : "see 'vkray --help'") + ")";
+    }
+    if (dynamic_cast<const CLI::ExtrasError*>(&e) && !extras.empty()) {
+        std::string list, hint;
+        for (const std::string& a : extras) {
+            list += (list.empty() ? "" : " ") + a;
+            if (hint.empty() && a.starts_with("--") && !parsed.empty()) {
+                std::vector<std::string> flags;  // long names without their dashes
+                for (const CLI::Option* o : parsed.back()->get_options())
+                    for (const std::string& l : o->get_lnames()) flags.push_back(l);
+                if (const auto near = vkray::closestName(a.substr(2), flags)) hint = "; did you mean --" + *near + "?";
+            }
+        }
+        message = "unexpected argument" + std::string(extras.size() > 1 ? "s" : "") + ": " + list + hint;
+    }
+    return message + " (see '" + command + " --help')";
+}
+
+}  // namespace
 
 int main(int argc, char** argv) {
     CLI::App app{"vkray: a Vulkan compute ray tracer for studying acceleration structures"};
@@ -20,7 +60,9 @@ int main(int argc, char** argv) {
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {
-        return app.exit(e);
+        if (e.get_exit_code() == 0) return app.exit(e);  // --help, --version
+        std::fprintf(stderr, "error: %s\n", usageMessage(app, e).c_str());
+        return kUsageExit;
     } catch (const vkray::Error& e) {
         std::fprintf(stderr, "error: %s\n", e.what());
         return 1;

@@ -300,9 +300,13 @@ void registerRenderCommand(CLI::App& app, int& exitCode) {
     for (const accel::TuningOption& o : accel::tuningOptions())
         cmd->add_option(std::string(o.flag), args->tuning[std::string(o.flag)], std::string(o.help))
             ->type_name(o.integer ? "INT" : "FLOAT");
-    cmd->add_flag("--counters", args->counters, "GPU: compile traversal counters in and report nodes, leaves and triangle tests per ray (slower)");
-    cmd->add_flag("--cpu", args->cpu, "Render with the CPU reference renderer (double precision)");
-    cmd->add_option("--device", args->device, "Vulkan device: index or name substring (see `vkray devices`)");
+    CLI::Option* counters = cmd->add_flag("--counters", args->counters,
+                                          "GPU: compile traversal counters in and report nodes, leaves and triangle tests per ray (slower)");
+    CLI::Option* cpu = cmd->add_flag("--cpu", args->cpu, "Render with the CPU reference renderer (double precision)");
+    CLI::Option* device = cmd->add_option("--device", args->device, "Vulkan device: index or name substring (see `vkray devices`)");
+    // GPU-only flags with --cpu would be silently ignored: refused instead.
+    cpu->excludes(counters);
+    cpu->excludes(device);
     cmd->add_option("--size", args->size, "Image size WIDTHxHEIGHT (overrides the scene's 'size')");
     addViewOption(*cmd, args->view);
     cmd->add_option("--maxdepth", args->maxDepth, "Ray depth, primary rays count as 1 (overrides the scene's)");

@@ -5,6 +5,7 @@
 #include <span>
 #include <string>
 #include <string_view>
+#include <vector>
 
 namespace vkray {
 
@@ -16,5 +17,9 @@ size_t editDistance(std::string_view a, std::string_view b);
 // edits, and at most a third of the typed word's length (rounded up), so `sphre` finds `sphere` and
 // `foo` finds nothing. Ties go to the first in `known`.
 std::optional<std::string> closestName(std::string_view typed, std::span<const std::string_view> known);
+inline std::optional<std::string> closestName(std::string_view typed, const std::vector<std::string>& known) {
+    const std::vector<std::string_view> views(known.begin(), known.end());
+    return closestName(typed, views);
+}
 
 }  // namespace vkray

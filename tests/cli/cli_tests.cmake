@@ -35,6 +35,18 @@ add_test(NAME cli.error.kernel_dir_missing
                  ${CLI_DIR}/expect_error.sh "VKRAY_KERNEL_DIR: cannot open .*render_bvh\\.spv"
                  $<TARGET_FILE:vkray> render ${CLI_DATA}/one_triangle.scene --accel bvh -o ${CLI_OUT}/x.png)
 set_tests_properties(cli.error.kernel_dir_missing PROPERTIES TIMEOUT 180)
+# A wrong command line: one "error: " line like every other error, exit 2 (docs/outputs.md).
+function(vkray_expect_usage_error name pattern)
+  add_test(NAME cli.usage.${name}
+           COMMAND ${CMAKE_COMMAND} -E env EXPECT_RC=2 ${CLI_DIR}/expect_error.sh "${pattern}" $<TARGET_FILE:vkray> ${ARGN})
+  set_tests_properties(cli.usage.${name} PROPERTIES TIMEOUT 60)
+endfunction()
+vkray_expect_usage_error(unexpected_in_order "unexpected arguments: --spp 4 \\(see 'vkray render --help'\\)" render ${CLI_DATA}/one_triangle.scene --spp 4)
+vkray_expect_usage_error(flag_typo "unexpected arguments: --thread 2; did you mean --threads\\?" render ${CLI_DATA}/one_triangle.scene --thread 2)
+vkray_expect_usage_error(command_typo "unknown command 'rendr' \\(did you mean 'render'\\?\\)" rendr ${CLI_DATA}/one_triangle.scene)
+vkray_expect_usage_error(missing_value "--size: 1 required TEXT missing" render ${CLI_DATA}/one_triangle.scene --size)
+vkray_expect_usage_error(cpu_device "--cpu excludes --device" render ${CLI_DATA}/one_triangle.scene --cpu --device 7)
+vkray_expect_usage_error(cpu_counters "--counters excludes --cpu" render ${CLI_DATA}/one_triangle.scene --counters --cpu)
 vkray_expect_error(maxdepth_flag "--maxdepth 0" render ${CLI_DATA}/one_triangle.scene --maxdepth 0 -o ${CLI_OUT}/x.png)
 vkray_expect_error(unknown_accel "--accel warp" render ${CLI_DATA}/one_triangle.scene --accel warp -o ${CLI_OUT}/x.png)
 vkray_expect_error(unknown_aov "unknown AOV 'albedo'" render ${CLI_DATA}/one_triangle.scene --aov albedo=a.pfm -o ${CLI_OUT}/x.png)

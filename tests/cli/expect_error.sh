@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Runs a vkray command that must fail cleanly: a non-zero exit that is not a crash (signal) or a
 # time-out, and exactly one "error: " line on stderr that matches the expected pattern.
-# usage: expect_error.sh PATTERN COMMAND [ARGS...]
+# usage: [EXPECT_RC=N] expect_error.sh PATTERN COMMAND [ARGS...]   (EXPECT_RC: the exit status it must be)
 set -u
 pattern=$1; shift
 command="$*"
@@ -13,6 +13,7 @@ fail() { echo "FAIL: $*"; echo "--- command: $command"; echo "--- stderr:"; cat 
 [[ $rc -eq 0 ]] && fail "exit code 0, expected an error"
 [[ $rc -eq 124 ]] && fail "timed out (a hang)"
 [[ $rc -ge 128 ]] && fail "killed by signal $((rc - 128)) (a crash)"
+[[ -n "${EXPECT_RC:-}" && $rc -ne $EXPECT_RC ]] && fail "exit code $rc, expected $EXPECT_RC"
 # A sanitizer build (`make sanitize`) reports there; such a report is a bug even after a clean error.
 grep -q -E 'Sanitizer|runtime error:' "$err" && fail "a sanitizer report"
 n=$(grep -c '^error: ' "$err")
