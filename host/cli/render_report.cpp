@@ -1,6 +1,8 @@
 #include "cli/render_report.h"
 
 #include <algorithm>
+#include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <utility>
 
@@ -15,6 +17,20 @@ double builtMs(const RenderReport& r) {
     for (const accel::AccelStat& st : r.accelStats)
         if (st.key == "build_ms") return st.value;
     return r.buildMs;
+}
+
+// A statistic that counts something (nodes, leaves, bytes, a depth, a thread count): a whole number,
+// printed as one, never in scientific notation.
+bool isCount(const accel::AccelStat& st) {
+    return !st.key.ends_with("_ms") && std::floor(st.value) == st.value && std::abs(st.value) < 9.0e15;
+}
+
+std::string statText(const accel::AccelStat& st) {
+    char text[64];
+    if (isCount(st)) std::snprintf(text, sizeof text, "%lld", (long long)st.value);
+    else if (st.key.ends_with("_ms")) std::snprintf(text, sizeof text, "%.1f", st.value);
+    else std::snprintf(text, sizeof text, "%.4g", st.value);
+    return text;
 }
 
 std::string formatMs(double ms) {
@@ -55,9 +71,9 @@ nlohmann::json gpuJson(const gpu::GpuRenderReport& g) {
 void printGpuStats(const gpu::GpuRenderReport& g) {
     const auto [on, off] = featureLists(g.features);
     std::printf("kernel:      compiled in: %s; left out: %s\n", on.c_str(), off.c_str());
-    std::printf("gpu:         kernel render_%s, %u tiles in %u submissions, %.2f MiB uploaded "
+    std::printf("gpu:         kernel render_%s, %u tile%s in %u submission%s, %.2f MiB uploaded "
                 "(%.2f MiB structure)\n",
-                g.kernel.c_str(), g.tiles, g.submissions, double(g.bytesUploaded) / (1 << 20),
+                g.kernel.c_str(), g.tiles, g.tiles == 1 ? "" : "s", g.submissions, g.submissions == 1 ? "" : "s", double(g.bytesUploaded) / (1 << 20),
                 double(g.accelBytes) / (1 << 20));
     if (g.resumedTiles > 0)
         std::printf("resumed:     %u tiles beyond the driver's loop budget%s, in strips of %u rows, %u dispatches\n",
@@ -83,7 +99,10 @@ std::string reportJson(const RenderReport& r) {
     j["accel"] = {{"name", r.accel}};
     const bool loaded = r.accelFile && r.accelFile->loaded;
     if (!loaded) j["accel"]["build_ms"] = r.buildMs;  // a loaded structure was not built: no time to give
-    for (const accel::AccelStat& st : r.accelStats) j["accel"][st.key] = st.value;
+    for (const accel::AccelStat& st : r.accelStats) {
+        if (isCount(st)) j["accel"][st.key] = int64_t(st.value);
+        else j["accel"][st.key] = st.value;
+    }
     if (r.accelFile) {
         j["accel"][loaded ? "loaded_from" : "saved_to"] = r.accelFile->path;
         j["accel"][loaded ? "load_ms" : "save_ms"] = r.accelFile->ms;
@@ -134,7 +153,7 @@ void printReport(const RenderReport& r, bool stats) {
     else
         std::printf("accel:       %s, built in %.1f ms\n", r.accel.c_str(), builtMs(r));
     for (const accel::AccelStat& st : r.accelStats)
-        std::printf("  %-24s %.6g %s\n", st.key.c_str(), st.value, st.unit.c_str());
+        std::printf("  %-24s %s %s\n", st.key.c_str(), statText(st).c_str(), st.unit.c_str());
     if (r.gpu) printGpuStats(*r.gpu);
 }
 

@@ -187,8 +187,11 @@ VulkanContext::VulkanContext(const ContextOptions& options)
     } else if (std::all_of(want.begin(), want.end(), [](unsigned char c) { return std::isdigit(c); })) {
         uint32_t idx = uint32_t(std::min<unsigned long>(std::stoul(want), 1ul << 30));
         if (idx >= devices.size())
-            throw Error("--device " + want + ": there are only " + std::to_string(devices.size()) +
-                        " Vulkan devices (see `vkray devices`)");
+            throw Error("--device " + want + ": " +
+                        (devices.size() == 1 ? std::string("there is only one Vulkan device, 0")
+                                             : "there are only " + std::to_string(devices.size()) + " Vulkan devices, 0-" +
+                                                   std::to_string(devices.size() - 1)) +
+                        " (see `vkray devices`)");
         chosen = idx;
     } else {
         for (uint32_t i = 0; i < devices.size() && !chosen; ++i)

@@ -1,5 +1,6 @@
 #include "accel/bvh/bvh_accel.h"
 
+#include <tbb/info.h>
 #include <tbb/task_arena.h>
 
 #include "accel/bvh/aac_builder.h"
@@ -56,7 +57,7 @@ public:
         std::vector<accel::AccelStat> s;
         s.push_back({"build_ms", totalMs_, "ms"});
         for (const auto& [name, ms] : phases_) s.push_back({name + "_ms", ms, "ms"});
-        s.push_back({"threads", double(threads_), "oneTBB workers (0 = all cores)"});
+        s.push_back({"threads", double(threads_ > 0 ? threads_ : tbb::info::default_concurrency()), "oneTBB workers"});
         if (config_.builder == Config::Builder::Aac) {
             s.push_back({"aac_delta", double(config_.delta), "Gu et al. 2013"});
             s.push_back({"aac_epsilon", config_.epsilon, "Gu et al. 2013"});
