@@ -20,6 +20,7 @@ struct GenArgs {
     int64_t triangles = 0;
     int64_t seed = 1;
     std::string output;
+    bool force = false;
 };
 
 // What each kind is made of, for the file's comment, and the material it gets: chosen so the
@@ -84,6 +85,9 @@ void run(const GenArgs& args, int& exitCode) {
     if (args.seed < 0) throw Error("gen: --seed " + std::to_string(args.seed) + " is negative");
     const std::filesystem::path out(args.output);
     if (out.extension() != ".scene") throw Error("gen: -o " + args.output + ": the output must be a .scene file");
+    // A scene file may be someone's work: never replaced unless asked.
+    if (!args.force && std::filesystem::exists(out))
+        throw Error("gen: -o " + args.output + ": the file exists (--force replaces it)");
 
     const GeneratorSpec spec{*kind, args.triangles, uint64_t(args.seed)};
     const std::string command = "vkray gen " + args.kind + " --triangles " + std::to_string(args.triangles) +
@@ -108,6 +112,7 @@ void registerGenCommand(CLI::App& app, int& exitCode) {
     cmd->add_option("--seed", args->seed, "Random seed (the same seed makes the same triangles)")
         ->capture_default_str();
     cmd->add_option("-o,--output", args->output, "The .scene file to write")->required();
+    cmd->add_flag("--force", args->force, "Replace the .scene file if it exists");
     cmd->callback([args, &exitCode] { run(*args, exitCode); });
 }
 

@@ -63,13 +63,20 @@ std::map<std::string, std::string> parseAovs(const std::vector<std::string>& spe
 }
 
 // -o wins; else the scene's `output NAME` (".png" added when it has no extension); else SCENE.png.
+// The colour image's file: -o, else the scene's `output`, else SCENE.png; a name without an
+// extension, from either, gets .png.
 std::filesystem::path outputPath(const RenderArgs& args, const Scene& scene) {
-    if (!args.output.empty()) return args.output;
-    if (!scene.output.empty()) {
-        std::filesystem::path p = scene.output;
+    const auto withPng = [](std::filesystem::path p) {
         if (!p.has_extension()) p += ".png";
         return p;
+    };
+    if (!args.output.empty()) {
+        if (args.output == "-") throw Error("-o -: the image goes to a file, not to standard output: name one");
+        if (!std::filesystem::path(args.output).has_filename() || std::filesystem::is_directory(args.output))
+            throw Error("-o " + args.output + ": names a directory; name the image file");
+        return withPng(args.output);
     }
+    if (!scene.output.empty()) return withPng(scene.output);
     return std::filesystem::path(args.scene).stem().string() + ".png";
 }
 

@@ -93,10 +93,16 @@ vkray_expect_error(gen_unknown_kind "gen: unknown kind 'teapot'" gen teapot --tr
 vkray_expect_error(gen_zero_triangles "gen: --triangles 0 is outside" gen soup --triangles 0 -o ${CLI_OUT}/g.scene)
 vkray_expect_error(gen_not_scene "gen: -o .*g\\.txt: the output must be a \\.scene file" gen soup --triangles 10 -o ${CLI_OUT}/g.txt)
 vkray_expect_error(gen_unwritable "gen: cannot write .*no/such/dir/g\\.scene" gen soup --triangles 10 -o ${CLI_OUT}/no/such/dir/g.scene)
+vkray_expect_error(gen_exists "gen: -o .*one_triangle\\.scene: the file exists \\(--force replaces it\\)" gen soup --triangles 10 -o ${CLI_DATA}/one_triangle.scene)
+vkray_expect_error(output_stdout "-o -: the image goes to a file, not to standard output" render ${CLI_DATA}/one_triangle.scene --cpu -o -)
+vkray_expect_error(output_directory "-o .*: names a directory" render ${CLI_DATA}/one_triangle.scene --cpu -o ${CLI_OUT})
+# -o without an extension gets .png, as a scene's `output` does.
+add_test(NAME cli.output_png_default COMMAND ${CLI_DIR}/expect_output.sh "output: +.*noext\\.png"
+                                          $<TARGET_FILE:vkray> render ${CLI_DATA}/one_triangle.scene --cpu --size 8x8 -o ${CLI_OUT}/noext)
 
 # `vkray gen` writes a scene that renders (CPU reference, tiny: brute force over 1000 triangles).
 add_test(NAME cli.gen_terrain COMMAND ${CLI_DIR}/expect_output.sh "terrain, 1012 triangles \\+ 2 floor, seed 3"
-                                     $<TARGET_FILE:vkray> gen terrain --triangles 1000 --seed 3 -o ${CLI_OUT}/gen-terrain.scene)
+                                     $<TARGET_FILE:vkray> gen terrain --triangles 1000 --seed 3 --force -o ${CLI_OUT}/gen-terrain.scene)
 set_tests_properties(cli.gen_terrain PROPERTIES FIXTURES_SETUP gen_scene)
 add_test(NAME cli.gen_render COMMAND ${CLI_DIR}/expect_output.sh "scene: +1014 triangles" $<TARGET_FILE:vkray> render ${CLI_OUT}/gen-terrain.scene --cpu --size 32x24
                                     -o ${CLI_OUT}/gen-terrain.png --stats)
