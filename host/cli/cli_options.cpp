@@ -1,6 +1,7 @@
 #include "cli/cli_options.h"
 
 #include <charconv>
+#include <cmath>
 #include <regex>
 #include <sstream>
 
@@ -24,6 +25,20 @@ void addViewOption(CLI::App& cmd, std::string& view) {
                    "Camera: scene (its own), close (a close-up of its triangles, where most camera rays hit) or "
                    "EX,EY,EZ,CX,CY,CZ[,FOVY] (eye, look-at centre, fovy; up from the scene)")
         ->default_str("scene");
+}
+
+glm::vec3 parseColour(const std::string& text, const std::string& option) {
+    const std::vector<std::string> items = parseNameList(text, option);
+    glm::vec3 c(0.0f);
+    bool ok = items.size() == 3;
+    for (size_t i = 0; ok && i < 3; ++i) {
+        const char* begin = items[i].data();
+        const char* end = begin + items[i].size();
+        const auto [ptr, ec] = std::from_chars(begin, end, c[int(i)]);
+        ok = ec == std::errc() && ptr == end && std::isfinite(c[int(i)]) && c[int(i)] >= 0.0f;
+    }
+    if (!ok) throw Error(option + " " + text + ": expected R,G,B, three non-negative numbers, for example 0.2,0.3,0.5");
+    return c;
 }
 
 std::vector<std::string> parseNameList(const std::string& text, const std::string& option) {

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include <CLI/CLI.hpp>
+#include <glm/glm.hpp>
 
 namespace vkray::cli {
 
@@ -17,6 +18,9 @@ std::vector<int> parseIntList(const std::string& text, const std::string& option
 
 // --view, as render and bench take it (scene/camera.h, viewCamera, checks the value).
 void addViewOption(CLI::App& cmd, std::string& view);
+
+// "0.2,0.3,0.5" -> an RGB colour of three finite, non-negative numbers; `option` names the flag.
+glm::vec3 parseColour(const std::string& text, const std::string& option);
 
 // "a,b,c" -> {"a", "b", "c"}; empty items are an error.
 std::vector<std::string> parseNameList(const std::string& text, const std::string& option);

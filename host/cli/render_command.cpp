@@ -40,6 +40,7 @@ struct RenderArgs {
     std::string device;
     std::string size;
     std::string view = "scene";
+    std::string background;  // R,G,B: overrides the scene's
     std::optional<int> maxDepth;
     int threads = 0;
     std::vector<std::string> aovs;
@@ -254,6 +255,7 @@ void runRender(const RenderArgs& args) {
     report.loadMs = msSince(t0);
     checkRenderable(scene, args.scene);
     scene.camera = viewCamera(scene, args.view);
+    if (!args.background.empty()) scene.background = parseColour(args.background, "--background");
     const RenderOptions options = resolveOptions(args, scene);
     const std::filesystem::path out = outputPath(args, scene);
     checkColorImagePath(out);  // refuse a bad output before spending minutes on the render
@@ -316,6 +318,8 @@ void registerRenderCommand(CLI::App& app, int& exitCode) {
     cpu->excludes(device);
     cmd->add_option("--size", args->size, "Image size WIDTHxHEIGHT (overrides the scene's 'size')");
     addViewOption(*cmd, args->view);
+    cmd->add_option("--background", args->background,
+                    "R,G,B: the radiance of rays that hit nothing (overrides the scene's 'background'; default black)");
     cmd->add_option("--maxdepth", args->maxDepth, "Ray depth, primary rays count as 1 (overrides the scene's)");
     cmd->add_option("--threads", args->threads, "CPU threads (0 = all cores)");
     cmd->add_option("--aov", args->aovs, "Write an AOV: depth=F.pfm, primid=F.pfm, normal=F.pfm (repeatable)");

@@ -23,7 +23,10 @@ WhittedIntegrator::WhittedIntegrator(const Scene& scene, const Tracer& tracer, i
 PixelSample WhittedIntegrator::sample(const Ray& cameraRay) const {
     PixelSample out;
     out.primary = tracer_.closest(cameraRay, kInfinity);
-    if (!out.primary.found()) return out;  // no background: black
+    if (!out.primary.found()) {
+        out.radiance = glm::dvec3(scene_.background);
+        return out;
+    }
     out.normal = surfaceAt(scene_, out.primary, cameraRay.dir).normal;
     addRadiance(cameraRay, out.primary, 1, glm::dvec3(1.0), out.radiance);
     return out;
@@ -40,6 +43,7 @@ void WhittedIntegrator::addRadiance(const Ray& ray, const Hit& hit, int depth,
         if (!worthTracing(childWeight)) continue;
         const Hit childHit = tracer_.closest(child->ray, kInfinity);
         if (childHit.found()) addRadiance(child->ray, childHit, depth + 1, childWeight, radiance);
+        else radiance += childWeight * glm::dvec3(scene_.background);
     }
 }
 

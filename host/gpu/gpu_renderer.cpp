@@ -78,6 +78,7 @@ GpuFrameParams frameParams(const Scene& scene, const RenderOptions& options) {
     p.v = vec4(glm::vec3(cam.v), float(cam.tanY));
     p.w = vec4(glm::vec3(cam.w), 0.0f);
     p.attenuation = vec4(scene.attenuation, 0.0f);
+    p.background = vec4(scene.background, 0.0f);
     p.imageTile = uvec4(uint32_t(options.width), uint32_t(options.height), 0u, 0u);
     p.counts = uvec4(uint32_t(scene.triangles.size()), uint32_t(scene.lights.size()), 0u,
                      uint32_t(VKRAY_TILE_SIZE));

@@ -97,6 +97,7 @@ struct Scene {
     Camera camera;
     bool hasCamera = false;      // a scene without a `camera` line is an error at render time
     glm::vec3 attenuation{1.0f, 0.0f, 0.0f};  // constant, linear, quadratic (point lights only)
+    glm::vec3 background{0.0f};               // the radiance of a ray that hits nothing
     std::vector<Light> lights;
 
     std::vector<Material> materials;   // deduplicated: equal material states share one entry

@@ -74,6 +74,7 @@ private:
     void camera(const SceneLine&);
     void light(const SceneLine&);
     void attenuation(const SceneLine&);
+    void background(const SceneLine&);
     void colour(const SceneLine&);
     void shininess(const SceneLine&);
     void refract(const SceneLine&);
@@ -122,6 +123,7 @@ const Parser::Command Parser::kCommands[] = {
     {"point", 6, Kind::Numbers, "x y z r g b", &Parser::light},
     {"directional", 6, Kind::Numbers, "x y z r g b", &Parser::light},
     {"attenuation", 3, Kind::Numbers, "constant linear quadratic", &Parser::attenuation},
+    {"background", 3, Kind::Numbers, "r g b", &Parser::background},
     {"ambient", 3, Kind::Numbers, "r g b", &Parser::colour},
     {"diffuse", 3, Kind::Numbers, "r g b", &Parser::colour},
     {"specular", 3, Kind::Numbers, "r g b", &Parser::colour},
@@ -295,6 +297,12 @@ void Parser::attenuation(const SceneLine& line) {
     if (a.x < 0.0f || a.y < 0.0f || a.z < 0.0f || a == glm::vec3(0.0f))
         line.fail("attenuation needs non-negative coefficients, not all zero", 1);
     scene().attenuation = a;
+}
+
+void Parser::background(const SceneLine& line) {
+    const glm::vec3 c = line.vec3(1);
+    if (c.r < 0.0f || c.g < 0.0f || c.b < 0.0f) line.fail("background needs non-negative r g b", 1);
+    scene().background = c;
 }
 
 void Parser::colour(const SceneLine& line) {

@@ -139,7 +139,10 @@ uint traceRays(inout PixelTrace pt) {
         if (RESUMABLE && gLoopCutShort) return VKRAY_RESUME_RAYS;  // the ray stays pending
         gProgress = true;
         --pt.stackTop;
-        if (hit.triangle < 0) continue;  // no background: a miss adds nothing
+        if (hit.triangle < 0) {  // a miss sees the background
+            pt.radiance += ray.weight * params.background.rgb;
+            continue;
+        }
         const SurfacePoint s = surfaceAt(hit, ray.dir);
         if (pt.rays == 0) {
             pt.depth = hit.t;

@@ -190,7 +190,7 @@ VKRAY_STRUCT(GpuPixel) {  // 64 bytes
     uint capped;     // rays ended by a traversal's iteration cap (reported, never hidden)
 };
 
-// Push constants: 112 bytes, under the 128 every Vulkan device guarantees.
+// Push constants: 128 bytes, the most every Vulkan device guarantees.
 VKRAY_STRUCT(GpuFrameParams) {
     vec4 eye;          // xyz eye, w unused
     vec4 u;            // xyz camera u, w = tanX
@@ -199,6 +199,7 @@ VKRAY_STRUCT(GpuFrameParams) {
     vec4 attenuation;  // xyz = constant, linear, quadratic
     uvec4 imageTile;   // x, y = image width, height; z, w = this tile's origin in pixels
     uvec4 counts;      // x = triangles, y = lights, z = first GpuPixel of this tile, w = tile row pitch
+    vec4 background;   // rgb: the radiance of a ray that hits nothing; w unused
 };
 
 #ifdef __cplusplus
@@ -223,8 +224,8 @@ static_assert(sizeof(GpuPixelResume) == 80 && offsetof(GpuPixelResume, stage) ==
               offsetof(GpuPixelResume, bruteOriginal) == 64);
 static_assert(sizeof(GpuPendingRay) == 48 && offsetof(GpuPendingRay, depth) == 12 &&
               offsetof(GpuPendingRay, dir) == 16 && offsetof(GpuPendingRay, weight) == 32);
-static_assert(sizeof(GpuFrameParams) == 112 && offsetof(GpuFrameParams, imageTile) == 80 &&
-              offsetof(GpuFrameParams, counts) == 96);
+static_assert(sizeof(GpuFrameParams) == 128 && offsetof(GpuFrameParams, imageTile) == 80 &&
+              offsetof(GpuFrameParams, counts) == 96 && offsetof(GpuFrameParams, background) == 112);
 }  // namespace vkray::gpu
 #endif
 #undef VKRAY_STRUCT

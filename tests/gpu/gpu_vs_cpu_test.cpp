@@ -20,6 +20,7 @@ namespace {
 struct SceneCase {
     std::string file;  // under scenes/
     int width, height;
+    glm::vec3 background{0.0f};  // overrides the scene's (as --background does)
     friend std::ostream& operator<<(std::ostream& os, const SceneCase& c) {
         return os << c.file << " at " << c.width << "x" << c.height;
     }
@@ -29,10 +30,16 @@ class GpuVsCpu : public ::testing::TestWithParam<SceneCase> {};
 
 TEST_P(GpuVsCpu, SamePrimaryHitsAndImage) {
     const SceneCase& c = GetParam();
-    const Scene scene = loadScene(std::filesystem::path(VKRAY_SOURCE_DIR) / "scenes" / c.file);
+    Scene scene = loadScene(std::filesystem::path(VKRAY_SOURCE_DIR) / "scenes" / c.file);
+    scene.background = c.background;
     RenderOptions options{.width = c.width, .height = c.height, .maxDepth = scene.maxDepth};
     const Frame gpuFrame = test::renderGpu(scene, options);
     const Frame cpuFrame = renderReference(scene, options);
+    if (c.background != glm::vec3(0.0f)) {  // the top-left camera ray misses: it sees the background
+        EXPECT_EQ(gpuFrame.primId[0], -1);
+        EXPECT_EQ(gpuFrame.color[0], c.background);
+        EXPECT_EQ(cpuFrame.color[0], c.background);
+    }
 
     // Primary hits: the same watertight test in float (GPU) and double (CPU). Required: >= 99.9%
     // of pixels agree; ties (an exact hit on an edge two triangles share) count as agreement, and
@@ -66,9 +73,12 @@ INSTANTIATE_TEST_SUITE_P(Scenes, GpuVsCpu,
                                            SceneCase{"default.scene", 128, 96},
                                            SceneCase{"spheres.scene", 160, 90},
                                            SceneCase{"objects.scene", 128, 96},
-                                           SceneCase{"lights.scene", 128, 96}),
+                                           SceneCase{"lights.scene", 128, 96},
+                                           // Mirrors and glass show the background too.
+                                           SceneCase{"spheres.scene", 160, 90, {0.25f, 0.35f, 0.6f}}),
                          [](const auto& info) {
-                             return std::filesystem::path(info.param.file).stem().string();
+                             return std::filesystem::path(info.param.file).stem().string() +
+                                    (info.param.background != glm::vec3(0.0f) ? "_background" : "");
                          });
 
 }  // namespace

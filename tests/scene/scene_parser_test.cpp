@@ -16,6 +16,7 @@ TEST(SceneParser, EmptySceneHasTheDocumentedDefaults) {
     EXPECT_EQ(s.maxDepth, 5);
     EXPECT_FALSE(s.hasCamera);
     EXPECT_EQ(s.attenuation, glm::vec3(1.0f, 0.0f, 0.0f));
+    EXPECT_EQ(s.background, glm::vec3(0.0f));
     EXPECT_TRUE(s.triangles.empty());
     EXPECT_TRUE(s.materials.empty());
     EXPECT_TRUE(s.lights.empty());
@@ -32,6 +33,7 @@ TEST(SceneParser, SettingsCameraAndLights) {
         "point 1 2 3 0.5 0.25 1\n"
         "directional 0 -1 0 0.2 0.2 0.2\n"
         "attenuation 0.5 0.1 0.02\n"
+        "background 0.1 0.2 0.4\n"
         "maxverts 10\n"
         "maxvertnorms 4\n");
     EXPECT_EQ(s.width, 320);
@@ -50,6 +52,7 @@ TEST(SceneParser, SettingsCameraAndLights) {
     EXPECT_EQ(s.lights[1].type, Light::Type::Directional);
     EXPECT_EQ(s.lights[1].vector, glm::vec3(0, -1, 0));
     EXPECT_EQ(s.attenuation, glm::vec3(0.5f, 0.1f, 0.02f));
+    EXPECT_EQ(s.background, glm::vec3(0.1f, 0.2f, 0.4f));
 }
 
 TEST(SceneParser, LightsIgnoreTheCurrentTransform) {
