@@ -42,6 +42,7 @@ struct RenderArgs {
     std::string view = "scene";
     std::string background;  // R,G,B: overrides the scene's
     std::optional<int> maxDepth;
+    std::optional<int> spp;
     int threads = 0;
     std::vector<std::string> aovs;
     bool stats = false;
@@ -98,6 +99,9 @@ RenderOptions resolveOptions(const RenderArgs& args, const Scene& scene) {
     // oneTBB crashes (SIGSEGV) on an arena of more than 65535 slots; no machine has 1024 cores.
     if (args.threads < 0 || args.threads > 1024) throw Error("--threads must be 0 (all cores) or 1..1024");
     o.threads = args.threads;
+    o.spp = args.spp.value_or(scene.spp);
+    if (o.spp < 1 || o.spp > kMaxSamplesPerPixel)
+        throw Error("--spp " + std::to_string(o.spp) + ": must be 1.." + std::to_string(kMaxSamplesPerPixel));
     o.countTraversal = args.counters;
     o.primaryAovs = !args.aovs.empty();
     return o;
@@ -318,6 +322,8 @@ void registerRenderCommand(CLI::App& app, int& exitCode) {
     cpu->excludes(device);
     cmd->add_option("--size", args->size, "Image size WIDTHxHEIGHT (overrides the scene's 'size')");
     addViewOption(*cmd, args->view);
+    cmd->add_option("--spp", args->spp,
+                    "Camera rays per pixel, averaged (overrides the scene's 'spp'; default 1, the pixel centre)");
     cmd->add_option("--background", args->background,
                     "R,G,B: the radiance of rays that hit nothing (overrides the scene's 'background'; default black)");
     cmd->add_option("--maxdepth", args->maxDepth, "Ray depth, primary rays count as 1 (overrides the scene's)");

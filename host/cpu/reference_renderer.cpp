@@ -21,6 +21,7 @@ void checkRenderable(const Scene& scene, const RenderOptions& options) {
     if (!scene.hasCamera) throw Error("the scene has no camera");
     if (options.maxDepth < 1)
         throw Error("maxdepth " + std::to_string(options.maxDepth) + " is below 1");
+    if (options.spp < 1) throw Error("spp " + std::to_string(options.spp) + " is below 1");
     if (scene.hasSmoothNormals() && scene.normals.size() != scene.triangles.size())
         throw Error("the scene has " + std::to_string(scene.normals.size()) + " normal triples for " +
                     std::to_string(scene.triangles.size()) + " triangles");
@@ -55,10 +56,12 @@ Frame renderReference(const Scene& scene, const RenderOptions& options, const ge
     auto renderRows = [&](const tbb::blocked_range<int>& rows) {
         for (int j = rows.begin(); j != rows.end(); ++j) {
             for (int i = 0; i < frame.width; ++i) {
-                const geometry::Ray ray{camera.eye, primaryDirection(camera, i, j)};
-                const cpu::PixelSample px = integrator.sample(ray);
+                const cpu::PixelSample px = integrator.sample({camera.eye, primaryDirection(camera, i, j)});
+                glm::dvec3 radiance = px.radiance;
+                for (int s = 1; s < options.spp; ++s)
+                    radiance += integrator.sample({camera.eye, primaryDirection(camera, i, j, pixelSampleOffset(s))}).radiance;
                 const size_t k = frame.index(i, j);
-                frame.color[k] = glm::vec3(px.radiance);
+                frame.color[k] = glm::vec3(radiance / double(options.spp));
                 if (px.primary.found()) {
                     frame.depth[k] = float(px.primary.t);  // the camera direction is unit length
                     frame.primId[k] = px.primary.triangle;

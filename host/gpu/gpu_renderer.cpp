@@ -73,10 +73,11 @@ uint32_t countFlagged(const GpuPixel* src, const Tile& tile, uint32_t flag) {
 GpuFrameParams frameParams(const Scene& scene, const RenderOptions& options) {
     const CameraFrame cam = makeCameraFrame(scene.camera, options.width, options.height);
     GpuFrameParams p{};
-    p.eye = vec4(glm::vec3(cam.eye), 0.0f);
+    const glm::vec2 centre = pixelSampleOffset(0);
+    p.eye = vec4(glm::vec3(cam.eye), centre.x);
     p.u = vec4(glm::vec3(cam.u), float(cam.tanX));
     p.v = vec4(glm::vec3(cam.v), float(cam.tanY));
-    p.w = vec4(glm::vec3(cam.w), 0.0f);
+    p.w = vec4(glm::vec3(cam.w), centre.y);
     p.attenuation = vec4(scene.attenuation, 0.0f);
     p.background = vec4(scene.background, 0.0f);
     p.imageTile = uvec4(uint32_t(options.width), uint32_t(options.height), 0u, 0u);
@@ -107,7 +108,7 @@ void readTile(const GpuPixel* src, const Tile& tile, const ShaderFeatures& featu
                 rep.leavesVisited += px.leaves;
                 rep.trianglesTested += px.triangles;
                 rep.restarts += px.restarts;
-                if (!rep.nodesPerPixel.empty()) rep.nodesPerPixel[i] = px.nodes;
+                if (!rep.nodesPerPixel.empty()) rep.nodesPerPixel[i] += px.nodes;  // every sample's
             }
             rep.pixelsCutShort += (px.flags & VKRAY_PIXEL_CUT_SHORT) != 0;
         }
@@ -425,17 +426,35 @@ Frame renderOnGpu(const VulkanContext& ctx, const Scene& scene, const RenderOpti
     start = Clock::now();
     rep.tiles = uint32_t(tiles.size());
     rep.gpuMs = ctx.timestampValidBits() > 0 ? 0.0 : -1.0;
-    std::vector<Tile> unfinished;
     rep.resumedFromStart = resumableFromStart(ctx, scene, accel.kernel);
-    if (rep.resumedFromStart) unfinished = tiles;
-    else renderTiles(ctx, kernel, pixels, tiles, perSubmission, baseParams, frame, rep, progress, unfinished);
-    if (!unfinished.empty()) {
-        ShaderFeatures resumable = rep.features;
-        resumable.resumable = true;
-        ComputeKernel& again = kernels->kernel(accel.kernel, resumable);
-        renderResumable(ctx, again, resumable, sceneBuffers, accelBuffers, pixels, unfinished, options.maxDepth,
-                        baseParams, frame, rep, progress);
+    // One pass over the image per sample (RenderOptions::spp): sample 0, the pixel centres, gives
+    // the AOVs; the others only add their colour.
+    Frame pass;
+    for (int s = 0; s < options.spp; ++s) {
+        GpuFrameParams params = baseParams;
+        const glm::vec2 offset = pixelSampleOffset(s);
+        params.eye.w = offset.x;
+        params.w.w = offset.y;
+        Frame& out = s == 0 ? frame : pass;
+        if (s == 1) pass.resize(options.width, options.height);
+        const TileProgress passProgress = !progress ? TileProgress() : [&](uint32_t done, uint32_t total) {
+            progress(uint32_t(s) * total + done, uint32_t(options.spp) * total);
+        };
+        std::vector<Tile> unfinished;
+        if (rep.resumedFromStart) unfinished = tiles;
+        else renderTiles(ctx, kernel, pixels, tiles, perSubmission, params, out, rep, passProgress, unfinished);
+        if (!unfinished.empty()) {
+            ShaderFeatures resumable = rep.features;
+            resumable.resumable = true;
+            ComputeKernel& again = kernels->kernel(accel.kernel, resumable);
+            renderResumable(ctx, again, resumable, sceneBuffers, accelBuffers, pixels, unfinished, options.maxDepth,
+                            params, out, rep, passProgress);
+        }
+        if (s > 0)
+            for (size_t i = 0; i < frame.color.size(); ++i) frame.color[i] += pass.color[i];
     }
+    if (options.spp > 1)
+        for (glm::vec3& c : frame.color) c /= float(options.spp);
     rep.renderMs = msSince(start);
     ctx.checkValidation();
     throwIfCutShort(ctx, scene, accel.kernel, rep.pixelsCutShort);

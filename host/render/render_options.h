@@ -16,6 +16,9 @@ struct RenderOptions {
     // runs turn this off: the GPU kernel then stores only colour and ray counts per pixel, and
     // the AOVs stay at their miss values.
     bool primaryAovs = true;
+    // Camera rays per pixel (pixelSampleOffset, scene/camera.h), their radiance averaged; the
+    // primary-hit AOVs are sample 0's, the pixel centre's.
+    int spp = 1;
 };
 
 }  // namespace vkray

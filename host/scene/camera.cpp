@@ -37,11 +37,17 @@ CameraFrame makeCameraFrame(const Camera& cam, int width, int height) {
     return f;
 }
 
-glm::dvec3 primaryDirection(const CameraFrame& f, int i, int j) {
+glm::dvec3 primaryDirection(const CameraFrame& f, int i, int j, glm::vec2 offset) {
     const double halfW = f.width / 2.0, halfH = f.height / 2.0;
-    const double a = f.tanX * ((i + 0.5) - halfW) / halfW;
-    const double b = f.tanY * (halfH - (j + 0.5)) / halfH;
+    const double a = f.tanX * ((i + double(offset.x)) - halfW) / halfW;
+    const double b = f.tanY * (halfH - (j + double(offset.y))) / halfH;
     return glm::normalize(a * f.u + b * f.v - f.w);
+}
+
+glm::vec2 pixelSampleOffset(int s) {
+    constexpr double g = 1.32471795724474602596;  // the plastic number: g^3 = g + 1
+    const double x = 0.5 + double(s) / g, y = 0.5 + double(s) / (g * g);
+    return glm::vec2(float(x - std::floor(x)), float(y - std::floor(y)));
 }
 
 namespace {

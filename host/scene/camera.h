@@ -22,8 +22,16 @@ struct CameraFrame {
 // direction, fovy outside (0, 180)) or the image size is not positive.
 CameraFrame makeCameraFrame(const Camera& cam, int width, int height);
 
-// Unit direction through the centre of pixel (i, j); i = column from the left, j = row from the top.
-glm::dvec3 primaryDirection(const CameraFrame& f, int i, int j);
+// Unit direction through pixel (i, j) at `offset` within it ((0.5, 0.5): its centre); i = column
+// from the left, j = row from the top.
+glm::dvec3 primaryDirection(const CameraFrame& f, int i, int j, glm::vec2 offset = glm::vec2(0.5f));
+
+// Where in its pixel sample s (0, 1, ...) of --spp goes: sample 0 at the centre, then Roberts's R2
+// sequence from there, x_s = fract(1/2 + s / g), y_s = fract(1/2 + s / g^2) with g the plastic
+// number (M. Roberts, "The Unreasonable Effectiveness of Quasirandom Sequences", 2018): every
+// prefix is spread evenly over the pixel, so any sample count is stratified and --spp 1 is the
+// centre ray. In float, as the GPU kernel gets it, so the CPU reference traces the same rays.
+glm::vec2 pixelSampleOffset(int s);
 
 // The camera of a view other than the scene's own (`vkray bench --view`), always with the scene's up
 // vector:

@@ -19,6 +19,9 @@ namespace vkray {
 inline constexpr int kMaxImageSide = 16384;
 inline constexpr long long kMaxImagePixels = 1LL << 26;  // 8192 x 8192
 inline constexpr int kMaxDepthLimit = 64;
+// Most camera rays per pixel (`spp`, --spp): far beyond what Whitted shading of a pixel's edges
+// needs, and a typo's bound.
+inline constexpr int kMaxSamplesPerPixel = 4096;
 // Triangles a scene may hold: 2^26 is 2.5 GiB of Scene::triangles on the host, and at the GPU's 48
 // bytes a triangle 3 GiB, about what the largest storage buffers of real GPUs hold (4 GiB). Loaders
 // check it before they tessellate, generate or read, so `generate` and `sphere` lines cannot run
@@ -83,6 +86,7 @@ struct Scene {
     int width = 640;
     int height = 480;
     int maxDepth = 5;            // primary rays count as depth 1
+    int spp = 1;                 // camera rays per pixel (scene/camera.h, pixelSampleOffset)
     std::string output;          // `output NAME` as written in the file; empty if absent
 
     // World position of the local frame's (0, 0, 0): triangles, the camera's eye and centre and point

@@ -71,6 +71,7 @@ private:
     void size(const SceneLine&);
     void output(const SceneLine& l) { scene().output = std::string(l.text(1)); }
     void maxdepth(const SceneLine&);
+    void spp(const SceneLine&);
     void camera(const SceneLine&);
     void light(const SceneLine&);
     void attenuation(const SceneLine&);
@@ -119,6 +120,7 @@ const Parser::Command Parser::kCommands[] = {
     {"size", 2, Kind::Integers, "width height", &Parser::size},
     {"output", 1, Kind::FileName, "", &Parser::output},
     {"maxdepth", 1, Kind::Integers, "depth", &Parser::maxdepth},
+    {"spp", 1, Kind::Integers, "camera rays per pixel", &Parser::spp},
     {"camera", 10, Kind::Numbers, "eye xyz, centre xyz, up xyz, fovy", &Parser::camera},
     {"point", 6, Kind::Numbers, "x y z r g b", &Parser::light},
     {"directional", 6, Kind::Numbers, "x y z r g b", &Parser::light},
@@ -266,6 +268,13 @@ void Parser::maxdepth(const SceneLine& line) {
     if (d < 1 || d > kMaxDepthLimit)
         line.fail("maxdepth " + std::to_string(d) + " is outside 1.." + std::to_string(kMaxDepthLimit), 1);
     scene().maxDepth = int(d);
+}
+
+void Parser::spp(const SceneLine& line) {
+    const int64_t n = line.integer(1);
+    if (n < 1 || n > kMaxSamplesPerPixel)
+        line.fail("spp " + std::to_string(n) + " is outside 1.." + std::to_string(kMaxSamplesPerPixel), 1);
+    scene().spp = int(n);
 }
 
 void Parser::camera(const SceneLine& line) {

@@ -1,7 +1,8 @@
-// Primary rays of the `camera` line of a scene (docs/scene-format.md): through pixel centres, x
-// to the right and y down the image, the vertical field of view spanning the image height. The host
-// supplies the orthonormal basis u, v, w (w points from the look-at centre back to the eye) and the
-// tangents of the half fields of view in u.w and v.w.
+// Primary rays of the `camera` line of a scene (docs/scene-format.md): through a point of the pixel
+// (its centre, or this pass's sample, eye.w and w.w), x to the right and y down the image, the
+// vertical field of view spanning the image height. The host supplies the orthonormal basis u, v, w
+// (w points from the look-at centre back to the eye) and the tangents of the half fields of view in
+// u.w and v.w.
 #ifndef VKRAY_CAMERA_GLSL
 #define VKRAY_CAMERA_GLSL
 
@@ -9,8 +10,8 @@
 
 vec3 primaryDirection(uvec2 pixel, uvec2 imageSize) {
     const vec2 half_ = vec2(imageSize) * 0.5;
-    const float a = params.u.w * ((float(pixel.x) + 0.5) - half_.x) / half_.x;
-    const float b = params.v.w * (half_.y - (float(pixel.y) + 0.5)) / half_.y;
+    const float a = params.u.w * ((float(pixel.x) + params.eye.w) - half_.x) / half_.x;
+    const float b = params.v.w * (half_.y - (float(pixel.y) + params.w.w)) / half_.y;
     return normalize(a * params.u.xyz + b * params.v.xyz - params.w.xyz);
 }
 

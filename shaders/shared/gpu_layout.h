@@ -192,10 +192,10 @@ VKRAY_STRUCT(GpuPixel) {  // 64 bytes
 
 // Push constants: 128 bytes, the most every Vulkan device guarantees.
 VKRAY_STRUCT(GpuFrameParams) {
-    vec4 eye;          // xyz eye, w unused
+    vec4 eye;          // xyz eye, w = the camera ray's x within its pixel (0.5: the centre)
     vec4 u;            // xyz camera u, w = tanX
     vec4 v;            // xyz camera v, w = tanY
-    vec4 w;            // xyz camera w (points backwards), w unused
+    vec4 w;            // xyz camera w (points backwards), w = the camera ray's y within its pixel
     vec4 attenuation;  // xyz = constant, linear, quadratic
     uvec4 imageTile;   // x, y = image width, height; z, w = this tile's origin in pixels
     uvec4 counts;      // x = triangles, y = lights, z = first GpuPixel of this tile, w = tile row pitch

@@ -21,6 +21,7 @@ struct SceneCase {
     std::string file;  // under scenes/
     int width, height;
     glm::vec3 background{0.0f};  // overrides the scene's (as --background does)
+    int spp = 1;
     friend std::ostream& operator<<(std::ostream& os, const SceneCase& c) {
         return os << c.file << " at " << c.width << "x" << c.height;
     }
@@ -32,9 +33,18 @@ TEST_P(GpuVsCpu, SamePrimaryHitsAndImage) {
     const SceneCase& c = GetParam();
     Scene scene = loadScene(std::filesystem::path(VKRAY_SOURCE_DIR) / "scenes" / c.file);
     scene.background = c.background;
-    RenderOptions options{.width = c.width, .height = c.height, .maxDepth = scene.maxDepth};
+    RenderOptions options{.width = c.width, .height = c.height, .maxDepth = scene.maxDepth, .spp = c.spp};
     const Frame gpuFrame = test::renderGpu(scene, options);
     const Frame cpuFrame = renderReference(scene, options);
+    if (c.spp > 1) {  // the samples smooth the edges: the image is not the centre rays' one
+        RenderOptions centres = options;
+        centres.spp = 1;
+        const Frame one = renderReference(scene, centres);
+        size_t changed = 0;
+        for (size_t i = 0; i < one.color.size(); ++i) changed += glm::any(glm::greaterThan(glm::abs(one.color[i] - cpuFrame.color[i]), glm::vec3(0.02f)));
+        EXPECT_GT(changed, one.color.size() / 100) << "pixels the extra samples changed";
+        EXPECT_EQ(gpuFrame.primId, test::renderGpu(scene, centres).primId) << "the AOVs are the pixel centres'";
+    }
     if (c.background != glm::vec3(0.0f)) {  // the top-left camera ray misses: it sees the background
         EXPECT_EQ(gpuFrame.primId[0], -1);
         EXPECT_EQ(gpuFrame.color[0], c.background);
@@ -75,10 +85,13 @@ INSTANTIATE_TEST_SUITE_P(Scenes, GpuVsCpu,
                                            SceneCase{"objects.scene", 128, 96},
                                            SceneCase{"lights.scene", 128, 96},
                                            // Mirrors and glass show the background too.
-                                           SceneCase{"spheres.scene", 160, 90, {0.25f, 0.35f, 0.6f}}),
+                                           SceneCase{"spheres.scene", 160, 90, {0.25f, 0.35f, 0.6f}},
+                                           // Four camera rays a pixel, the same on both.
+                                           SceneCase{"cornell.scene", 128, 128, {}, 4}),
                          [](const auto& info) {
                              return std::filesystem::path(info.param.file).stem().string() +
-                                    (info.param.background != glm::vec3(0.0f) ? "_background" : "");
+                                    (info.param.background != glm::vec3(0.0f) ? "_background" : "") +
+                                    (info.param.spp > 1 ? "_spp" + std::to_string(info.param.spp) : "");
                          });
 
 }  // namespace

@@ -1,6 +1,7 @@
 // Camera rays (docs/scene-format.md, "Camera rays") against values computed by hand.
 #include <cmath>
 #include <string>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -128,6 +129,39 @@ TEST(ViewCamera, BadTextIsAnErrorNamingTheOption) {
         } catch (const Error& e) {
             EXPECT_NE(std::string(e.what()).find("--view '" + std::string(bad) + "'"), std::string::npos) << e.what();
         }
+    }
+}
+
+// --spp's pattern: sample 0 is the pixel centre (so --spp 1 is the centre ray), every sample lies
+// in the pixel, and any prefix covers it evenly: of n samples every cell of a k x k grid holds
+// between half and one and a half times its n / k^2 (measured: 2-5 of 4 for 64 samples in 4x4, 3-5
+// of 4 for 256 in 8x8, 3-5 of 4 for 16 in 2x2), and the first 4 fill a 2x2 grid one each.
+TEST(Camera, PixelSamplesStartAtTheCentreAndSpreadEvenly) {
+    EXPECT_EQ(pixelSampleOffset(0), glm::vec2(0.5f, 0.5f));
+    const auto counts = [](int n, int grid) {
+        std::vector<int> cells(size_t(grid * grid), 0);
+        for (int s = 0; s < n; ++s) {
+            const glm::vec2 p = pixelSampleOffset(s);
+            EXPECT_GE(p.x, 0.0f);
+            EXPECT_LT(p.x, 1.0f);
+            EXPECT_GE(p.y, 0.0f);
+            EXPECT_LT(p.y, 1.0f);
+            ++cells[size_t(int(p.y * float(grid)) * grid + int(p.x * float(grid)))];
+        }
+        return cells;
+    };
+    for (int c : counts(64, 4)) {
+        EXPECT_GE(c, 2);
+        EXPECT_LE(c, 6);
+    }
+    for (int c : counts(16, 2)) {
+        EXPECT_GE(c, 3);
+        EXPECT_LE(c, 5);
+    }
+    for (int c : counts(4, 2)) EXPECT_EQ(c, 1);
+    for (int c : counts(256, 8)) {
+        EXPECT_GE(c, 2);
+        EXPECT_LE(c, 6);
     }
 }
 

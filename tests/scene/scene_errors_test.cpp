@@ -105,6 +105,7 @@ INSTANTIATE_TEST_SUITE_P(
         ErrorCase{"attenuation 0 0 0\n", 1, 13, "not all zero"},
         ErrorCase{"attenuation 1 -0.5 0\n", 1, 13, "non-negative coefficients"},
         ErrorCase{"background 0.2 -0.1 0\n", 1, 12, "background needs non-negative r g b"},
+        ErrorCase{"spp 0\n", 1, 5, "spp 0 is outside 1..4096"},
         ErrorCase{"spheresteps 2\n", 1, 13, "spheresteps 2 is outside 3..512"},
         ErrorCase{"spheresteps 513\n", 1, 13, "spheresteps 513 is outside 3..512"},
         ErrorCase{"sphere 0 0 0 0\n", 1, 14, "sphere radius 0 must be positive"},
