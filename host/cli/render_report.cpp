@@ -113,6 +113,7 @@ std::string reportJson(const RenderReport& r) {
     j["width"] = r.options.width;
     j["height"] = r.options.height;
     j["maxdepth"] = r.options.maxDepth;
+    j["spp"] = r.options.spp;
     j["triangles"] = r.triangles;
     j["materials"] = r.materials;
     j["lights"] = r.lights;
@@ -127,8 +128,8 @@ std::string reportJson(const RenderReport& r) {
 
 void printReport(const RenderReport& r, bool stats) {
     std::printf("device:      %s\n", r.device.c_str());
-    std::printf("resolution:  %dx%d, maxdepth %d, accel %s\n", r.options.width, r.options.height,
-                r.options.maxDepth, r.accel.c_str());
+    std::printf("resolution:  %dx%d, maxdepth %d, %d sample%s a pixel, accel %s\n", r.options.width, r.options.height,
+                r.options.maxDepth, r.options.spp, r.options.spp == 1 ? "" : "s", r.accel.c_str());
     // The render, and beside it what else the command spent: a big scene's load and build can
     // take longer than its render.
     const std::string structure = r.accelFile && r.accelFile->loaded
