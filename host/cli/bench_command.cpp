@@ -9,6 +9,8 @@
 #include <string>
 #include <vector>
 
+#include <tbb/info.h>
+
 #include "accel/accel.h"
 #include "bench/bench_runner.h"
 #include "bench/report.h"
@@ -44,7 +46,12 @@ bench::BenchOptions resolveOptions(const BenchArgs& args) {
     if (args.repeat < 1 || args.repeat > 1000)
         throw Error("--repeat " + std::to_string(args.repeat) + ": expected 1..1000");
     o.repeat = args.repeat;
-    if (!args.threads.empty()) o.threads = parseIntList(args.threads, "--threads", 1, 1024, false);
+    if (!args.threads.empty()) {
+        // 0 is all cores, as in `vkray render --threads 0`.
+        o.threads = parseIntList(args.threads, "--threads", 0, 1024, false);
+        for (int& t : o.threads)
+            if (t == 0) t = tbb::info::default_concurrency();
+    }
     if (!args.deltas.empty()) o.deltas = parseIntList(args.deltas, "--deltas", 1, 1024, true);
     if (args.maxDepths == "none") o.maxDepthSweep = false;
     else if (!args.maxDepths.empty()) o.maxDepths = parseIntList(args.maxDepths, "--maxdepths", 1, 64, false);
@@ -133,7 +140,8 @@ void registerBenchCommand(CLI::App& app, int& exitCode, int argc, const char* co
     cmd->add_option("--repeat", args->repeat, "Timed runs after one warm-up; medians with min-max")->default_str("3");
     cmd->add_option("--out", args->out, "Output folder for bench.json, bench.md, report.html, images/")
         ->default_str(args->out);
-    cmd->add_option("--threads", args->threads, "Build-scaling thread counts, e.g. 1,2 (default 1, 2, 4, ... all cores)");
+    cmd->add_option("--threads", args->threads,
+                    "Build-scaling thread counts, e.g. 1,2; 0 = all cores (default 1, 2, 4, ... all cores)");
     cmd->add_option("--deltas", args->deltas, "AAC delta sweep (as in Table 5.5 of A. F. Mahmuda's 2017 AAC thesis), e.g. 4,6,8,...,50, or none (default 4,8,12,20,30,50)");
     cmd->add_option("--maxdepths", args->maxDepths, "maxdepth sweep below the scene's, e.g. 1,2, or none (default: every depth below the scene's)");
     cmd->add_flag("--quiet", args->quiet, "No progress line");

@@ -47,6 +47,7 @@ struct RenderArgs {
     std::vector<std::string> aovs;
     bool stats = false;
     bool json = false;
+    bool quiet = false;  // no progress line, no summary: errors and warnings only
     std::string saveAccel, loadAccel;  // structure files (accel/accel_file.h)
 };
 
@@ -241,7 +242,7 @@ void runRender(const RenderArgs& args) {
     // A wrong structure file fails here, in milliseconds, before a big scene loads.
     AccelFiles accelFiles = openAccelFiles(args, spec);
 
-    const bool showProgress = !args.json && isatty(STDERR_FILENO);
+    const bool showProgress = !args.json && !args.quiet && isatty(STDERR_FILENO);
     const Clock::time_point t0 = Clock::now();
     // The device opens while the scene loads: the Vulkan loader and the driver take tens of
     // milliseconds to start. Its errors surface after the scene's, as when it opened second.
@@ -297,7 +298,7 @@ void runRender(const RenderArgs& args) {
         std::printf("%s\n", reportJson(report).c_str());
         return;
     }
-    printReport(report, args.stats);
+    if (!args.quiet) printReport(report, args.stats);
 }
 
 }  // namespace
@@ -336,8 +337,11 @@ void registerRenderCommand(CLI::App& app, int& exitCode) {
                     "Read the structure from FILE (written by --save-accel for this scene and --accel) "
                     "instead of building it; GPU only")
         ->type_name("FILE");
-    cmd->add_flag("--stats", args->stats, "Print scene, kernel-feature and timing statistics");
-    cmd->add_flag("--json", args->json, "Print the report as JSON");
+    CLI::Option* stats = cmd->add_flag("--stats", args->stats, "Print scene, kernel-feature and timing statistics");
+    CLI::Option* json = cmd->add_flag("--json", args->json, "Print the report as JSON");
+    cmd->add_flag("--quiet", args->quiet, "No progress line and no summary: errors and warnings only")
+        ->excludes(json)
+        ->excludes(stats);
     cmd->callback([args, &exitCode] {
         runRender(*args);
         exitCode = 0;

@@ -47,6 +47,11 @@ vkray_expect_usage_error(command_typo "unknown command 'rendr' \\(did you mean '
 vkray_expect_usage_error(missing_value "--size: 1 required TEXT missing" render ${CLI_DATA}/one_triangle.scene --size)
 vkray_expect_usage_error(cpu_device "--cpu excludes --device" render ${CLI_DATA}/one_triangle.scene --cpu --device 7)
 vkray_expect_usage_error(cpu_counters "--counters excludes --cpu" render ${CLI_DATA}/one_triangle.scene --counters --cpu)
+vkray_expect_usage_error(quiet_stats "--stats excludes --quiet" render ${CLI_DATA}/one_triangle.scene --quiet --stats)
+# --quiet: the image is written and nothing is printed.
+add_test(NAME cli.render_quiet
+         COMMAND bash -c "out=$(\"$0\" render \"$1\" --cpu --size 8x8 --quiet -o \"$2\") && test -z \"$out\" && test -s \"$2\""
+                 $<TARGET_FILE:vkray> ${CLI_DATA}/one_triangle.scene ${CLI_OUT}/quiet.png)
 vkray_expect_error(spp_flag "--spp 0: must be 1\\.\\.4096" render ${CLI_DATA}/one_triangle.scene --spp 0 -o ${CLI_OUT}/x.png)
 vkray_expect_error(background_flag "--background 1,-1,0: expected R,G,B" render ${CLI_DATA}/one_triangle.scene --background 1,-1,0 -o ${CLI_OUT}/x.png)
 vkray_expect_error(maxdepth_flag "--maxdepth 0" render ${CLI_DATA}/one_triangle.scene --maxdepth 0 -o ${CLI_OUT}/x.png)
