@@ -19,6 +19,7 @@ vkray_bench_error(unknown_accel "octree" ${BENCH_SCENE} --accel bvh,octree --out
 vkray_bench_error(empty_accel_item "--accel bvh,,kd-stack: empty item" ${BENCH_SCENE} --accel bvh,,kd-stack --out ${BENCH_OUT}/x)
 vkray_bench_error(repeat_zero "--repeat 0" ${BENCH_SCENE} --repeat 0 --out ${BENCH_OUT}/x)
 vkray_bench_error(bad_delta "--deltas 4,x" ${BENCH_SCENE} --deltas 4,x --out ${BENCH_OUT}/x)
-vkray_bench_error(bad_threads "--threads 0" ${BENCH_SCENE} --threads 0 --out ${BENCH_OUT}/x)
+vkray_bench_error(bad_threads "--threads -1" ${BENCH_SCENE} --threads -1 --out ${BENCH_OUT}/x)
+vkray_bench_error(huge_threads "--threads 1,2000: '2000' is not an integer in 0\\.\\.1024" ${BENCH_SCENE} --threads 1,2000 --out ${BENCH_OUT}/x)
 vkray_bench_error(bad_size "--size 10x" ${BENCH_SCENE} --size 10x --out ${BENCH_OUT}/x)
 vkray_bench_error(out_not_a_folder "--out .*cannot create" ${BENCH_SCENE} --out ${BENCH_SCENE}/sub)
