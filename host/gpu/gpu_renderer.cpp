@@ -70,17 +70,24 @@ uint32_t countFlagged(const GpuPixel* src, const Tile& tile, uint32_t flag) {
     return n;
 }
 
+// Sample s of every pixel (RenderOptions::spp): where in its pixel the camera ray goes.
+void setSample(GpuFrameParams& p, int s) {
+    const glm::vec2 offset = pixelSampleOffset(s);
+    p.eye.w = offset.x;
+    p.w.w = offset.y;
+}
+
 GpuFrameParams frameParams(const Scene& scene, const RenderOptions& options) {
     const CameraFrame cam = makeCameraFrame(scene.camera, options.width, options.height);
     GpuFrameParams p{};
-    const glm::vec2 centre = pixelSampleOffset(0);
-    p.eye = vec4(glm::vec3(cam.eye), centre.x);
+    p.eye = vec4(glm::vec3(cam.eye), 0.0f);
     p.u = vec4(glm::vec3(cam.u), float(cam.tanX));
     p.v = vec4(glm::vec3(cam.v), float(cam.tanY));
-    p.w = vec4(glm::vec3(cam.w), centre.y);
+    p.w = vec4(glm::vec3(cam.w), 0.0f);
     p.attenuation = vec4(scene.attenuation, 0.0f);
     p.background = vec4(scene.background, 0.0f);
     p.imageTile = uvec4(uint32_t(options.width), uint32_t(options.height), 0u, 0u);
+    setSample(p, 0);
     p.counts = uvec4(uint32_t(scene.triangles.size()), uint32_t(scene.lights.size()), 0u,
                      uint32_t(VKRAY_TILE_SIZE));
     return p;
@@ -432,9 +439,7 @@ Frame renderOnGpu(const VulkanContext& ctx, const Scene& scene, const RenderOpti
     Frame pass;
     for (int s = 0; s < options.spp; ++s) {
         GpuFrameParams params = baseParams;
-        const glm::vec2 offset = pixelSampleOffset(s);
-        params.eye.w = offset.x;
-        params.w.w = offset.y;
+        setSample(params, s);
         Frame& out = s == 0 ? frame : pass;
         if (s == 1) pass.resize(options.width, options.height);
         const TileProgress passProgress = !progress ? TileProgress() : [&](uint32_t done, uint32_t total) {

@@ -22,27 +22,16 @@
 // Node `index`, through the nodes' texel view.
 GpuBvhSphereNode loadBvhNode(uint index) {
     const int k = int(uint(VKRAY_BVH_SPHERE_NODE_TEXELS) * index);
-    GpuBvhSphereNode n;
-    n.centreX = uintBitsToFloat(texelFetch(nodeTexels, k));
-    n.centreY = uintBitsToFloat(texelFetch(nodeTexels, k + 1));
-    n.centreZ = uintBitsToFloat(texelFetch(nodeTexels, k + 2));
-    n.radius = uintBitsToFloat(texelFetch(nodeTexels, k + 3));
-    n.child = texelFetch(nodeTexels, k + 4);
-    return n;
+    return GpuBvhSphereNode(floatTexel(nodeTexels, k), floatTexel(nodeTexels, k + 1), floatTexel(nodeTexels, k + 2),
+                            floatTexel(nodeTexels, k + 3), texelFetch(nodeTexels, k + 4));
 }
 #else
 // Node `index`, through the nodes' texel view.
 GpuBvhNode loadBvhNode(uint index) {
     const int k = int(uint(VKRAY_BVH_NODE_TEXELS) * index);
-    GpuBvhNode n;
-    n.loX = uintBitsToFloat(texelFetch(nodeTexels, k));
-    n.hiX = uintBitsToFloat(texelFetch(nodeTexels, k + 1));
-    n.loY = uintBitsToFloat(texelFetch(nodeTexels, k + 2));
-    n.hiY = uintBitsToFloat(texelFetch(nodeTexels, k + 3));
-    n.loZ = uintBitsToFloat(texelFetch(nodeTexels, k + 4));
-    n.hiZ = uintBitsToFloat(texelFetch(nodeTexels, k + 5));
-    n.child = texelFetch(nodeTexels, k + 6);
-    return n;
+    return GpuBvhNode(floatTexel(nodeTexels, k), floatTexel(nodeTexels, k + 1), floatTexel(nodeTexels, k + 2),
+                      floatTexel(nodeTexels, k + 3), floatTexel(nodeTexels, k + 4), floatTexel(nodeTexels, k + 5),
+                      texelFetch(nodeTexels, k + 6));
 }
 #endif
 

@@ -74,10 +74,7 @@ struct BvhTracer::BoxRay {
             tNear = std::max(tNear, std::min(t0, t1));
             tFar = std::min(tFar, std::max(t0, t1));
         }
-        tNear -= kSlabSlack * std::abs(tNear);
-        tFar += kSlabSlack * std::abs(tFar);
-        tEnter = tNear;
-        return tNear <= tFar && tFar >= 0.0 && tNear <= limit;
+        return meets(tNear, tFar, limit, tEnter);
     }
 
     // The sphere test from the centre's squared distance to the ray's line (as the GPU kernel does,
@@ -92,11 +89,15 @@ struct BvhTracer::BoxRay {
         const double h2 = radius * radius - glm::dot(l, l);
         if (h2 < 0.0) return false;
         const double half = std::sqrt(h2 / a);
-        double tNear = tc - half, tFar = tc + half;
+        return meets(tc - half, tc + half, limit, tEnter);
+    }
+
+    // Whether the container's interval [tNear, tFar], widened by kSlabSlack, meets [0, limit].
+    static bool meets(double tNear, double tFar, double limit, double& tEnter) {
         tNear -= kSlabSlack * std::abs(tNear);
         tFar += kSlabSlack * std::abs(tFar);
         tEnter = tNear;
-        return tFar >= 0.0 && tNear <= limit;
+        return tNear <= tFar && tFar >= 0.0 && tNear <= limit;
     }
 };
 
