@@ -10,8 +10,11 @@ packages=(
   cmake make g++ pkg-config
   libvulkan-dev mesa-vulkan-drivers vulkan-validationlayers glslang-tools
   libglm-dev libtinyobjloader-dev libstb-dev
-  libtbb-dev libcli11-dev nlohmann-json3-dev libgtest-dev libxxhash-dev
+  libtbb-dev libcli11-dev nlohmann-json3-dev libgtest-dev libxxhash-dev libopenexr-dev
   libembree-dev
+  # tests/slurm: a throwaway single-node Slurm (its own configuration and state in a temporary
+  # folder; the packages' system services are not used) and jq for checking merged bench reports
+  slurmctld slurmd slurm-client munge jq
 )
 for extra in "$@"; do
   case "$extra" in

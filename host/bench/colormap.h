@@ -25,8 +25,8 @@ std::string cssColor(DisplayColor c);
 // One pixel per value (top row first), coloured by viridis(value / maxValue): values at or above
 // maxValue share the top colour, so a few outlier pixels cannot wash out the rest. A maxValue that
 // is not positive maps 0 to the bottom colour and everything else to the top. The channels hold the
-// display colour as is: vkray's PNGs store round(255 c) without a gamma curve (image_io.h), so the
-// file shows exactly the colormap's colours. Throws vkray::Error when values.size() != w * h.
+// display colour as is: the report stores them with Encoding::linear() (round(255 c), no transfer
+// curve; image_meta.h), so the file shows exactly the colormap's colours. Throws vkray::Error when values.size() != w * h.
 Image heatmapImage(const std::vector<uint32_t>& values, int w, int h, double maxValue);
 
 }  // namespace vkray::bench

@@ -52,8 +52,12 @@ bool heatmapSize(const SceneResult& s, const AccelResult& a, int& w, int& h) {
     return false;
 }
 
+// Renders (the reference's and each accelerator's) are radiance: sRGB-encoded like `vkray render`'s
+// PNGs. Difference images and heatmaps already hold display colours: stored as they are.
 ReportImage encoded(size_t scene, const std::string& accel, ImageRole role, std::string fileName, const Image& im) {
-    return ReportImage{scene, accel, role, std::move(fileName), im.width, im.height, encodePng(im)};
+    const bool radiance = role == ImageRole::Reference || role == ImageRole::Render;
+    return ReportImage{scene, accel, role, std::move(fileName), im.width, im.height,
+                       encodePng(im, radiance ? Encoding{} : Encoding::linear())};
 }
 
 }  // namespace

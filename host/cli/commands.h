@@ -11,6 +11,8 @@ void registerRenderCommand(CLI::App& app, int& exitCode);
 void registerDevicesCommand(CLI::App& app, int& exitCode);
 void registerCompareCommand(CLI::App& app, int& exitCode);
 void registerGenCommand(CLI::App& app, int& exitCode);
+void registerConvertCommand(CLI::App& app, int& exitCode);
+void registerAssembleCommand(CLI::App& app, int& exitCode);
 // The bench report records the command line that produced it.
 void registerBenchCommand(CLI::App& app, int& exitCode, int argc, const char* const* argv);
 

@@ -1,6 +1,7 @@
-// `vkray compare A B`: difference metrics between two images (PNG, BMP or PFM; see
-// image/compare.h for the metrics and their inf/NaN rules). Exit code 1 when a limit given with
-// --max-rmse or --max-bad-fraction is exceeded, so scripts and CI can gate on it.
+// `vkray compare A B`: difference metrics between two images (PNG, BMP, PFM or EXR; see
+// image/compare.h for the metrics and their inf/NaN rules). Values are compared as stored: an 8-bit
+// file's levels / 255 (no transfer function undone), a float file's raw values. Exit code 1 when a
+// limit given with --max-rmse or --max-bad-fraction is exceeded, so scripts and CI can gate on it.
 #include <charconv>
 #include <cmath>
 #include <cstdio>
@@ -26,6 +27,7 @@ struct CompareArgs {
     double maxRmse = 0.0, maxBadFraction = 0.0;
     std::string diff;
     bool json = false;
+    bool quiet = false;  // no output: the exit status alone
 };
 
 // "0.01" or a fraction "2/255" (8-bit levels are the natural unit for PNG).
@@ -63,7 +65,8 @@ void run(const CompareArgs& args, bool hasMaxRmse, bool hasMaxBad, int& exitCode
     } catch (const Error& e) {
         throw Error("cannot compare " + args.a + " with " + args.b + ": " + e.what());
     }
-    if (!args.diff.empty()) writeImage(args.diff, makeDiffImage(a, b, threshold));
+    // The difference image's colours are display values: stored as they are, not sRGB-encoded.
+    if (!args.diff.empty()) writeImage(args.diff, makeDiffImage(a, b, threshold), {}, Encoding::linear());
 
     std::vector<std::string> failures;
     if (hasMaxRmse) {
@@ -79,7 +82,9 @@ void run(const CompareArgs& args, bool hasMaxRmse, bool hasMaxBad, int& exitCode
         failures.push_back("bad fraction " + fmt(s.badFraction) + " > --max-bad-fraction " + fmt(args.maxBadFraction));
     exitCode = failures.empty() ? 0 : 1;
 
-    if (args.json) {
+    if (args.quiet) {
+        return;
+    } else if (args.json) {
         nlohmann::json j;
         j["a"] = args.a;
         j["b"] = args.b;
@@ -129,7 +134,7 @@ void run(const CompareArgs& args, bool hasMaxRmse, bool hasMaxBad, int& exitCode
 void registerCompareCommand(CLI::App& app, int& exitCode) {
     auto args = std::make_shared<CompareArgs>();
     CLI::App* cmd = app.add_subcommand(
-        "compare", "Image difference metrics (RMSE, PSNR, max error, pixels over a threshold) of two PNG/BMP/PFM "
+        "compare", "Image difference metrics (RMSE, PSNR, max error, pixels over a threshold) of two PNG/BMP/PFM/EXR "
                    "files; exits 1 when over --max-rmse or --max-bad-fraction");
     cmd->add_option("A", args->a, "First image (the reference)")->required();
     cmd->add_option("B", args->b, "Second image")->required();
@@ -142,8 +147,10 @@ void registerCompareCommand(CLI::App& app, int& exitCode) {
         cmd->add_option("--max-bad-fraction", args->maxBadFraction,
                         "Fail (exit 1) when a larger fraction of the pixels is bad")
             ->check(CLI::Range(0.0, 1.0));
-    cmd->add_option("--diff", args->diff, "Write a difference image here (PNG, BMP or PFM by extension)");
-    cmd->add_flag("--json", args->json, "Print the figures as JSON");
+    cmd->add_option("--diff", args->diff, "Write a difference image here (PNG, BMP, PFM or EXR by extension)");
+    CLI::Option* json = cmd->add_flag("--json", args->json, "Print the figures as JSON");
+    cmd->add_flag("--quiet", args->quiet, "Print nothing: the exit status alone says pass (0) or fail (1)")
+        ->excludes(json);
     cmd->callback([args, maxRmse, maxBad, &exitCode] {
         run(*args, maxRmse->count() > 0, maxBad->count() > 0, exitCode);
     });

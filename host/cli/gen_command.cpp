@@ -21,6 +21,7 @@ struct GenArgs {
     int64_t seed = 1;
     std::string output;
     bool force = false;
+    bool quiet = false;
 };
 
 // What each kind is made of, for the file's comment, and the material it gets: chosen so the
@@ -95,8 +96,9 @@ void run(const GenArgs& args, int& exitCode) {
     const std::string text = sceneText(spec, command, out.stem().string() + ".png");
     std::ofstream file(out, std::ios::binary);
     if (!(file << text) || !file.flush()) throw Error("gen: cannot write " + args.output);
-    std::cout << "wrote " << args.output << ": " << args.kind << ", " << generatedTriangleCount(spec)
-              << " triangles + 2 floor, seed " << args.seed << "\n";
+    if (!args.quiet)
+        std::cout << "wrote " << args.output << ": " << args.kind << ", " << generatedTriangleCount(spec)
+                  << " triangles + 2 floor, seed " << args.seed << "\n";
     exitCode = 0;
 }
 
@@ -113,6 +115,7 @@ void registerGenCommand(CLI::App& app, int& exitCode) {
         ->capture_default_str();
     cmd->add_option("-o,--output", args->output, "The .scene file to write")->required();
     cmd->add_flag("--force", args->force, "Replace the .scene file if it exists");
+    cmd->add_flag("--quiet", args->quiet, "Print nothing but errors");
     cmd->callback([args, &exitCode] { run(*args, exitCode); });
 }
 

@@ -56,6 +56,8 @@ int main(int argc, char** argv) {
     vkray::cli::registerDevicesCommand(app, exitCode);
     vkray::cli::registerCompareCommand(app, exitCode);
     vkray::cli::registerGenCommand(app, exitCode);
+    vkray::cli::registerConvertCommand(app, exitCode);
+    vkray::cli::registerAssembleCommand(app, exitCode);
     vkray::cli::registerBenchCommand(app, exitCode, argc, argv);
     try {
         app.parse(argc, argv);

@@ -1,5 +1,6 @@
-// Image files: PNG/BMP through stb (encoded and decoded in memory, so all file I/O and its error
-// messages are ours), PFM by hand. See image_io.h for the contract.
+// Image files: PNG/BMP through stb and EXR through OpenEXR (exr_io.cpp), all encoded and decoded in
+// memory, so all file I/O and its error messages are ours; PFM by hand. See image_io.h for the
+// contract.
 #include "image/image_io.h"
 
 #include <algorithm>
@@ -19,13 +20,13 @@
 
 #include "core/error.h"
 #include "core/file_output.h"
+#include "image/exr_io.h"
+#include "image/tone.h"
 
 namespace fs = std::filesystem;
 
 namespace vkray {
 namespace {
-
-enum class Format { Png, Bmp, Pfm };
 
 Error fileError(const fs::path& path, const std::string& what) { return Error(FileLoc{path.string()}, what); }
 
@@ -33,15 +34,6 @@ std::string lowerExtension(const fs::path& path) {
     std::string ext = path.extension().string();
     std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
     return ext;
-}
-
-Format formatFor(const fs::path& path) {
-    const std::string ext = lowerExtension(path);
-    if (ext.empty() || ext == ".png") return Format::Png;
-    if (ext == ".bmp") return Format::Bmp;
-    if (ext == ".pfm") return Format::Pfm;
-    throw fileError(path, "unsupported image file extension '" + path.extension().string() +
-                              "' (supported: .png, .bmp, .pfm)");
 }
 
 void checkDirectoryExists(const fs::path& path) {
@@ -56,13 +48,6 @@ void checkSize(const fs::path& path, int width, int height, int channels) {
                                   std::to_string(channels) + " channels");
 }
 
-// round(255 c) of c clamped to [0, 1]; NaN (which fails every comparison) becomes 0.
-unsigned char to8Bit(float c) {
-    if (!(c > 0.0f)) return 0;
-    if (c >= 1.0f) return 255;
-    return static_cast<unsigned char>(std::lround(255.0 * double(c)));
-}
-
 void appendBytes(void* context, void* data, int size) {
     auto* out = static_cast<std::vector<unsigned char>*>(context);
     const auto* p = static_cast<const unsigned char*>(data);
@@ -70,11 +55,11 @@ void appendBytes(void* context, void* data, int size) {
 }
 
 // PNG or BMP bytes of an image whose size checkSize has accepted; empty when stb fails.
-std::vector<unsigned char> encode8Bit(Format format, const Image& image) {
+std::vector<unsigned char> encode8Bit(ImageFormat format, const Image& image, const Encoding& encoding) {
     std::vector<unsigned char> pixels(image.data.size());
-    std::transform(image.data.begin(), image.data.end(), pixels.begin(), to8Bit);
+    std::transform(image.data.begin(), image.data.end(), pixels.begin(), LevelEncoder(encoding));
     std::vector<unsigned char> encoded;
-    const int ok = format == Format::Png
+    const int ok = format == ImageFormat::Png
                        ? stbi_write_png_to_func(appendBytes, &encoded, image.width, image.height, image.channels,
                                                 pixels.data(), image.width * image.channels)
                        : stbi_write_bmp_to_func(appendBytes, &encoded, image.width, image.height, image.channels,
@@ -83,8 +68,8 @@ std::vector<unsigned char> encode8Bit(Format format, const Image& image) {
     return encoded;
 }
 
-void write8Bit(const fs::path& path, Format format, const Image& image) {
-    const std::vector<unsigned char> encoded = encode8Bit(format, image);
+void write8Bit(const fs::path& path, ImageFormat format, const Image& image, const Encoding& encoding) {
+    const std::vector<unsigned char> encoded = encode8Bit(format, image, encoding);
     if (encoded.empty()) throw fileError(path, "cannot encode the image");
     writeFileBytes(path, encoded.data(), encoded.size());
 }
@@ -97,7 +82,7 @@ uint32_t byteSwap(uint32_t v) {
 
 // Whole file into memory, refusing anything bigger than the largest image we accept could need.
 std::vector<unsigned char> readBytes(const fs::path& path) {
-    constexpr size_t kMaxFileBytes = kMaxReadPixels * 3 * sizeof(float) + 4096;
+    constexpr size_t kMaxFileBytes = kMaxReadPixels * 3 * sizeof(float) + (size_t(1) << 20);  // + EXR offsets
     std::error_code ec;
     if (fs::is_directory(path, ec)) throw fileError(path, "cannot read: is a directory");
     std::FILE* f = std::fopen(path.c_str(), "rb");
@@ -237,6 +222,18 @@ Image decodePfm(const fs::path& path, const std::vector<unsigned char>& bytes) {
     return image;
 }
 
+// The format of a file from its first bytes (8 are enough); an error for anything else.
+ImageFormat sniffFormat(const fs::path& path, const std::vector<unsigned char>& bytes) {
+    static const unsigned char kPngMagic[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
+    if (bytes.empty()) throw fileError(path, "empty file");
+    if (bytes.size() >= 3 && bytes[0] == 'P' && (bytes[1] == 'F' || bytes[1] == 'f') && isSpace(bytes[2]))
+        return ImageFormat::Pfm;
+    if (bytes.size() >= 8 && std::memcmp(bytes.data(), kPngMagic, 8) == 0) return ImageFormat::Png;
+    if (bytes.size() >= 2 && bytes[0] == 'B' && bytes[1] == 'M') return ImageFormat::Bmp;
+    if (hasExrMagic(bytes)) return ImageFormat::Exr;
+    throw fileError(path, "not a PNG, BMP, PFM or EXR file");
+}
+
 }  // namespace
 
 void writePfm(const fs::path& path, int width, int height, int channels, const float* topFirst) {
@@ -259,30 +256,35 @@ void writePfm(const fs::path& path, int width, int height, int channels, const f
     writeFileBytes(path, bytes.data(), bytes.size());
 }
 
-void writeImage(const fs::path& path, const Image& image) {
-    const Format format = formatFor(path);
+void writeImage(const fs::path& path, const Image& image, const ImageMeta& meta, const Encoding& encoding) {
+    const ImageFormat format = imageFormatForPath(path);
     checkSize(path, image.width, image.height, image.channels);
     if (image.data.size() != image.pixelCount() * size_t(image.channels))
         throw fileError(path, "image buffer does not match its size");
-    if (format == Format::Pfm)
+    if (format == ImageFormat::Pfm) {
         writePfm(path, image.width, image.height, image.channels, image.data.data());
-    else
-        write8Bit(path, format, image);
+    } else if (format == ImageFormat::Exr) {
+        const std::vector<unsigned char> bytes = encodeExr(path, image, meta);
+        writeFileBytes(path, bytes.data(), bytes.size());
+    } else {
+        write8Bit(path, format, image, encoding);
+    }
 }
 
-std::vector<unsigned char> encodePng(const Image& image) {
+std::vector<unsigned char> encodePng(const Image& image, const Encoding& encoding) {
     auto describe = [&] { return std::to_string(image.width) + "x" + std::to_string(image.height) + " image with " +
                                  std::to_string(image.channels) + " channels"; };
     if (image.width <= 0 || image.height <= 0 || (image.channels != 1 && image.channels != 3))
         throw Error("cannot encode a " + describe() + " as PNG");
     if (image.data.size() != image.pixelCount() * size_t(image.channels))
         throw Error("cannot encode a " + describe() + " as PNG: its buffer does not match its size");
-    std::vector<unsigned char> encoded = encode8Bit(Format::Png, image);
+    std::vector<unsigned char> encoded = encode8Bit(ImageFormat::Png, image, encoding);
     if (encoded.empty()) throw Error("cannot encode a " + describe() + " as PNG");
     return encoded;
 }
 
-void writeColorImage(const fs::path& path, int width, int height, const std::vector<glm::vec3>& rgbTopFirst) {
+void writeColorImage(const fs::path& path, int width, int height, const std::vector<glm::vec3>& rgbTopFirst,
+                     const ImageMeta& meta, const Encoding& encoding) {
     checkSize(path, width, height, 3);
     if (rgbTopFirst.size() != size_t(width) * size_t(height))
         throw fileError(path, "colour buffer holds " + std::to_string(rgbTopFirst.size()) + " pixels, not " +
@@ -290,21 +292,38 @@ void writeColorImage(const fs::path& path, int width, int height, const std::vec
     Image image(width, height, 3);
     for (size_t i = 0; i < rgbTopFirst.size(); ++i)
         for (int c = 0; c < 3; ++c) image.data[i * 3 + size_t(c)] = rgbTopFirst[i][c];
-    writeImage(path, image);
+    writeImage(path, image, meta, encoding);
 }
 
-Image readImage(const fs::path& path) {
+ImageFormat imageFormatForPath(const fs::path& path) {
+    const std::string ext = lowerExtension(path);
+    if (ext.empty() || ext == ".png") return ImageFormat::Png;
+    if (ext == ".bmp") return ImageFormat::Bmp;
+    if (ext == ".pfm") return ImageFormat::Pfm;
+    if (ext == ".exr") return ImageFormat::Exr;
+    throw fileError(path, "unsupported image file extension '" + path.extension().string() +
+                              "' (supported: .png, .bmp, .pfm, .exr)");
+}
+
+ImageFormat readImageFormat(const fs::path& path) {
+    std::error_code ec;
+    if (fs::is_directory(path, ec)) throw fileError(path, "cannot read: is a directory");
+    std::FILE* f = std::fopen(path.c_str(), "rb");
+    if (!f) throw fileError(path, std::string("cannot open: ") + std::strerror(errno));
+    std::vector<unsigned char> head(8);
+    head.resize(std::fread(head.data(), 1, head.size(), f));
+    std::fclose(f);
+    return sniffFormat(path, head);
+}
+
+Image readImage(const fs::path& path, ImageMeta* meta) {
     const std::vector<unsigned char> bytes = readBytes(path);
-    static const unsigned char kPngMagic[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
-    if (bytes.empty()) throw fileError(path, "empty file");
-    if (bytes.size() >= 3 && bytes[0] == 'P' && (bytes[1] == 'F' || bytes[1] == 'f') && isSpace(bytes[2]))
-        return decodePfm(path, bytes);
-    if ((bytes.size() >= 8 && std::memcmp(bytes.data(), kPngMagic, 8) == 0) ||
-        (bytes.size() >= 2 && bytes[0] == 'B' && bytes[1] == 'M')) {
-        if (bytes[0] == 'B') checkBmpLength(path, bytes);
-        return decodeWithStb(path, bytes);
-    }
-    throw fileError(path, "not a PNG, BMP or PFM file");
+    const ImageFormat format = sniffFormat(path, bytes);
+    if (format == ImageFormat::Exr) return decodeExr(path, bytes, meta);
+    if (format == ImageFormat::Bmp) checkBmpLength(path, bytes);
+    Image image = format == ImageFormat::Pfm ? decodePfm(path, bytes) : decodeWithStb(path, bytes);
+    if (meta) *meta = ImageMeta{image.width, image.height, 0, 0, {}};
+    return image;
 }
 
 const std::vector<std::string_view>& aovNames() {
@@ -313,37 +332,39 @@ const std::vector<std::string_view>& aovNames() {
 }
 
 void checkColorImagePath(const fs::path& path) {
-    formatFor(path);
+    imageFormatForPath(path);
     checkDirectoryExists(path);
 }
 
 void checkAovPath(const fs::path& path, std::string_view name) {
     if (std::find(aovNames().begin(), aovNames().end(), name) == aovNames().end())
         throw Error("unknown AOV '" + std::string(name) + "' (valid: depth, primid, normal)");
-    // AOVs carry +inf and -1, which no 8-bit format can hold: insist on the PFM name.
-    if (lowerExtension(path) != ".pfm") throw fileError(path, "AOV files are PFM: the name must end in .pfm");
+    // AOVs carry +inf and -1, which no 8-bit format can hold: insist on a float format.
+    const std::string ext = lowerExtension(path);
+    if (ext != ".pfm" && ext != ".exr")
+        throw fileError(path, "AOV files are PFM or EXR: the name must end in .pfm or .exr");
     checkDirectoryExists(path);
 }
 
-void writeAov(const fs::path& path, const Frame& frame, std::string_view name) {
+void writeAov(const fs::path& path, const Frame& frame, std::string_view name, const ImageMeta& meta) {
     checkAovPath(path, name);
     const size_t n = size_t(frame.width) * size_t(frame.height);
     auto missing = [&] { return fileError(path, "the frame has no " + std::string(name) + " AOV of its size"); };
+    const int channels = name == "normal" ? 3 : 1;
+    checkSize(path, frame.width, frame.height, channels);
+    Image image(frame.width, frame.height, channels);
     if (name == "depth") {
         if (frame.depth.size() != n) throw missing();
-        writePfm(path, frame.width, frame.height, 1, frame.depth.data());
+        image.data = frame.depth;
     } else if (name == "primid") {
         if (frame.primId.size() != n) throw missing();
-        std::vector<float> ids(n);
-        std::transform(frame.primId.begin(), frame.primId.end(), ids.begin(), [](int32_t id) { return float(id); });
-        writePfm(path, frame.width, frame.height, 1, ids.data());
+        std::transform(frame.primId.begin(), frame.primId.end(), image.data.begin(), [](int32_t id) { return float(id); });
     } else {
         if (frame.normal.size() != n) throw missing();
-        std::vector<float> xyz(n * 3);
         for (size_t i = 0; i < n; ++i)
-            for (int c = 0; c < 3; ++c) xyz[i * 3 + size_t(c)] = frame.normal[i][c];
-        writePfm(path, frame.width, frame.height, 3, xyz.data());
+            for (int c = 0; c < 3; ++c) image.data[i * 3 + size_t(c)] = frame.normal[i][c];
     }
+    writeImage(path, image, meta);
 }
 
 }  // namespace vkray

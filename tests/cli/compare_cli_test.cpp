@@ -48,8 +48,8 @@ void writePair(const fs::path& a, const fs::path& b) {
     std::vector<glm::vec3> pa(100, glm::vec3(100.0f / 255.0f)), pb = pa;
     for (int k = 0; k < 3; ++k) pb[size_t(k)].r = 110.0f / 255.0f;
     pb[50].g = 101.0f / 255.0f;
-    writeColorImage(a, 10, 10, pa);
-    writeColorImage(b, 10, 10, pb);
+    writeColorImage(a, 10, 10, pa, {}, Encoding::linear());  // levels stored as given
+    writeColorImage(b, 10, 10, pb, {}, Encoding::linear());
 }
 
 bool contains(const std::string& s, const std::string& part) { return s.find(part) != std::string::npos; }

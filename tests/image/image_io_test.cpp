@@ -1,4 +1,4 @@
-// Image files: PNG/BMP/PFM round trips (values and orientation), the PFM bytes docs/outputs.md fixes,
+// Image files: PNG/BMP/PFM/EXR round trips (values and orientation), the PFM bytes docs/outputs.md fixes,
 // the AOV writers, and errors (never crashes) for unwritable paths and bad or truncated files.
 #include <cmath>
 #include <cstdint>
@@ -69,7 +69,7 @@ void expectError(F&& f, std::initializer_list<std::string> fragments) {
 void roundTrip8Bit(const std::string& fileName) {
     const int w = 4, h = 3;
     const auto rgb = levelImage(w, h);
-    writeColorImage(out(fileName), w, h, rgb);
+    writeColorImage(out(fileName), w, h, rgb, {}, Encoding::linear());
     const Image img = readImage(out(fileName));
     ASSERT_EQ(img.width, w);
     ASSERT_EQ(img.height, h);
@@ -95,7 +95,7 @@ TEST(ImageIo, NoExtensionMeansPng) {
 TEST(ImageIo, EightBitConversionClampsRoundsAndZeroesNan) {
     const float nan = std::numeric_limits<float>::quiet_NaN();
     const std::vector<glm::vec3> rgb = {{-0.5f, 1.7f, nan}, {0.5f, kInf, -kInf}, {0.2f, 1.0f / 255.0f, 0.499f / 255.0f}};
-    writeColorImage(out("convert.png"), 3, 1, rgb);
+    writeColorImage(out("convert.png"), 3, 1, rgb, {}, Encoding::linear());
     const Image img = readImage(out("convert.png"));
     auto level = [&](int i, int c) { return int(std::lround(img.at(i, 0, c) * 255.0f)); };
     EXPECT_EQ(level(0, 0), 0);    // clamped below
@@ -178,15 +178,15 @@ TEST(ImageIo, WriteImageHandlesOneChannel) {
     EXPECT_EQ(pfm.data, grey.data);
 }
 
-// encodePng is what writeImage writes (same bytes), and decodes to the same clamped, rounded levels,
-// NaN as 0, top row first; one channel stays one channel (grey).
+// encodePng is what writeImage writes with the same encoding (same bytes), and decodes to the same
+// clamped, rounded levels, NaN as 0, top row first; one channel stays one channel (grey).
 TEST(ImageIo, EncodePngMatchesTheFileAndDecodesToTheSameLevels) {
     const float nan = std::numeric_limits<float>::quiet_NaN();
     Image rgb(3, 2, 3);
     rgb.data = {-0.5f, 1.7f, nan, 0.5f, kInf, 0.2f, 1.0f / 255.0f, 0.25f, 0.75f,   // top row
                 0.0f,  1.0f, 0.12f, 0.92f, 0.33f, 0.6f, 0.4f,       0.8f,  0.05f};  // bottom row
     const std::vector<unsigned char> png = encodePng(rgb);
-    writeImage(out("encode.png"), rgb);
+    writeImage(out("encode.png"), rgb, {}, Encoding::linear());
     EXPECT_EQ(png, fileBytes(out("encode.png")));
 
     int w = 0, h = 0, comp = 0;
@@ -256,14 +256,14 @@ TEST(ImageIo, AovErrors) {
     Frame f;
     f.resize(1, 1);
     expectError([&] { writeAov(out("x.pfm"), f, "albedo"); }, {"albedo", "depth", "primid", "normal"});
-    expectError([&] { writeAov(out("depth_aov.png"), f, "depth"); }, {"depth_aov.png", ".pfm"});
+    expectError([&] { writeAov(out("depth_aov.png"), f, "depth"); }, {"depth_aov.png", ".pfm", ".exr"});
     f.depth.clear();
     expectError([&] { writeAov(out("nodepth.pfm"), f, "depth"); }, {"nodepth.pfm", "depth"});
 }
 
 TEST(ImageIo, WriteErrorsNameThePath) {
     const std::vector<glm::vec3> px(1);
-    expectError([&] { writeColorImage(out("photo.jpg"), 1, 1, px); }, {"photo.jpg", ".png", ".bmp", ".pfm"});
+    expectError([&] { writeColorImage(out("photo.jpg"), 1, 1, px); }, {"photo.jpg", ".png", ".bmp", ".pfm", ".exr"});
     const fs::path missingDir = out("no_such_dir") / "a.png";
     expectError([&] { writeColorImage(missingDir, 1, 1, px); }, {missingDir.string(), "cannot open"});
     expectError([&] { writeColorImage(out("bad.png"), 2, 2, px); }, {"bad.png"});  // 1 pixel for 2x2
@@ -276,7 +276,7 @@ TEST(ImageIo, ReadErrorsNameThePathAndCause) {
     putText(out("empty.png"), "");
     expectError([] { readImage(out("empty.png")); }, {"empty.png", "empty"});
     putText(out("text.png"), "hello, I am not an image");
-    expectError([] { readImage(out("text.png")); }, {"text.png", "not a PNG, BMP or PFM"});
+    expectError([] { readImage(out("text.png")); }, {"text.png", "not a PNG, BMP, PFM or EXR"});
     // A PNG signature followed by garbage.
     putText(out("garbage.png"), std::string("\x89PNG\r\n\x1a\n", 8) + std::string(100, 'x'));
     expectError([] { readImage(out("garbage.png")); }, {"garbage.png", "cannot decode"});
@@ -314,7 +314,7 @@ TEST(ImageIo, PfmDataSizeMustMatchHeader) {
 // image. The one exception: a PNG cut inside its final (empty) IEND chunk still holds all pixels.
 TEST(ImageIo, TruncatedFilesGiveErrors) {
     const auto rgb = levelImage(7, 5);  // odd width: BMP rows carry padding
-    for (const std::string name : {"full.png", "full.bmp", "full.pfm"}) {
+    for (const std::string name : {"full.png", "full.bmp", "full.pfm", "full.exr"}) {
         writeColorImage(out(name), 7, 5, rgb);
         const auto bytes = fileBytes(out(name));
         const Image full = readImage(out(name));
@@ -336,7 +336,7 @@ TEST(ImageIo, TruncatedFilesGiveErrors) {
 TEST(ImageIo, CorruptedFilesNeverCrash) {
     std::mt19937 rng(12345);
     const auto rgb = levelImage(8, 8);
-    for (const std::string name : {"fuzz.png", "fuzz.bmp", "fuzz.pfm"}) {
+    for (const std::string name : {"fuzz.png", "fuzz.bmp", "fuzz.pfm", "fuzz.exr"}) {
         writeColorImage(out(name), 8, 8, rgb);
         const auto good = fileBytes(out(name));
         for (int trial = 0; trial < 300; ++trial) {
