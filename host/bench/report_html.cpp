@@ -2,6 +2,7 @@
 // plots report_plots.h's inline SVG, the pictures PNG data URIs; the style sheet is inline, there is
 // no script and no URL, so the page works offline, attached to a mail or opened from a CI artifact.
 #include <algorithm>
+#include <cctype>
 #include <string>
 
 #include "bench/report.h"
@@ -21,15 +22,22 @@ h2 { margin-top: 2.2em; border-bottom: 2px solid #ddd; padding-bottom: .2em; }
 h3 { margin: 1.6em 0 .4em; }
 h4 { margin: 1em 0 .3em; font-family: ui-monospace, monospace; }
 nav a { margin-right: 1em; }
-.scroll { overflow-x: auto; }
+.scroll { overflow-x: auto; overflow-y: hidden; max-width: 100%;
+          background: linear-gradient(to right, #fff 40%, rgba(255,255,255,0)) left / 32px 100% no-repeat local,
+                      linear-gradient(to left, #fff 40%, rgba(255,255,255,0)) right / 32px 100% no-repeat local,
+                      linear-gradient(to right, rgba(0,0,0,.18), rgba(0,0,0,0)) left / 10px 100% no-repeat scroll,
+                      linear-gradient(to left, rgba(0,0,0,.18), rgba(0,0,0,0)) right / 10px 100% no-repeat scroll; }
 table { border-collapse: collapse; font-size: 13px; margin: .3em 0; }
-th, td { border: 1px solid #d8d8d8; padding: 3px 8px; vertical-align: top; }
+th, td { border: 1px solid #d8d8d8; padding: 3px 6px; vertical-align: top; }
 thead th { background: #f3f3f3; text-align: left; }
 td.num { text-align: right; white-space: nowrap; font-variant-numeric: tabular-nums; }
+td.num .spread { display: block; color: #666; font-size: 11px; }
 td:first-child { white-space: nowrap; }
 tr.marked td { background: #fff4c8; font-weight: 600; }
 table.facts th, table.facts td { border: none; padding: 1px 12px 1px 0; background: none; text-align: left; }
 table.facts th { color: #555; font-weight: 600; white-space: nowrap; }
+table.facts td { overflow-wrap: anywhere; }
+.plots { display: flex; flex-wrap: wrap; gap: 14px; }
 .notes { color: #555; font-size: 12px; margin: .3em 0 1em; padding-left: 1.2em; }
 .verdict { background: #eef4fc; border-left: 4px solid #3b7dd8; padding: .5em .9em; }
 .missing { color: #777; font-style: italic; }
@@ -54,17 +62,40 @@ std::string factTable(const Facts& facts) {
     return out + "</table>\n";
 }
 
+// A number cell; "12.3 (11.9–13.0)", a median with its spread, shows the spread on a line of its own
+// below, so the wide tables stay narrow enough for a laptop's screen.
+std::string numberCell(const std::string& cell) {
+    const size_t open = cell.find(" (");
+    if (open == std::string::npos || cell.back() != ')' || cell.find("–", open) == std::string::npos)
+        return escapeXml(cell);
+    return escapeXml(cell.substr(0, open)) + " <span class=\"spread\">" + escapeXml(cell.substr(open + 1)) + "</span>";
+}
+
+// A column title may break after a slash followed by a word ("triangles/ray", not "Mrays/s"), so
+// narrow columns stay narrow.
+std::string headerCell(const std::string& title) {
+    const std::string t = escapeXml(title);
+    std::string out;
+    for (size_t i = 0; i < t.size(); ++i) {
+        out += t[i];
+        const bool word = i + 2 < t.size() && std::isalpha(static_cast<unsigned char>(t[i + 2]));
+        if (t[i] == '/' && word) out += "<wbr>";
+    }
+    return out;
+}
+
 std::string htmlTable(const Table& t) {
     std::string out = "<h3>" + escapeXml(t.title) + "</h3>\n";
     if (t.rows.empty()) return out + "<p class=\"missing\">" + escapeXml(t.whenEmpty) + "</p>\n";
     auto isNumeric = [&](size_t i) { return i < t.numeric.size() && t.numeric[i]; };
     out += "<div class=\"scroll\"><table>\n<thead><tr>";
-    for (const std::string& c : t.columns) out += "<th>" + escapeXml(c) + "</th>";
+    for (const std::string& c : t.columns) out += "<th>" + headerCell(c) + "</th>";
     out += "</tr></thead>\n<tbody>\n";
     for (size_t r = 0; r < t.rows.size(); ++r) {
         out += r < t.marked.size() && t.marked[r] ? "<tr class=\"marked\">" : "<tr>";
         for (size_t i = 0; i < t.rows[r].size(); ++i)
-            out += (isNumeric(i) ? "<td class=\"num\">" : "<td>") + escapeXml(t.rows[r][i]) + "</td>";
+            out += isNumeric(i) ? "<td class=\"num\">" + numberCell(t.rows[r][i]) + "</td>"
+                                : "<td>" + escapeXml(t.rows[r][i]) + "</td>";
         out += "</tr>\n";
     }
     out += "</tbody>\n</table></div>\n";
@@ -140,11 +171,12 @@ std::string sceneSection(const SceneResult& s, size_t si, const std::vector<Repo
     out += plotOrReason(scalingPlotSvg(s), scalingReason(s));
     out += htmlTable(concurrentBuildTable(s));
     out += htmlTable(deltaSweepTable(s));
-    if (!s.deltas.empty()) out += plotOrReason(deltaPlotSvg(s), "");
+    if (!s.deltas.empty()) out += "<div class=\"plots\">" + deltaPlotSvg(s) + "</div>\n";
     out += htmlTable(errorTable(s));
     if (!s.errorPoints.empty())
-        out += "<p>Hover over a point for its figures. Emphasised points, joined by the step line, are on the "
-               "Pareto front; configurations identical to the reference sit on the row below the axis.</p>\n" +
+        out += "<p>Every point is labelled with its configuration; hover over one for its figures. Emphasised "
+               "points, joined by the step line, are on the Pareto front; configurations identical to the "
+               "reference sit on the row below the axis.</p>\n" +
                plotOrReason(errorPlotSvg(s), "");
     return out + "</section>\n";
 }

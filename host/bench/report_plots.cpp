@@ -79,13 +79,12 @@ std::string errorPlotSvg(const SceneResult& scene) {
             const size_t k = seriesOfGroup.size() - 1;  // groups in order of first appearance
             plotted.push_back(series(p.group, paletteColor(k), paletteMarker(k), Line::None));
         }
-        plotted[it->second].points.push_back(
-            point(p.totalMs(), p.error.rmse, errorTooltip(p), p.pareto ? p.label : "", p.pareto));
+        plotted[it->second].points.push_back(point(p.totalMs(), p.error.rmse, errorTooltip(p), p.label, p.pareto));
         times.push_back(p.totalMs());
         errors.push_back(p.error.rmse);
     }
     PlotOptions options = plotOptions("Error against run time", "build + trace time, ms (log scale)",
-                                      "RMSE against the reference (log scale)", 760, 440, "plot error-plot");
+                                      "RMSE against the reference (log scale)", 960, 520, "plot error-plot");
     options.yZeroLabel = "identical (0)";
     return svgPlot(options, Scale::logFor(times), Scale::logFor(errors), plotted);
 }
@@ -121,24 +120,34 @@ std::string scalingPlotSvg(const SceneResult& scene) {
     return svgPlot(options, x, Scale::linearFor(speedups, true), plotted);
 }
 
+namespace {
+
+// One panel of the delta sweep: one time against delta, on an axis of its own.
+std::string deltaPanel(const std::vector<DeltaResult>& deltas, const char* what, Spread DeltaResult::*ms, size_t colour,
+                       Marker marker) {
+    PlotSeries s = series("", paletteColor(colour), marker, Line::Straight);
+    std::vector<double> xs, ys;
+    for (const DeltaResult& d : deltas) {
+        const Spread& t = d.*ms;
+        s.points.push_back(point(double(d.delta), t.median,
+                                 "delta " + std::to_string(d.delta) + ": " + what + " " + formatSpread(t) + " ms"));
+        xs.push_back(double(d.delta));
+        ys.push_back(t.median);
+    }
+    const PlotOptions options = plotOptions(std::string("AAC delta sweep: ") + what + " time",
+                                            "delta (AAC leaf-range size)", std::string(what) + " ms (medians)", 560,
+                                            340, std::string("plot delta-plot delta-") + what);
+    return svgPlot(options, Scale::linearFor(xs, false), Scale::linearFor(ys, false), {s});
+}
+
+}  // namespace
+
 std::string deltaPlotSvg(const SceneResult& scene) {
     if (scene.deltas.empty()) return "";
     std::vector<DeltaResult> deltas = scene.deltas;
     std::sort(deltas.begin(), deltas.end(), [](const DeltaResult& a, const DeltaResult& b) { return a.delta < b.delta; });
-    PlotSeries build = series("build ms", paletteColor(0), Marker::Circle, Line::Straight);
-    PlotSeries trace = series("trace ms", paletteColor(1), Marker::Square, Line::Straight);
-    std::vector<double> xs, ys;
-    for (const DeltaResult& d : deltas) {
-        const std::string at = "delta " + std::to_string(d.delta) + ": ";
-        build.points.push_back(point(double(d.delta), d.buildMs.median, at + "build " + formatSpread(d.buildMs) + " ms"));
-        trace.points.push_back(point(double(d.delta), d.traceMs.median, at + "trace " + formatSpread(d.traceMs) + " ms"));
-        xs.push_back(double(d.delta));
-        ys.push_back(d.buildMs.median);
-        ys.push_back(d.traceMs.median);
-    }
-    const PlotOptions options =
-        plotOptions("AAC delta sweep", "delta (AAC leaf-range size)", "ms (medians)", 640, 380, "plot delta-plot");
-    return svgPlot(options, Scale::linearFor(xs, false), Scale::linearFor(ys, true), {build, trace});
+    return deltaPanel(deltas, "build", &DeltaResult::buildMs, 0, Marker::Circle) +
+           deltaPanel(deltas, "trace", &DeltaResult::traceMs, 1, Marker::Square);
 }
 
 std::string colourBarSvg(const HeatmapScale& scale) {

@@ -11,7 +11,8 @@ namespace vkray::bench {
 
 // Error against run time: x = build + trace ms (log), y = RMSE (log; 0 on an "identical (0)" row
 // below the axis), one colour and marker per group, the Pareto front joined by a step line and
-// emphasised, every point with a tooltip. Empty when the scene has no error points.
+// emphasised, every point labelled with its configuration (svg_plot.h keeps the labels apart) and
+// with a tooltip. Empty when the scene has no error points.
 std::string errorPlotSvg(const SceneResult& scene);
 
 // Build speed-up against threads, one line per accelerator, the ideal linear speed-up dashed.
@@ -19,7 +20,9 @@ std::string errorPlotSvg(const SceneResult& scene);
 std::string scalingPlotSvg(const SceneResult& scene);
 
 // Build and trace ms against the AAC delta (as in Figure 5.1 of A. F. Mahmuda, "Bounding Volume Hierarchy
-// Construction Using Agglomerative Clustering for Faster Ray Tracing", 2017). Empty without a sweep.
+// Construction Using Agglomerative Clustering for Faster Ray Tracing", 2017): two plots side by side,
+// build and trace, each on a y axis of its own (a build can be a thousandth of a trace: on one axis
+// it would lie flat on zero). Empty without a sweep.
 std::string deltaPlotSvg(const SceneResult& scene);
 
 // The heatmap's colour bar with its numbers, 0 to scale.max.

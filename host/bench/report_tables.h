@@ -79,5 +79,10 @@ std::string formatRmse(double rmse);
 std::string formatPsnr(const std::optional<double>& psnr);
 // A fraction as a percentage with 2 decimals ("0.25 %").
 std::string formatPercent(double fraction);
+// A relative change with its sign, 1 decimal under 10 % ("+163 %", "−24 %", "+2.5 %", "0 %").
+std::string formatChange(double fraction);
+// Building both at once against the sum of the separate builds, medians in ms: "7.4 ms slower than
+// the 4.5 ms sum (+163 %)", "7.0 ms faster than the 29.0 ms sum (−24 %)", "as fast as ...".
+std::string concurrentAgainstSum(double concurrentMs, double sumMs);
 
 }  // namespace vkray::bench

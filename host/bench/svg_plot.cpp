@@ -173,10 +173,120 @@ std::string seriesMarkers(const PlotSeries& s, const std::vector<Placed>& pts) {
     return out;
 }
 
-std::string seriesLabels(const std::vector<Placed>& pts) {
+// ---- Point labels: each beside its marker, clear of every marker and of the labels placed before it.
+
+constexpr double kLabelCharWidth = 5.8;  // of the 10 px labels: a little wide, so boxes do not touch
+constexpr double kLabelHeight = 11.0;
+constexpr double kLabelGap = 3.0;        // between a marker and the nearest edge of its label
+constexpr double kRingStep = 13.0;       // how much further out each ring of candidate places lies
+
+struct Box {
+    double x0, y0, x1, y1;
+    double overlap(const Box& o) const {
+        const double w = std::min(x1, o.x1) - std::max(x0, o.x0), h = std::min(y1, o.y1) - std::max(y0, o.y0);
+        return w > 0.0 && h > 0.0 ? w * h : 0.0;
+    }
+};
+
+double markerRadius(const Placed& p) { return p.point->emphasised ? kEmphasisedRadius : kMarkerRadius; }
+
+size_t glyphs(const std::string& s) {  // UTF-8: count the bytes that start a character
+    return size_t(
+        std::count_if(s.begin(), s.end(), [](char c) { return (static_cast<unsigned char>(c) & 0xC0) != 0x80; }));
+}
+
+// The label's box when its nearest edge lies `distance` from the point's centre in direction
+// (dx, dy), each of -1, 0, 1: right of the point, above and right of it, and so on.
+Box labelBox(const Placed& p, double width, int dx, int dy, double distance) {
+    const double d = dx != 0 && dy != 0 ? distance * 0.75 : distance;
+    const double cx = p.x + dx * d, cy = p.y + dy * d;
+    const double x0 = dx > 0 ? cx : dx < 0 ? cx - width : cx - width / 2.0;
+    const double y0 = dy > 0 ? cy : dy < 0 ? cy - kLabelHeight : cy - kLabelHeight / 2.0;
+    return {x0, y0, x0 + width, y0 + kLabelHeight};
+}
+
+// The candidate places nearest first; among them the first that overlaps nothing, else the one that
+// overlaps least. Returns the box and whether it is away from the marker (and needs a leader line).
+std::pair<Box, bool> placeLabel(const Placed& p, const Box& area, const std::vector<Box>& taken) {
+    static constexpr int kDirections[8][2] = {{1, -1}, {1, 1}, {-1, -1}, {-1, 1}, {1, 0}, {-1, 0}, {0, -1}, {0, 1}};
+    const double width = kLabelCharWidth * double(glyphs(p.point->label));
+    Box best{};
+    bool bestAway = false;
+    double bestCost = std::numeric_limits<double>::infinity();
+    for (int ring = 0; ring < 7; ++ring)
+        for (const auto& [dx, dy] : kDirections) {
+            const Box b = labelBox(p, width, dx, dy, markerRadius(p) + kLabelGap + ring * kRingStep);
+            double cost = ring * 0.5;  // prefers the nearer of two equally crowded places
+            if (b.x0 < area.x0 || b.x1 > area.x1 || b.y0 < area.y0 || b.y1 > area.y1) cost += 1e6;
+            for (const Box& t : taken) cost += t.overlap(b);
+            if (cost < bestCost) bestCost = cost, best = b, bestAway = ring > 0;
+            if (cost == ring * 0.5) return {best, bestAway};
+        }
+    return {best, bestAway};
+}
+
+// The point on the box's edge nearest to (x, y).
+std::pair<double, double> nearestOnBox(const Box& b, double x, double y) {
+    return {std::clamp(x, b.x0, b.x1), std::clamp(y, b.y0, b.y1)};
+}
+
+// A series' line as boxes a label should not cover: one thin box per level or upright segment (a
+// step line has only those), small boxes every few pixels along a slanted one.
+void addLineObstacles(const PlotSeries& s, const std::vector<Placed>& pts, std::vector<Box>& taken) {
+    if (s.line == Line::None) return;
+    auto segment = [&](double x0, double y0, double x1, double y1) {
+        constexpr double pad = 1.5;
+        if (x0 == x1 || y0 == y1) {
+            taken.push_back(
+                {std::min(x0, x1) - pad, std::min(y0, y1) - pad, std::max(x0, x1) + pad, std::max(y0, y1) + pad});
+            return;
+        }
+        const int n = int(std::ceil(std::hypot(x1 - x0, y1 - y0) / 4.0));
+        for (int k = 0; k <= n; ++k) {
+            const double x = x0 + (x1 - x0) * k / n, y = y0 + (y1 - y0) * k / n;
+            taken.push_back({x - pad, y - pad, x + pad, y + pad});
+        }
+    };
+    for (size_t i = 1; i < pts.size(); ++i) {
+        if (s.line == Line::Steps) {
+            segment(pts[i - 1].x, pts[i - 1].y, pts[i].x, pts[i - 1].y);
+            segment(pts[i].x, pts[i - 1].y, pts[i].x, pts[i].y);
+        } else {
+            segment(pts[i - 1].x, pts[i - 1].y, pts[i].x, pts[i].y);
+        }
+    }
+}
+
+// Emphasised points are labelled first, so they get the places nearest to them.
+std::string pointLabels(const Layout& l, const std::vector<PlotSeries>& series,
+                        const std::vector<std::vector<Placed>>& placed) {
+    std::vector<Box> taken;  // every marker, then every label as it is placed
+    std::vector<const Placed*> labelled;
+    for (size_t i = 0; i < series.size(); ++i)
+        for (const Placed& p : placed[i]) {
+            const double r = markerRadius(p) + 1.0;
+            if (series[i].marker != Marker::None) taken.push_back({p.x - r, p.y - r, p.x + r, p.y + r});
+            if (!p.point->label.empty()) labelled.push_back(&p);
+        }
+    for (size_t i = 0; i < series.size(); ++i) addLineObstacles(series[i], placed[i], taken);
+    std::stable_sort(labelled.begin(), labelled.end(),
+                     [](const Placed* a, const Placed* b) { return a->point->emphasised && !b->point->emphasised; });
+    const double bottom = std::isnan(l.zeroRowY) ? l.axisY - 1.0 : l.zeroRowY + kLabelHeight;
+    const Box area{l.left + 1.0, l.top - 12.0, l.right + 14.0, bottom};
     std::string out;
-    for (const Placed& p : pts)
-        if (!p.point->label.empty()) out += text(p.x + 8.0, p.y - 7.0, p.point->label, "class=\"label\" font-size=\"10\"");
+    for (const Placed* p : labelled) {
+        const auto [box, away] = placeLabel(*p, area, taken);
+        taken.push_back(box);
+        if (away) {  // a leader line from the marker's edge to the label
+            const auto [ex, ey] = nearestOnBox(box, p->x, p->y);
+            const double len = std::hypot(ex - p->x, ey - p->y), r = markerRadius(*p) + 1.0;
+            if (len > r)
+                out += line(p->x + (ex - p->x) * r / len, p->y + (ey - p->y) * r / len, ex, ey,
+                            "class=\"leader\" stroke=\"#999\" stroke-width=\"0.7\"");
+        }
+        out += text(box.x0, box.y1 - 2.0, p->point->label,
+                    "class=\"label\" font-size=\"10\" stroke=\"#fff\" stroke-width=\"3\" paint-order=\"stroke\"");
+    }
     return out;
 }
 
@@ -372,7 +482,7 @@ std::string svgPlot(const PlotOptions& o, const Scale& x, const Scale& y, const 
     // Lines under markers, labels on top, so neither hides a point.
     for (size_t i = 0; i < series.size(); ++i) out += seriesLine(series[i], placed[i]);
     for (size_t i = 0; i < series.size(); ++i) out += seriesMarkers(series[i], placed[i]);
-    for (size_t i = 0; i < series.size(); ++i) out += seriesLabels(placed[i]);
+    out += pointLabels(l, series, placed);
     out += legend(l, series);
     out += "</svg>\n";
     return out;

@@ -62,7 +62,9 @@ enum class Line { None, Straight, Steps };  // Steps: across at the old y, then 
 struct PlotPoint {
     double x = 0.0, y = 0.0;
     std::string tooltip;      // <title>: what a hover shows
-    std::string label;        // drawn beside the marker when not empty
+    std::string label;        // when not empty, drawn near the marker, clear of every marker, line and
+                              // label placed before it (emphasised points first); a leader line joins
+                              // a label that had to move away
     bool emphasised = false;  // larger, with a dark ring (the Pareto front, say)
 };
 

@@ -280,13 +280,33 @@ TEST(BenchReport, AcceleratorTableExplainsEmptyRates) {
     EXPECT_NE(std::find(t.notes.begin(), t.notes.end(), "² no reflective or refractive surfaces"), t.notes.end());
 }
 
-TEST(BenchReport, ConcurrentBuildShowsTheSaving) {
+TEST(BenchReport, SignedChangesReadAsChanges) {
+    EXPECT_EQ(formatChange(1.6444), "+164 %");
+    EXPECT_EQ(formatChange(-0.2414), "−24 %");  // a minus sign, not a hyphen
+    EXPECT_EQ(formatChange(0.025), "+2.5 %");
+    EXPECT_EQ(formatChange(-0.0001), "0 %");
+    EXPECT_EQ(formatChange(std::nan("")), "—");
+}
+
+TEST(BenchReport, ConcurrentBuildSaysFasterWithANegativeShare) {
     const Table t = concurrentBuildTable(fullScene());
     ASSERT_EQ(t.rows.size(), 5u);
     EXPECT_EQ(t.rows[2][1], "29.0 (26.1–34.8)");  // 9 + 20, one after the other
-    EXPECT_EQ(t.rows[4][0], "saving");
-    EXPECT_EQ(t.rows[4][1], "7.0 (24.14 % of the sum)");
+    EXPECT_EQ(t.rows[4][0], "both at once against the sum");
+    EXPECT_EQ(t.rows[4][1], "7.0 ms faster than the 29.0 ms sum (−24 %)");  // 22 against 29
+    EXPECT_TRUE(t.marked[4]);
     EXPECT_TRUE(concurrentBuildTable(minimalScene()).rows.empty());
+}
+
+TEST(BenchReport, ConcurrentBuildSaysSlowerWithAPositiveShare) {
+    // The review's case: 7.4 ms lost on a 4.5 ms sum was printed "loss ... 7.4 (-163.35 % of the sum)".
+    SceneResult scene = fullScene();
+    scene.concurrent = ConcurrentBuild{"bvh-hq", "kd-stack", around(2.0), around(2.5), around(11.9)};
+    const Table t = concurrentBuildTable(scene);
+    ASSERT_EQ(t.rows.size(), 5u);
+    EXPECT_EQ(t.rows[4][1], "7.4 ms slower than the 4.5 ms sum (+164 %)");
+    EXPECT_FALSE(t.marked[4]);
+    EXPECT_EQ(concurrentAgainstSum(4.5, 4.5), "as fast as the 4.5 ms sum (0 %)");
 }
 
 TEST(BenchReport, BuildScalingHasSpeedups) {
@@ -344,11 +364,61 @@ TEST(BenchReport, HtmlHasTheTablesPlotsAndVerdicts) {
     EXPECT_EQ(count(html, "<svg class=\"plot error-plot\""), 2u);
     EXPECT_EQ(count(html, "<svg class=\"plot scaling-plot\""), 1u);  // the minimal scene has one thread count
     EXPECT_NE(html.find("one thread count only (2 threads)"), std::string::npos);
-    EXPECT_EQ(count(html, "<svg class=\"plot delta-plot\""), 1u);
+    EXPECT_EQ(count(html, "<svg class=\"plot delta-plot delta-build\""), 1u);
+    EXPECT_EQ(count(html, "<svg class=\"plot delta-plot delta-trace\""), 1u);
     EXPECT_EQ(count(html, "<svg class=\"colour-bar\""), 2u);
     EXPECT_EQ(count(html, "<tr class=\"marked\">"), 4u + 1u + 1u + 1u);  // fronts (4 and 1), best delta, saving
     EXPECT_NE(html.find("image-rendering: pixelated"), std::string::npos);
     EXPECT_NE(html.find("width=\"256\""), std::string::npos);  // 8 px wide, shown 32 times larger
+}
+
+TEST(BenchReport, WideTablesScrollInTheirOwnBoxAndSpreadsWrap) {
+    const std::string html = benchHtml(results());
+    // Every table sits in a box that scrolls sideways, so a table wider than the page is never cut.
+    EXPECT_EQ(count(html, "<div class=\"scroll\"><table>"), count(html, "<table>"));
+    EXPECT_NE(html.find(".scroll { overflow-x: auto;"), std::string::npos);
+    // A median with its spread puts the spread on a line of its own: the accelerator table's
+    // bvh-hq build, 9.0 (8.1–10.8), is half as wide.
+    EXPECT_NE(html.find("<td class=\"num\">9.0 <span class=\"spread\">(8.1–10.8)</span></td>"), std::string::npos);
+    EXPECT_NE(html.find("td.num .spread { display: block;"), std::string::npos);
+    // Text that is not a spread stays whole.
+    EXPECT_NE(html.find("<td class=\"num\">7.0 ms faster than the 29.0 ms sum (−24 %)</td>"), std::string::npos);
+}
+
+TEST(BenchReport, DeltaSweepSaysWhichSahCostItShows) {
+    const Table t = deltaSweepTable(fullScene());
+    EXPECT_EQ(t.columns.back(), "SAH cost (BVH)");
+    const bool explained = std::any_of(t.notes.begin(), t.notes.end(), [](const std::string& n) {
+        return n.find("relative to the root's surface area, in units of Ct=1 a node and Ci=1 a triangle") !=
+               std::string::npos;
+    });
+    EXPECT_TRUE(explained);
+}
+
+// The build and the trace of the sweep are three orders of magnitude apart (the review's case:
+// build 0.15-0.5 ms, trace 230-315 ms): each gets a plot and a y axis of its own, so the build's
+// changes show instead of lying flat on zero.
+TEST(BenchReport, DeltaPlotGivesBuildAndTraceAxesOfTheirOwn) {
+    SceneResult scene = fullScene();
+    scene.deltas = {{4, 0.1, around(0.15), around(315.0), 40.0, 8.0, 70.0},
+                    {8, 0.1, around(0.3), around(260.0), 42.0, 9.0, 72.0},
+                    {20, 0.1, around(0.5), around(230.0), 38.0, 7.5, 68.0}};
+    const std::string svg = deltaPlotSvg(scene);
+    const size_t split = svg.find("<svg", 1);
+    ASSERT_NE(split, std::string::npos);
+    const std::string build = svg.substr(0, split), trace = svg.substr(split);
+    EXPECT_NE(build.find("delta-build"), std::string::npos);
+    EXPECT_NE(trace.find("delta-trace"), std::string::npos);
+    // The build's circles span most of the plot's height: 0.15 ms at the bottom, 0.5 ms at the top.
+    std::vector<double> ys;
+    static const std::regex cy(R"re(<circle cx="[-0-9.]+" cy="([-0-9.]+)")re");
+    for (auto it = std::sregex_iterator(build.begin(), build.end(), cy); it != std::sregex_iterator(); ++it)
+        ys.push_back(std::stod((*it)[1]));
+    ASSERT_EQ(ys.size(), 3u);
+    EXPECT_GT(ys[0] - ys[2], 150.0) << build;  // SVG y grows downwards
+    EXPECT_NE(build.find(">0.5</text>"), std::string::npos);  // its axis is in the build's range
+    EXPECT_EQ(build.find(">300</text>"), std::string::npos);
+    EXPECT_NE(trace.find(">300</text>"), std::string::npos);
 }
 
 TEST(BenchReport, ErrorPlotHasAMarkerPerPointAndEmphasisesTheFront) {
@@ -361,6 +431,16 @@ TEST(BenchReport, ErrorPlotHasAMarkerPerPointAndEmphasisesTheFront) {
         EXPECT_NE(svg.find("<title>" + p.label + " (" + p.group + ")"), std::string::npos) << p.label;
     for (const std::string group : {"accelerator", "aac-delta", "maxdepth", "cpu-reference", "Pareto front"})
         EXPECT_NE(svg.find(">" + group + "</text>"), std::string::npos) << group;  // legend
+}
+
+TEST(BenchReport, ErrorPlotLabelsEveryPointWithItsConfiguration) {
+    const SceneResult scene = fullScene();
+    const std::string svg = errorPlotSvg(scene);
+    for (const ErrorPoint& p : scene.errorPoints) {  // the front's and the others', drawn, not only on hover
+        const std::regex label("class=\"label\"[^>]*>" + p.label + "</text>");
+        EXPECT_EQ(std::distance(std::sregex_iterator(svg.begin(), svg.end(), label), std::sregex_iterator()), 1)
+            << p.label;
+    }
 }
 
 TEST(BenchReport, PlotsAreLeftOutWhenThereIsNothingToPlot) {

@@ -1,5 +1,6 @@
 // The SVG plotting helper: tick values and their placement on linear and log axes, labels, escaping,
 // and that every point a plot is given appears once (or on the zero row of a log axis).
+#include <algorithm>
 #include <cmath>
 #include <regex>
 #include <string>
@@ -127,4 +128,56 @@ TEST(SvgPlot, PointsALogAxisCannotPlaceAreLeftOut) {
     // x = 0 has no place on a log x axis; y = -1 has no zero row without a label.
     const std::string svg = svgPlot({}, Scale::log(1, 10), Scale::log(0.1, 10), {s});
     EXPECT_EQ(count(svg, "<g class=\"point"), 1u);
+}
+
+namespace {
+
+struct LabelBox {
+    double x0, y0, x1, y1;
+    std::string text;
+};
+
+// Every point label's box as drawn: from its x and baseline, 10 px text of about 5.5 px a character.
+std::vector<LabelBox> labelBoxes(const std::string& svg) {
+    std::vector<LabelBox> boxes;
+    static const std::regex label(R"re(<text x="([-0-9.]+)" y="([-0-9.]+)" class="label"[^>]*>([^<]*)</text>)re");
+    for (auto it = std::sregex_iterator(svg.begin(), svg.end(), label); it != std::sregex_iterator(); ++it) {
+        const double x = std::stod((*it)[1]), y = std::stod((*it)[2]);
+        boxes.push_back({x, y - 8.0, x + 5.5 * double((*it)[3].length()), y + 2.0, (*it)[3]});
+    }
+    return boxes;
+}
+
+bool overlap(const LabelBox& a, const LabelBox& b) {
+    return std::min(a.x1, b.x1) > std::max(a.x0, b.x0) && std::min(a.y1, b.y1) > std::max(a.y0, b.y0);
+}
+
+}  // namespace
+
+// Points close together, as the accelerators of one scene are (the same error, times a few percent
+// apart): every one keeps its label, no two labels overlap, and those moved away from their point
+// are joined to it by a leader line.
+TEST(SvgPlot, LabelsOfCrowdedPointsDoNotOverlap) {
+    PlotSeries s;
+    s.color = "#0072B2";
+    for (int i = 0; i < 10; ++i)
+        s.points.push_back({100.0 + 2.0 * i, 0.01 * (1.0 + 0.01 * i), "tip " + std::to_string(i),
+                            "accelerator-" + std::to_string(i), i == 0});
+    s.points.push_back({1000.0, 0.0, "the reference", "CPU double", false});
+    PlotOptions options;
+    options.yZeroLabel = "identical (0)";
+    const std::string svg = svgPlot(options, Scale::log(50, 2000), Scale::log(0.005, 0.05), {s});
+    const std::vector<LabelBox> boxes = labelBoxes(svg);
+    ASSERT_EQ(boxes.size(), s.points.size());
+    for (const PlotPoint& p : s.points) EXPECT_NE(svg.find(">" + p.label + "</text>"), std::string::npos) << p.label;
+    for (size_t i = 0; i < boxes.size(); ++i)
+        for (size_t j = i + 1; j < boxes.size(); ++j)
+            EXPECT_FALSE(overlap(boxes[i], boxes[j])) << boxes[i].text << " and " << boxes[j].text;
+    EXPECT_GT(count(svg, "class=\"leader\""), 0u);
+    EXPECT_EQ(count(svg, "<title>"), s.points.size());  // the hover text stays
+    for (const LabelBox& b : boxes) {  // inside the picture
+        EXPECT_GE(b.x0, 0.0);
+        EXPECT_LE(b.x1, double(options.width));
+        EXPECT_GE(b.y0, 0.0);
+    }
 }
