@@ -1,5 +1,6 @@
 #include "cli/cli_options.h"
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <regex>
@@ -7,6 +8,7 @@
 
 #include "core/error.h"
 #include "scene/scene.h"
+#include "scene/text_input.h"
 
 namespace vkray::cli {
 
@@ -21,9 +23,10 @@ std::pair<int, int> parseSize(const std::string& text, const std::string& option
 }
 
 void addViewOption(CLI::App& cmd, std::string& view) {
-    cmd.add_option("--view", view,
-                   "Camera: scene (its own), close (a close-up of its triangles, where most camera rays hit) or "
-                   "EX,EY,EZ,CX,CY,CZ[,FOVY] (eye, look-at centre, fovy; up from the scene)")
+    cmd.add_option("--view,--camera", view,
+                   "Camera: scene (its own), close (a close-up of its triangles, where most camera rays hit), "
+                   "EX,EY,EZ,CX,CY,CZ[,FOVY] (eye, look-at centre, fovy; up from the scene) or "
+                   "EX,EY,EZ,CX,CY,CZ,UX,UY,UZ,FOVY (as the scene's camera line)")
         ->default_str("scene");
 }
 
@@ -64,6 +67,71 @@ std::vector<int> parseIntList(const std::string& text, const std::string& option
         out.push_back(v);
     }
     return out;
+}
+
+namespace {
+
+// "a,b,c,d" (or "a b c d") -> exactly `count` finite numbers, else the flag's usage.
+std::vector<double> parseNumbers(const std::string& text, size_t count, const std::string& usage) {
+    const std::optional<std::vector<double>> v = parseRealList(text);
+    if (!v || v->size() != count) throw Error(usage);
+    return *v;
+}
+
+std::vector<int> parsePixelNumbers(const std::string& text, size_t count, const std::string& usage) {
+    std::vector<int> out;
+    for (const double x : parseNumbers(text, count, usage)) {
+        if (x != std::floor(x) || std::fabs(x) > 1e9) throw Error(usage);
+        out.push_back(int(x));
+    }
+    return out;
+}
+
+PixelWindow checked(const PixelWindow& w, const std::string& option, const std::string& text, int width, int height) {
+    if (const auto problem = windowProblem(w, width, height)) throw Error(option + " " + text + ": " + *problem);
+    return w;
+}
+
+}  // namespace
+
+PixelWindow parseCrop(const std::string& text, int width, int height) {
+    const std::vector<double> f =
+        parseNumbers(text, 4, "--crop " + text + ": expected X0,X1,Y0,Y1, fractions of the image in [0, 1]");
+    for (const double x : f)
+        if (x < 0.0 || x > 1.0) throw Error("--crop " + text + ": the fractions must lie in [0, 1]");
+    const auto at = [](double fraction, int size) { return int(std::ceil(fraction * double(size))); };
+    return checked({at(f[0], width), at(f[2], height), at(f[1], width), at(f[3], height)}, "--crop", text, width,
+                   height);
+}
+
+PixelWindow parsePixelBounds(const std::string& text, int width, int height) {
+    const std::vector<int> p =
+        parsePixelNumbers(text, 4, "--pixel-bounds " + text + ": expected X0,X1,Y0,Y1, whole pixel numbers");
+    return checked({p[0], p[2], p[1], p[3]}, "--pixel-bounds", text, width, height);
+}
+
+PixelWindow parsePixel(const std::string& text, int width, int height) {
+    const std::vector<int> p = parsePixelNumbers(text, 2, "--pixel " + text + ": expected X,Y, a pixel's column and row");
+    return checked({p[0], p[1], p[0] + 1, p[1] + 1}, "--pixel", text, width, height);
+}
+
+TileIndex parseTile(const std::string& text) {
+    std::smatch m;
+    static const std::regex pattern(R"((\d{1,6})/(\d{1,6}))");
+    if (!std::regex_match(text, m, pattern))
+        throw Error("--tile " + text + ": expected I/N, tile I (counted from 0) of N, for example 0/4");
+    const TileIndex t{std::stoi(m[1]), std::stoi(m[2])};
+    if (t.count < 1 || t.index >= t.count)
+        throw Error("--tile " + text + ": I must be 0.." + std::to_string(std::max(t.count - 1, 0)) + " (tiles count from 0)");
+    return t;
+}
+
+PixelWindow tileWindow(const TileIndex& tile, int width, int height) {
+    if (tile.count > height)
+        throw Error("--tile " + std::to_string(tile.index) + "/" + std::to_string(tile.count) + ": more tiles than the " +
+                    std::to_string(height) + " rows of the image");
+    const auto row = [&](int i) { return int(int64_t(i) * height / tile.count); };
+    return {0, row(tile.index), width, row(tile.index + 1)};
 }
 
 }  // namespace vkray::cli

@@ -8,6 +8,8 @@
 #include <CLI/CLI.hpp>
 #include <glm/glm.hpp>
 
+#include "render/render_options.h"
+
 namespace vkray::cli {
 
 // "640x480" -> (640, 480), within the image limits of scene.h; `option` names the flag in errors.
@@ -24,5 +26,23 @@ glm::vec3 parseColour(const std::string& text, const std::string& option);
 
 // "a,b,c" -> {"a", "b", "c"}; empty items are an error.
 std::vector<std::string> parseNameList(const std::string& text, const std::string& option);
+
+// The pixels of a width x height image that one of render's window flags names (pbrt-v4's order,
+// x before y, ends exclusive), each refused with its flag and value when it is malformed or not a
+// non-empty part of the image:
+//   --crop X0,X1,Y0,Y1          fractions of the image in [0, 1]; pixel columns ceil(X0 W) to
+//                               ceil(X1 W), rows likewise, as pbrt-v4's crop window;
+//   --pixel-bounds X0,X1,Y0,Y1  pixel columns [X0, X1) and rows [Y0, Y1);
+//   --pixel X,Y                 the one pixel (X, Y);
+//   --tile I/N                  band I of N (0 <= I < N <= H) of whole rows: rows floor(I H / N) to
+//                               floor((I + 1) H / N), so N tasks cover the image exactly once.
+PixelWindow parseCrop(const std::string& text, int width, int height);
+PixelWindow parsePixelBounds(const std::string& text, int width, int height);
+PixelWindow parsePixel(const std::string& text, int width, int height);
+struct TileIndex {
+    int index = 0, count = 1;
+};
+TileIndex parseTile(const std::string& text);
+PixelWindow tileWindow(const TileIndex& tile, int width, int height);
 
 }  // namespace vkray::cli

@@ -3,6 +3,8 @@
 #include <unistd.h>
 
 #include <cstdio>
+#include <fstream>
+#include <iterator>
 #include <filesystem>
 #include <future>
 #include <map>
@@ -17,6 +19,7 @@
 #include "cli/commands.h"
 #include "cli/render_report.h"
 #include "core/error.h"
+#include "core/hash64.h"
 #include "core/timing.h"
 #include "cpu/reference_renderer.h"
 #include "gpu/gpu_renderer.h"
@@ -31,8 +34,9 @@ namespace vkray::cli {
 namespace {
 
 struct RenderArgs {
-    std::string scene;
+    std::vector<std::string> scenes;
     std::string output;
+    std::string outDir;  // several scenes: each image into this folder under its own name
     std::string accel{accel::kDefaultAccel};
     accel::Tuning tuning;  // --aac-delta, --kd-max-depth, ... (accel/accel_spec.cpp)
     bool counters = false;
@@ -43,6 +47,11 @@ struct RenderArgs {
     std::string background;  // R,G,B: overrides the scene's
     std::optional<int> maxDepth;
     std::optional<int> spp;
+    // The pixels rendered (at most one of these; cli_options.h): a crop window, pixel bounds, one
+    // pixel (its values printed), or a tile of a render farm.
+    std::string crop, pixelBounds, pixel, tile;
+    std::string encoding = "auto";  // 8-bit outputs: srgb, linear, or auto (linear for CSE167 .test files)
+    double exposure = 0.0;
     int threads = 0;
     std::vector<std::string> aovs;
     bool stats = false;
@@ -65,10 +74,10 @@ std::map<std::string, std::string> parseAovs(const std::vector<std::string>& spe
     return out;
 }
 
-// -o wins; else the scene's `output NAME` (".png" added when it has no extension); else SCENE.png.
 // The colour image's file: -o, else the scene's `output`, else SCENE.png; a name without an
-// extension, from either, gets .png.
-std::filesystem::path outputPath(const RenderArgs& args, const Scene& scene) {
+// extension, from either, gets .png. With --out-dir, the scene's name (its `output` or SCENE.png)
+// in that folder. Empty for --pixel without -o: the pixel's values are the output.
+std::filesystem::path outputPath(const RenderArgs& args, const std::string& sceneFile, const Scene& scene) {
     const auto withPng = [](std::filesystem::path p) {
         if (!p.has_extension()) p += ".png";
         return p;
@@ -79,8 +88,11 @@ std::filesystem::path outputPath(const RenderArgs& args, const Scene& scene) {
             throw Error("-o " + args.output + ": names a directory; name the image file");
         return withPng(args.output);
     }
-    if (!scene.output.empty()) return withPng(scene.output);
-    return std::filesystem::path(args.scene).stem().string() + ".png";
+    if (!args.pixel.empty()) return {};
+    const std::filesystem::path name =
+        !scene.output.empty() ? withPng(scene.output) : std::filesystem::path(std::filesystem::path(sceneFile).stem().string() + ".png");
+    if (args.outDir.empty()) return name;
+    return std::filesystem::path(args.outDir) / name.filename();
 }
 
 void checkRenderable(const Scene& scene, const std::string& file) {
@@ -104,7 +116,11 @@ RenderOptions resolveOptions(const RenderArgs& args, const Scene& scene) {
     if (o.spp < 1 || o.spp > kMaxSamplesPerPixel)
         throw Error("--spp " + std::to_string(o.spp) + ": must be 1.." + std::to_string(kMaxSamplesPerPixel));
     o.countTraversal = args.counters;
-    o.primaryAovs = !args.aovs.empty();
+    o.primaryAovs = !args.aovs.empty() || !args.pixel.empty();
+    if (!args.crop.empty()) o.window = parseCrop(args.crop, o.width, o.height);
+    if (!args.pixelBounds.empty()) o.window = parsePixelBounds(args.pixelBounds, o.width, o.height);
+    if (!args.pixel.empty()) o.window = parsePixel(args.pixel, o.width, o.height);
+    if (!args.tile.empty()) o.window = tileWindow(parseTile(args.tile), o.width, o.height);
     return o;
 }
 
@@ -236,69 +252,196 @@ Frame renderFrame(const Scene& scene, const RenderOptions& options, const accel:
     return frame;
 }
 
-void runRender(const RenderArgs& args) {
-    const auto aovFiles = parseAovs(args.aovs);
-    const accel::AccelSpec spec = accel::resolveAccel(args.accel, args.tuning);
-    // A wrong structure file fails here, in milliseconds, before a big scene loads.
-    AccelFiles accelFiles = openAccelFiles(args, spec);
-
-    const bool showProgress = !args.json && !args.quiet && isatty(STDERR_FILENO);
-    const Clock::time_point t0 = Clock::now();
-    // The device opens while the scene loads: the Vulkan loader and the driver take tens of
-    // milliseconds to start. Its errors surface after the scene's, as when it opened second.
-    std::future<std::unique_ptr<gpu::VulkanContext>> opening;
-    if (!args.cpu)
-        opening = std::async(std::launch::async, [device = args.device] {
+// The Vulkan device of a render, opened on a thread while the first scene loads (the loader and the
+// driver take tens of milliseconds to start) and kept for the scenes after it. Its errors surface
+// when it is first needed, after the first scene's, as when it opened second.
+class Device {
+public:
+    explicit Device(const RenderArgs& args) {
+        if (args.cpu) return;
+        opening_ = std::async(std::launch::async, [device = args.device] {
             return std::make_unique<gpu::VulkanContext>(
                 gpu::ContextOptions{.validation = gpu::validationRequestedByEnvironment(), .device = device});
         });
+    }
+    const gpu::VulkanContext* get() {  // null for --cpu
+        if (opening_.valid()) ctx_ = opening_.get();
+        return ctx_.get();
+    }
+
+private:
+    std::future<std::unique_ptr<gpu::VulkanContext>> opening_;
+    std::unique_ptr<gpu::VulkanContext> ctx_;
+};
+
+// XXH64 of a file's bytes, as 16 hex digits.
+std::string fileHash(const std::string& file) {
+    std::ifstream in(file, std::ios::binary);
+    const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    char text[24];
+    std::snprintf(text, sizeof text, "%016llx", (unsigned long long)hash64(bytes.data(), bytes.size()));
+    return text;
+}
+
+// Where an EXR output lies in the whole image and what made it, so that `vkray assemble` can check
+// that tiles belong together: the same scene (its file's bytes and its geometry, which includes
+// the meshes), the same settings (everything that changes a pixel) and the same vkray.
+ImageMeta outputMeta(const RenderArgs& args, const std::string& sceneFile, const Scene& scene,
+                     const RenderOptions& options, const RenderReport& report) {
+    const PixelWindow w = options.pixels();
+    ImageMeta meta;
+    meta.displayWidth = options.width;
+    meta.displayHeight = options.height;
+    meta.x0 = w.x0;
+    meta.y0 = w.y0;
+    char geometry[24];
+    std::snprintf(geometry, sizeof geometry, "%016llx", (unsigned long long)accel::sceneGeometryHash(scene));
+    const Camera& c = scene.camera;
+    char settings[512];
+    std::snprintf(settings, sizeof settings,
+                  "size %dx%d spp %d maxdepth %d accel %s camera %.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g "
+                  "background %.9g,%.9g,%.9g device %s",
+                  options.width, options.height, options.spp, options.maxDepth, report.accel.c_str(), c.eye.x, c.eye.y,
+                  c.eye.z, c.center.x, c.center.y, c.center.z, c.up.x, c.up.y, c.up.z, c.fovyDegrees, scene.background.x,
+                  scene.background.y, scene.background.z, report.device.c_str());
+    meta.attributes["vkray:version"] = VKRAY_VERSION;
+    meta.attributes["vkray:scene"] = std::filesystem::path(sceneFile).filename().string() + " file " +
+                                     fileHash(sceneFile) + " geometry " + geometry;
+    meta.attributes["vkray:settings"] = settings;
+    if (!args.tile.empty()) {
+        const TileIndex t = parseTile(args.tile);
+        meta.attributes["vkray:tile"] = std::to_string(t.index) + "/" + std::to_string(t.count);
+    }
+    return meta;
+}
+
+// --pixel: the one pixel's values on stdout.
+void printPixel(const Frame& frame, const RenderReport& report) {
+    const glm::vec3 c = frame.color[0], n = frame.normal[0];
+    std::printf("pixel %d,%d of %dx%d: colour %.6g %.6g %.6g", frame.x0, frame.y0, report.options.width,
+                report.options.height, c.x, c.y, c.z);
+    if (frame.primId[0] < 0) std::printf(", no hit");
+    else std::printf(", depth %.6g, triangle %d, normal %.4f %.4f %.4f", frame.depth[0], frame.primId[0], n.x, n.y, n.z);
+    if (report.gpu && report.options.countTraversal) {  // over every ray of the pixel
+        const auto count = [](uint64_t n, const char* one, const char* many) {
+            std::printf(", %llu %s", (unsigned long long)n, n == 1 ? one : many);
+        };
+        count(report.gpu->nodesVisited, "node", "nodes");
+        count(report.gpu->leavesVisited, "leaf", "leaves");
+        count(report.gpu->trianglesTested, "triangle test", "triangle tests");
+    }
+    std::printf("\n");
+}
+
+// The 8-bit encoding of --encoding and --exposure: auto is sRGB, but linear for CSE167 .test files,
+// whose reference images hold linear levels.
+Encoding outputEncoding(const RenderArgs& args, const std::string& sceneFile) {
+    std::string name = args.encoding;
+    if (name == "auto") name = std::filesystem::path(sceneFile).extension() == ".test" ? "linear" : "srgb";
+    return parseEncoding(name, args.exposure);
+}
+
+// Loads, renders and writes one scene of the command line; `written` holds the images written by
+// the scenes before it, so that two scenes never write the same file.
+RenderReport renderScene(const RenderArgs& args, const std::string& sceneFile, const accel::AccelSpec& spec,
+                         const std::map<std::string, std::string>& aovFiles, AccelFiles& accelFiles, Device& device,
+                         bool showProgress, std::map<std::filesystem::path, std::string>& written) {
+    const Clock::time_point t0 = Clock::now();
     ParseOptions parse;
     if (showProgress) parse.progress = printLoadProgress;
-    Scene scene = loadScene(args.scene, parse);
+    Scene scene = loadScene(sceneFile, parse);
     if (showProgress) clearProgressLine();
     RenderReport report;
     report.loadMs = msSince(t0);
-    checkRenderable(scene, args.scene);
+    checkRenderable(scene, sceneFile);
     scene.camera = viewCamera(scene, args.view);
     if (!args.background.empty()) scene.background = parseColour(args.background, "--background");
     const RenderOptions options = resolveOptions(args, scene);
-    const std::filesystem::path out = outputPath(args, scene);
-    checkColorImagePath(out);  // refuse a bad output before spending minutes on the render
+    const Encoding encoding = outputEncoding(args, sceneFile);
+    const std::filesystem::path out = outputPath(args, sceneFile, scene);
+    if (!out.empty()) {
+        checkColorImagePath(out);  // refuse a bad output before spending minutes on the render
+        if (const auto it = written.find(out); it != written.end())
+            throw Error(sceneFile + ": its image " + out.string() + " is also " + it->second +
+                        "'s (give the scenes different 'output' names)");
+        written[out] = sceneFile;
+    }
     if (accelFiles.load) {  // and a structure file for another scene
         const Clock::time_point t1 = Clock::now();
         accelFiles.load->checkScene(scene);
         accelFiles.loadMs += msSince(t1);
     }
-
     // The device before the build: a missing or unknown device fails before a long build.
-    std::unique_ptr<gpu::VulkanContext> ctx;
-    if (!args.cpu) {
-        ctx = opening.get();
+    const gpu::VulkanContext* ctx = device.get();
+    if (ctx) {
         report.device = ctx->info().name + " (" + ctx->info().driver + ")";
         gpu::checkSceneFits(*ctx, scene);
     } else {
         report.device = "CPU reference (double precision)";
     }
+    report.accel = spec.name;
 
-    const Frame frame = renderFrame(scene, options, spec, ctx.get(), accelFiles, showProgress, report);
-    writeColorImage(out, frame.width, frame.height, frame.color);
-    for (const auto& [name, file] : aovFiles) writeAov(file, frame, name);
+    const Frame frame = renderFrame(scene, options, spec, ctx, accelFiles, showProgress, report);
+    const ImageMeta meta = outputMeta(args, sceneFile, scene, options, report);
+    if (!out.empty()) writeColorImage(out, frame.width, frame.height, frame.color, meta, encoding);
+    for (const auto& [name, file] : aovFiles) writeAov(file, frame, name, meta);
 
-    report.scene = args.scene;
+    report.scene = sceneFile;
     report.output = out.string();
     report.aovs = aovFiles;
     report.options = options;
     report.totalMs = msSince(t0);
-    report.accel = spec.name;
     report.triangles = scene.triangles.size();
     report.materials = scene.materials.size();
     report.lights = scene.lights.size();
     report.origin = {scene.origin.x, scene.origin.y, scene.origin.z};
-    if (args.json) {
-        std::printf("%s\n", reportJson(report).c_str());
+    if (!args.pixel.empty()) {
+        printPixel(frame, report);
+        std::printf("its centre ray, traced by the CPU reference (double precision, brute force):\n");
+        for (const std::string& line : tracePixel(scene, options, frame.x0, frame.y0))
+            std::printf("  %s\n", line.c_str());
+    }
+    return report;
+}
+
+// What several scenes in one call cannot share: one output file, one set of AOV files, one structure file.
+void checkSceneList(const RenderArgs& args) {
+    if (args.scenes.size() < 2) return;
+    const auto refuse = [&](const std::string& flag, const std::string& why) {
+        throw Error(flag + " with " + std::to_string(args.scenes.size()) + " scenes: " + why);
+    };
+    if (!args.output.empty()) refuse("-o", "it names one image; give --out-dir DIR for one image a scene");
+    if (!args.aovs.empty()) refuse("--aov", "it names one file per AOV; render the scenes one at a time");
+    if (!args.saveAccel.empty() || !args.loadAccel.empty())
+        refuse(args.saveAccel.empty() ? "--load-accel" : "--save-accel", "a structure file belongs to one scene");
+}
+
+void runRender(const RenderArgs& args) {
+    checkSceneList(args);
+    if (!args.outDir.empty() && !std::filesystem::is_directory(args.outDir))
+        throw Error("--out-dir " + args.outDir + ": no such folder (create it first)");
+    const auto aovFiles = parseAovs(args.aovs);
+    const accel::AccelSpec spec = accel::resolveAccel(args.accel, args.tuning);
+    // A wrong structure file fails here, in milliseconds, before a big scene loads.
+    AccelFiles accelFiles = openAccelFiles(args, spec);
+    const bool showProgress = !args.json && !args.quiet && isatty(STDERR_FILENO);
+    Device device(args);
+    std::map<std::filesystem::path, std::string> written;
+    std::vector<std::string> jsons;
+    for (const std::string& sceneFile : args.scenes) {
+        const RenderReport report =
+            renderScene(args, sceneFile, spec, aovFiles, accelFiles, device, showProgress, written);
+        if (args.json) jsons.push_back(reportJson(report));
+        else if (!args.quiet && args.pixel.empty()) printReport(report, args.stats);
+    }
+    if (!args.json) return;
+    if (jsons.size() == 1) {
+        std::printf("%s\n", jsons[0].c_str());
         return;
     }
-    if (!args.quiet) printReport(report, args.stats);
+    std::printf("[");  // several scenes: an array of their reports
+    for (size_t i = 0; i < jsons.size(); ++i) std::printf("%s%s", i ? ",\n" : "\n", jsons[i].c_str());
+    std::printf("\n]\n");
 }
 
 }  // namespace
@@ -306,8 +449,23 @@ void runRender(const RenderArgs& args) {
 void registerRenderCommand(CLI::App& app, int& exitCode) {
     auto args = std::make_shared<RenderArgs>();
     auto* cmd = app.add_subcommand("render", "Render a .scene file to an image");
-    cmd->add_option("scene", args->scene, "Scene file (.scene, or a CSE167 .test file)")->required();
-    cmd->add_option("-o,--output", args->output, "Output image (.png, .bmp or .pfm); default: the scene's 'output' or SCENE.png");
+    cmd->add_option("scenes", args->scenes, "Scene files (.scene, or CSE167 .test files), rendered one after the other")
+        ->required();
+    CLI::Option* output = cmd->add_option(
+        "-o,--output", args->output,
+        "Output image (.png, .bmp, .exr or .pfm); default: the scene's 'output' or SCENE.png");
+    cmd->add_option("--out-dir", args->outDir,
+                    "Folder for the images (each scene's 'output' name or SCENE.png): for several scenes a call")
+        ->type_name("DIR")
+        ->excludes(output);
+    cmd->add_option("--encoding", args->encoding,
+                    "8-bit outputs (PNG, BMP): srgb, linear (round(255 c), as CSE167's reference images), or auto: "
+                    "srgb, but linear for .test files; EXR and PFM keep linear floats")
+        ->check(CLI::IsMember({"auto", "srgb", "linear"}))
+        ->default_str("auto");
+    cmd->add_option("--exposure", args->exposure, "8-bit outputs: multiply the colour by 2^EV before encoding")
+        ->type_name("EV")
+        ->default_str("0");
     std::string accelList;
     for (const std::string& n : accel::accelNames()) accelList += (accelList.empty() ? "" : ", ") + n;
     cmd->add_option("--accel", args->accel, "Acceleration structure: " + accelList)->default_str(args->accel);
@@ -323,6 +481,20 @@ void registerRenderCommand(CLI::App& app, int& exitCode) {
     cpu->excludes(device);
     cmd->add_option("--size", args->size, "Image size WIDTHxHEIGHT (overrides the scene's 'size')");
     addViewOption(*cmd, args->view);
+    std::vector<CLI::Option*> windows = {
+        cmd->add_option("--crop", args->crop,
+                        "Render only X0,X1,Y0,Y1 of the image, as fractions in [0, 1] (pbrt's crop window); the "
+                        "image written holds just those pixels (an EXR records where they lie)"),
+        cmd->add_option("--pixel-bounds", args->pixelBounds,
+                        "Render only pixel columns [X0, X1) and rows [Y0, Y1): X0,X1,Y0,Y1"),
+        cmd->add_option("--pixel", args->pixel,
+                        "Render the one pixel X,Y and print its colour, depth, triangle and normal (and traversal "
+                        "counts with --counters); no image unless -o"),
+        cmd->add_option("--tile", args->tile,
+                        "Render band I of N bands of rows (I from 0), for `vkray assemble` to join: I/N")};
+    for (CLI::Option* a : windows)
+        for (CLI::Option* b : windows)
+            if (a != b) a->excludes(b);
     cmd->add_option("--spp", args->spp,
                     "Camera rays per pixel, averaged (overrides the scene's 'spp'; default 1, the pixel centre)");
     cmd->add_option("--background", args->background,

@@ -33,6 +33,24 @@ std::string statText(const accel::AccelStat& st) {
     return text;
 }
 
+// "1" from "Ct=1, Ci=20 ..." for "Ct"; empty when the unit does not name it.
+std::string constantIn(const std::string& unit, const std::string& name) {
+    const size_t at = unit.find(name + "=");
+    if (at == std::string::npos) return "";
+    const size_t from = at + name.size() + 1;
+    return unit.substr(from, unit.find_first_of(", ;)", from) - from);
+}
+
+// What `sah_cost` is measured in, said beside it: the BVHs' (Ci = 1) and the kd-tree's (Ci = 20 by
+// default) are both relative to the root's area but weigh a triangle test differently.
+std::string sahNote(const std::string& unit) {
+    const std::string ct = constantIn(unit, "Ct"), ci = constantIn(unit, "Ci");
+    std::string units = ct.empty() || ci.empty() ? "" : ", Ct=" + ct + " a node, Ci=" + ci + " a triangle";
+    if (unit.find("eb=") != std::string::npos) units += ", the empty bonus not counted";  // it steers the kd build only
+    return "(SAH cost relative to the root's surface area" + units +
+           "; a BVH's (Ci=1) and a kd-tree's (Ci=20 unless set) are in different units: compare within a family)";
+}
+
 std::string formatMs(double ms) {
     char text[32];
     std::snprintf(text, sizeof text, "%.1f ms", ms);
@@ -114,6 +132,8 @@ std::string reportJson(const RenderReport& r) {
     j["height"] = r.options.height;
     j["maxdepth"] = r.options.maxDepth;
     j["spp"] = r.options.spp;
+    if (const auto& w = r.options.window)  // the pixels rendered: columns [x0, x1), rows [y0, y1)
+        j["window"] = {{"x0", w->x0}, {"x1", w->x1}, {"y0", w->y0}, {"y1", w->y1}};
     j["triangles"] = r.triangles;
     j["materials"] = r.materials;
     j["lights"] = r.lights;
@@ -121,7 +141,8 @@ std::string reportJson(const RenderReport& r) {
     j["load_ms"] = r.loadMs;
     j["render_ms"] = r.renderMs;
     j["total_ms"] = r.totalMs;
-    j["output"] = r.output;
+    if (r.output.empty()) j["output"] = nullptr;  // --pixel without -o writes no image
+    else j["output"] = r.output;
     for (const auto& [name, file] : r.aovs) j["aov"][name] = file;
     return j.dump(2);
 }
@@ -130,6 +151,9 @@ void printReport(const RenderReport& r, bool stats) {
     std::printf("device:      %s\n", r.device.c_str());
     std::printf("resolution:  %dx%d, maxdepth %d, %d sample%s a pixel, accel %s\n", r.options.width, r.options.height,
                 r.options.maxDepth, r.options.spp, r.options.spp == 1 ? "" : "s", r.accel.c_str());
+    if (const auto& w = r.options.window)
+        std::printf("window:      columns %d-%d, rows %d-%d (%dx%d pixels)\n", w->x0, w->x1 - 1, w->y0, w->y1 - 1,
+                    w->width(), w->height());
     // The render, and beside it what else the command spent: a big scene's load and build can
     // take longer than its render.
     const std::string structure = r.accelFile && r.accelFile->loaded
@@ -153,8 +177,10 @@ void printReport(const RenderReport& r, bool stats) {
                     r.accelFile->path.c_str(), r.accelFile->ms);
     else
         std::printf("accel:       %s, built in %.1f ms\n", r.accel.c_str(), builtMs(r));
-    for (const accel::AccelStat& st : r.accelStats)
+    for (const accel::AccelStat& st : r.accelStats) {
         std::printf("  %-24s %s %s\n", st.key.c_str(), statText(st).c_str(), st.unit.c_str());
+        if (st.key == "sah_cost") std::printf("  %-24s %s\n", "", sahNote(st.unit).c_str());
+    }
     if (r.gpu) printGpuStats(*r.gpu);
 }
 

@@ -9,6 +9,7 @@
 
 #include "core/error.h"
 #include "geometry/brute_force.h"
+#include "cpu/shading.h"
 #include "cpu/whitted.h"
 #include "scene/camera.h"
 
@@ -22,6 +23,7 @@ void checkRenderable(const Scene& scene, const RenderOptions& options) {
     if (options.maxDepth < 1)
         throw Error("maxdepth " + std::to_string(options.maxDepth) + " is below 1");
     if (options.spp < 1) throw Error("spp " + std::to_string(options.spp) + " is below 1");
+    if (const auto problem = windowProblem(options.pixels(), options.width, options.height)) throw Error(*problem);
     if (scene.hasSmoothNormals() && scene.normals.size() != scene.triangles.size())
         throw Error("the scene has " + std::to_string(scene.normals.size()) + " normal triples for " +
                     std::to_string(scene.triangles.size()) + " triangles");
@@ -47,7 +49,7 @@ Frame renderReference(const Scene& scene, const RenderOptions& options, const ge
     const cpu::WhittedIntegrator integrator(scene, tracer, options.maxDepth);
 
     Frame frame;
-    frame.resize(options.width, options.height);
+    frame.resize(options.pixels());
     std::mutex progressMutex;
     int rowsDone = 0;
 
@@ -56,10 +58,11 @@ Frame renderReference(const Scene& scene, const RenderOptions& options, const ge
     auto renderRows = [&](const tbb::blocked_range<int>& rows) {
         for (int j = rows.begin(); j != rows.end(); ++j) {
             for (int i = 0; i < frame.width; ++i) {
-                const cpu::PixelSample px = integrator.sample({camera.eye, primaryDirection(camera, i, j)});
+                const int x = frame.x0 + i, y = frame.y0 + j;  // in the whole image
+                const cpu::PixelSample px = integrator.sample({camera.eye, primaryDirection(camera, x, y)});
                 glm::dvec3 radiance = px.radiance;
                 for (int s = 1; s < options.spp; ++s)
-                    radiance += integrator.sample({camera.eye, primaryDirection(camera, i, j, pixelSampleOffset(s))}).radiance;
+                    radiance += integrator.sample({camera.eye, primaryDirection(camera, x, y, pixelSampleOffset(s))}).radiance;
                 const size_t k = frame.index(i, j);
                 frame.color[k] = glm::vec3(radiance / double(options.spp));
                 if (px.primary.found()) {
@@ -77,6 +80,20 @@ Frame renderReference(const Scene& scene, const RenderOptions& options, const ge
     tbb::task_arena arena(options.threads > 0 ? options.threads : tbb::task_arena::automatic);
     arena.execute([&] { tbb::parallel_for(tbb::blocked_range<int>(0, frame.height), renderRows); });
     return frame;
+}
+
+std::vector<std::string> tracePixel(const Scene& scene, const RenderOptions& options, int x, int y) {
+    checkRenderable(scene, options);
+    if (windowProblem(PixelWindow{x, y, x + 1, y + 1}, options.width, options.height))
+        throw Error("pixel " + std::to_string(x) + "," + std::to_string(y) + " is outside the " +
+                    std::to_string(options.width) + "x" + std::to_string(options.height) + " image");
+    const geometry::BruteForceTracer tracer(scene);
+    const CameraFrame camera = makeCameraFrame(scene.camera, options.width, options.height);
+    std::vector<std::string> log;
+    const cpu::WhittedIntegrator integrator(scene, tracer, options.maxDepth, &log);
+    const cpu::PixelSample px = integrator.sample({camera.eye, primaryDirection(camera, x, y)});
+    log.push_back("radiance " + cpu::logVector(px.radiance));
+    return log;
 }
 
 }  // namespace vkray

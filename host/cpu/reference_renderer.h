@@ -3,6 +3,8 @@
 #pragma once
 
 #include <functional>
+#include <string>
+#include <vector>
 
 #include "geometry/tracer.h"
 #include "render/frame.h"
@@ -27,5 +29,11 @@ Frame renderReference(const Scene& scene, const RenderOptions& options,
 // The same with any tracer built over `scene` (its triangle indices must be the scene's).
 Frame renderReference(const Scene& scene, const RenderOptions& options, const geometry::Tracer& tracer,
                       const RenderProgress& progress = {});
+
+// Every ray, hit and shading term of the centre sample of pixel (x, y) of the options.width x
+// options.height image (`vkray render --pixel`), as lines of text, in double precision with the
+// brute-force tracer, ending with the sample's radiance. Throws as renderReference does, and for a
+// pixel outside the image.
+std::vector<std::string> tracePixel(const Scene& scene, const RenderOptions& options, int x, int y);
 
 }  // namespace vkray

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 
 namespace vkray::cpu {
@@ -114,31 +115,49 @@ double pointLightAttenuation(const glm::dvec3& clq, double r) {
     return 1.0 / (clq.x + clq.y * r + clq.z * r * r);
 }
 
+std::string logVector(const glm::dvec3& v) {
+    char text[96];
+    std::snprintf(text, sizeof text, "%.6g %.6g %.6g", v.x, v.y, v.z);
+    return text;
+}
+
 glm::dvec3 localShading(const Scene& scene, const Tracer& tracer, const SurfacePoint& s,
-                        const glm::dvec3& V) {
+                        const glm::dvec3& V, ShadingLog* log, const std::string& indent) {
     const Material& m = scene.materials[s.material];
     glm::dvec3 color = d3(m.emission) + (1.0 - d3(m.transmit)) * d3(m.ambient);
+    if (log)
+        log->push_back(indent + "emission " + logVector(d3(m.emission)) + ", ambient x (1 - T) " +
+                       logVector((1.0 - d3(m.transmit)) * d3(m.ambient)));
     // Shadow rays leave from the side the ray came from; every triangle blocks (no caustics).
     const glm::dvec3 shadowOrigin = offsetRayOrigin(s.position, s.facingNormal, s.offsetScale);
-    for (const Light& light : scene.lights) {
+    for (size_t k = 0; k < scene.lights.size(); ++k) {
+        const Light& light = scene.lights[k];
         const glm::dvec3 C = d3(light.color);
-        if (light.type == Light::Type::Point) {
+        const bool point = light.type == Light::Type::Point;
+        glm::dvec3 term(0.0);
+        Ray shadow{shadowOrigin, glm::dvec3(0.0)};
+        double shadowLength = kInfinity;
+        if (point) {
             const glm::dvec3 toLight = d3(light.vector) - s.position;
             const double r = glm::length(toLight);
-            const glm::dvec3 term = blinnPhong(s, m, V, toLight / r, C) *
-                                    pointLightAttenuation(d3(scene.attenuation), r);
-            if (term == glm::dvec3(0.0)) continue;  // no shadow ray where it cannot matter
+            term = blinnPhong(s, m, V, toLight / r, C) * pointLightAttenuation(d3(scene.attenuation), r);
             // The shadow ray ends exactly at the light: direction and length from its own origin.
             const glm::dvec3 shadowPath = d3(light.vector) - shadowOrigin;
-            const double shadowLength = glm::length(shadowPath);
-            if (!tracer.occluded(Ray{shadowOrigin, shadowPath / shadowLength}, shadowLength))
-                color += term;
+            shadowLength = glm::length(shadowPath);
+            shadow.dir = shadowPath / shadowLength;
         } else {
-            const glm::dvec3 L = glm::normalize(d3(light.vector));
-            const glm::dvec3 term = blinnPhong(s, m, V, L, C);
-            if (term == glm::dvec3(0.0)) continue;
-            if (!tracer.occluded(Ray{shadowOrigin, L}, kInfinity)) color += term;
+            shadow.dir = glm::normalize(d3(light.vector));
+            term = blinnPhong(s, m, V, shadow.dir, C);
         }
+        // No shadow ray where it cannot matter.
+        const bool lit = term != glm::dvec3(0.0) && !tracer.occluded(shadow, shadowLength);
+        if (lit) color += term;
+        if (log)
+            log->push_back(indent + "light " + std::to_string(k) + (point ? " (point)" : " (directional)") + ": " +
+                           (term == glm::dvec3(0.0) ? "behind the surface or no colour, no shadow ray"
+                            : lit ? "visible, adds " + logVector(term)
+                                  : "blocked (shadow ray from " + logVector(shadowOrigin) + "), would add " +
+                                        logVector(term)));
     }
     return color;
 }

@@ -6,6 +6,8 @@
 #pragma once
 
 #include <cstdint>
+#include <string>
+#include <vector>
 
 #include <glm/glm.hpp>
 
@@ -86,8 +88,16 @@ glm::dvec3 blinnPhong(const SurfacePoint& s, const Material& m, const glm::dvec3
 // att = 1 / (c + l r + q r^2) for a point light at distance r.
 double pointLightAttenuation(const glm::dvec3& clq, double r);
 
-// L_local: emission, (1 - T) ambient and every light with its attenuation and shadow ray.
+// Lines of text that say what the shading of one pixel did, step by step (`vkray render --pixel`):
+// filled only when a caller passes one, so renders pay a null check.
+using ShadingLog = std::vector<std::string>;
+
+// "x y z" of a vector, 6 significant digits: the log's numbers.
+std::string logVector(const glm::dvec3& v);
+
+// L_local: emission, (1 - T) ambient and every light with its attenuation and shadow ray; with
+// `log`, one line for the constant terms and one for each light (its term, or why it adds nothing).
 glm::dvec3 localShading(const Scene& scene, const Tracer& tracer, const SurfacePoint& s,
-                        const glm::dvec3& V);
+                        const glm::dvec3& V, ShadingLog* log = nullptr, const std::string& indent = "");
 
 }  // namespace vkray::cpu

@@ -2,6 +2,9 @@
 // for one camera ray at a time. The renderer loops it over pixels and threads.
 #pragma once
 
+#include <string>
+#include <vector>
+
 #include "geometry/ray.h"
 #include "geometry/tracer.h"
 #include "scene/scene.h"
@@ -18,7 +21,10 @@ struct PixelSample {
 class WhittedIntegrator {
 public:
     // `scene` and `tracer` must outlive the integrator; maxDepth >= 1 (primary rays are depth 1).
-    WhittedIntegrator(const Scene& scene, const geometry::Tracer& tracer, int maxDepth);
+    // With `log` (and `log` outliving it), every ray, hit and shading term of each sample is
+    // appended to it as a line of text (`vkray render --pixel`).
+    WhittedIntegrator(const Scene& scene, const geometry::Tracer& tracer, int maxDepth,
+                      std::vector<std::string>* log = nullptr);
 
     PixelSample sample(const geometry::Ray& cameraRay) const;
 
@@ -27,9 +33,13 @@ private:
     void addRadiance(const geometry::Ray& ray, const geometry::Hit& hit, int depth,
                      const glm::dvec3& weight, glm::dvec3& radiance) const;
 
+    void logRay(const char* kind, const geometry::Ray& ray, int depth, const glm::dvec3& weight,
+                const geometry::Hit& hit) const;
+
     const Scene& scene_;
     const geometry::Tracer& tracer_;
     int maxDepth_;
+    std::vector<std::string>* log_;
 };
 
 // The weight cutoff: a secondary ray whose weight is below 1/1024 in every channel is not traced.

@@ -45,12 +45,13 @@ struct Tile {
     uint32_t x, y, width, height;
 };
 
-std::vector<Tile> splitIntoTiles(uint32_t width, uint32_t height) {
+// The window's pixels as tiles, in image coordinates.
+std::vector<Tile> splitIntoTiles(const PixelWindow& window) {
     std::vector<Tile> tiles;
-    for (uint32_t y = 0; y < height; y += VKRAY_TILE_SIZE)
-        for (uint32_t x = 0; x < width; x += VKRAY_TILE_SIZE)
-            tiles.push_back({x, y, std::min<uint32_t>(VKRAY_TILE_SIZE, width - x),
-                             std::min<uint32_t>(VKRAY_TILE_SIZE, height - y)});
+    for (uint32_t y = uint32_t(window.y0); y < uint32_t(window.y1); y += VKRAY_TILE_SIZE)
+        for (uint32_t x = uint32_t(window.x0); x < uint32_t(window.x1); x += VKRAY_TILE_SIZE)
+            tiles.push_back({x, y, std::min<uint32_t>(VKRAY_TILE_SIZE, uint32_t(window.x1) - x),
+                             std::min<uint32_t>(VKRAY_TILE_SIZE, uint32_t(window.y1) - y)});
     return tiles;
 }
 
@@ -93,14 +94,15 @@ GpuFrameParams frameParams(const Scene& scene, const RenderOptions& options) {
     return p;
 }
 
-// Reads the pixels of `tile` into `frame` and `rep`: the fields the kernel of `features` writes.
+// Reads the pixels of `tile` (image coordinates) into `frame` and `rep`: the fields the kernel of
+// `features` writes.
 void readTile(const GpuPixel* src, const Tile& tile, const ShaderFeatures& features, Frame& frame,
               GpuRenderReport& rep) {
     const bool aovs = features.writesPrimaryAovs(), counters = features.writesCounters();
     for (uint32_t y = 0; y < tile.height; ++y)
         for (uint32_t x = 0; x < tile.width; ++x) {
             const GpuPixel& px = src[y * VKRAY_TILE_SIZE + x];
-            const size_t i = frame.index(int(tile.x + x), int(tile.y + y));
+            const size_t i = frame.index(int(tile.x + x) - frame.x0, int(tile.y + y) - frame.y0);
             frame.color[i] = px.color;
             if (aovs) {
                 frame.depth[i] = px.depth;
@@ -421,14 +423,16 @@ Frame renderOnGpu(const VulkanContext& ctx, const Scene& scene, const RenderOpti
     ComputeKernel& kernel = kernels->kernel(accel.kernel, rep.features);
     rep.pipelineMs = msSince(start);
 
-    const std::vector<Tile> tiles = splitIntoTiles(uint32_t(options.width), uint32_t(options.height));
+    const PixelWindow window = options.pixels();
+    if (const auto problem = windowProblem(window, options.width, options.height)) throw Error(*problem);
+    const std::vector<Tile> tiles = splitIntoTiles(window);
     const uint32_t perSubmission = tilesPerSubmission(ctx, tiles.size());
     const PixelOutput pixels(ctx, uint64_t(perSubmission) * kTilePixels * sizeof(GpuPixel));
     const ResumeBuffers noResume(ctx, 0, 0);
     bindBuffers(kernel, sceneBuffers, accelBuffers, pixels, noResume);
 
     Frame frame;
-    frame.resize(options.width, options.height);
+    frame.resize(window);
     if (options.countTraversal) rep.nodesPerPixel.assign(frame.color.size(), 0u);
     start = Clock::now();
     rep.tiles = uint32_t(tiles.size());
@@ -441,7 +445,7 @@ Frame renderOnGpu(const VulkanContext& ctx, const Scene& scene, const RenderOpti
         GpuFrameParams params = baseParams;
         setSample(params, s);
         Frame& out = s == 0 ? frame : pass;
-        if (s == 1) pass.resize(options.width, options.height);
+        if (s == 1) pass.resize(window);
         const TileProgress passProgress = !progress ? TileProgress() : [&](uint32_t done, uint32_t total) {
             progress(uint32_t(s) * total + done, uint32_t(options.spp) * total);
         };

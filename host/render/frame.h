@@ -8,10 +8,13 @@
 
 #include <glm/glm.hpp>
 
+#include "render/render_options.h"
+
 namespace vkray {
 
 struct Frame {
     int width = 0, height = 0;
+    int x0 = 0, y0 = 0;              // where its top-left pixel lies in the whole image (a window's)
     std::vector<glm::vec3> color;    // linear RGB, not clamped; written to 8-bit files clamped to [0,1]
     std::vector<float> depth;        // t of the primary hit along the unit camera direction; +inf on a miss
     std::vector<int32_t> primId;     // original triangle index of the primary hit; -1 on a miss
@@ -20,13 +23,20 @@ struct Frame {
     void resize(int w, int h) {
         width = w;
         height = h;
+        x0 = y0 = 0;
         const size_t n = size_t(w) * size_t(h);
         color.assign(n, glm::vec3(0.0f));
         depth.assign(n, std::numeric_limits<float>::infinity());
         primId.assign(n, -1);
         normal.assign(n, glm::vec3(0.0f));
     }
-    size_t index(int i, int j) const { return size_t(j) * size_t(width) + size_t(i); }
+    // The frame of a window's pixels (RenderOptions::window), placed at its origin.
+    void resize(const PixelWindow& w) {
+        resize(w.width(), w.height());
+        x0 = w.x0;
+        y0 = w.y0;
+    }
+    size_t index(int i, int j) const { return size_t(j) * size_t(width) + size_t(i); }  // frame coordinates
 };
 
 }  // namespace vkray

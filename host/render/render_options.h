@@ -3,7 +3,21 @@
 // accelerator for the GPU, a geometry::Tracer for the CPU reference).
 #pragma once
 
+#include <optional>
+#include <string>
+
 namespace vkray {
+
+// Pixel columns [x0, x1) and rows [y0, y1) of an image: the part of it a render computes (a crop
+// window, a tile of a render farm, one pixel to debug). Every pixel is computed alone from its own
+// coordinates in the whole image, so a window's pixels are bit-identical to the same pixels of a
+// render of the whole image.
+struct PixelWindow {
+    int x0 = 0, y0 = 0, x1 = 0, y1 = 0;
+    int width() const { return x1 - x0; }
+    int height() const { return y1 - y0; }
+    bool operator==(const PixelWindow&) const = default;
+};
 
 struct RenderOptions {
     int width = 0, height = 0;  // image size (the scene's `size` unless overridden)
@@ -19,6 +33,20 @@ struct RenderOptions {
     // Camera rays per pixel (pixelSampleOffset, scene/camera.h), their radiance averaged; the
     // primary-hit AOVs are sample 0's, the pixel centre's.
     int spp = 1;
+    // The pixels rendered, within the width x height image; none: all of them. The Frame then holds
+    // just the window (its width x height), top row first.
+    std::optional<PixelWindow> window = std::nullopt;
+
+    PixelWindow pixels() const { return window.value_or(PixelWindow{0, 0, width, height}); }
 };
+
+// Why `window` is not a non-empty part of a width x height image, or nothing when it is.
+inline std::optional<std::string> windowProblem(const PixelWindow& w, int width, int height) {
+    if (w.x0 < 0 || w.y0 < 0 || w.x1 > width || w.y1 > height || w.x0 >= w.x1 || w.y0 >= w.y1)
+        return "pixels [" + std::to_string(w.x0) + ", " + std::to_string(w.x1) + ") x [" + std::to_string(w.y0) +
+               ", " + std::to_string(w.y1) + ") are not a non-empty part of the " + std::to_string(width) + "x" +
+               std::to_string(height) + " image";
+    return std::nullopt;
+}
 
 }  // namespace vkray

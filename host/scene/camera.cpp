@@ -71,23 +71,21 @@ Camera closeUpCamera(const Scene& scene) {
 }
 
 Camera explicitCamera(const Scene& scene, const std::string& text, const std::string& option) {
-    const std::string usage = option + " '" + text + "': expected scene, close or EX,EY,EZ,CX,CY,CZ[,FOVY]";
-    std::vector<double> v;
-    for (size_t start = 0;;) {  // every comma-separated item, empty ones included
-        const size_t comma = std::min(text.find(',', start), text.size());
-        double x = 0.0;
-        if (parseReal(std::string_view(text).substr(start, comma - start), x) != NumberStatus::Ok)
-            throw Error(usage);
-        v.push_back(x);
-        if (comma == text.size()) break;
-        start = comma + 1;
-    }
-    if (v.size() != 6 && v.size() != 7) throw Error(usage);
+    const std::string usage =
+        option + " '" + text + "': expected scene, close, EX,EY,EZ,CX,CY,CZ[,FOVY] or EX,EY,EZ,CX,CY,CZ,UX,UY,UZ,FOVY";
+    const std::optional<std::vector<double>> numbers = parseRealList(text);
+    if (!numbers) throw Error(usage);
+    const std::vector<double>& v = *numbers;
+    if (v.size() != 6 && v.size() != 7 && v.size() != 10) throw Error(usage);
     // Eye and centre are world positions, like the scene file's: into its local frame in double.
     Camera c = scene.camera;
     c.eye = glm::vec3(glm::dvec3(v[0], v[1], v[2]) - scene.origin);
     c.center = glm::vec3(glm::dvec3(v[3], v[4], v[5]) - scene.origin);
     if (v.size() == 7) c.fovyDegrees = float(v[6]);
+    if (v.size() == 10) {  // the scene file's camera line: up too
+        c.up = glm::vec3(float(v[6]), float(v[7]), float(v[8]));
+        c.fovyDegrees = float(v[9]);
+    }
     try {
         makeCameraFrame(c, 1, 1);
     } catch (const Error& e) {

@@ -33,14 +33,15 @@ glm::dvec3 primaryDirection(const CameraFrame& f, int i, int j, glm::vec2 offset
 // centre ray. In float, as the GPU kernel gets it, so the CPU reference traces the same rays.
 glm::vec2 pixelSampleOffset(int s);
 
-// The camera of a view other than the scene's own (`vkray bench --view`), always with the scene's up
-// vector:
+// The camera of a view other than the scene's own (`vkray render --view`, `vkray bench --view`):
 //   "scene"                      the scene's camera, unchanged;
 //   "close"                      a close-up where most camera rays hit: looking at the centre of the
 //                                triangles' bounds from the scene camera's direction, near enough
 //                                that the vertical field of view spans half the bounds' diagonal
 //                                (never nearer than that diagonal's half from the centre);
-//   "EX,EY,EZ,CX,CY,CZ[,FOVY]"   eye, look-at centre and optionally fovy in degrees.
+//   "EX,EY,EZ,CX,CY,CZ[,FOVY]"   eye, look-at centre and optionally fovy in degrees, the scene's up;
+//   "EX,EY,EZ,CX,CY,CZ,UX,UY,UZ,FOVY"  all of a scene file's camera line (eye, centre, up, fovy).
+// Positions are world coordinates, like the scene file's.
 // Throws vkray::Error naming `option` for any other text, a non-finite number or a degenerate camera.
 Camera viewCamera(const Scene& scene, const std::string& view, const std::string& option = "--view");
 

@@ -1,5 +1,6 @@
 #include "scene/text_input.h"
 
+#include <algorithm>
 #include <cctype>
 #include <cerrno>
 #include <charconv>
@@ -328,6 +329,28 @@ std::string describeNumberError(NumberStatus status, std::string_view tokenText,
     }
     msg.append("expected ").append(kind).append(" for ").append(what).append(", got ").append(token);
     return msg;
+}
+
+std::optional<std::vector<double>> parseRealList(std::string_view text) {
+    const bool commas = text.find(',') != std::string_view::npos;
+    std::vector<double> out;
+    if (!commas) {  // whitespace-separated (one item when there is none)
+        for (const Token& t : tokenize(text)) {
+            double x = 0.0;
+            if (parseReal(t.text, x) != NumberStatus::Ok) return std::nullopt;
+            out.push_back(x);
+        }
+        if (out.empty() || text.find('#') != std::string_view::npos) return std::nullopt;
+        return out;
+    }
+    for (size_t start = 0;;) {  // every comma-separated item, empty ones included
+        const size_t comma = std::min(text.find(',', start), text.size());
+        double x = 0.0;
+        if (parseReal(text.substr(start, comma - start), x) != NumberStatus::Ok) return std::nullopt;
+        out.push_back(x);
+        if (comma == text.size()) return out;
+        start = comma + 1;
+    }
 }
 
 }  // namespace vkray

@@ -75,6 +75,10 @@ NumberStatus parseFloat(std::string_view s, float& out);
 // this, rounded.
 NumberStatus parseReal(std::string_view s, double& out);
 NumberStatus parseInt(std::string_view s, int64_t& out);
+// A list of numbers as a command-line value gives it: separated by commas ("1,2,3", every item a
+// number, none empty) or by whitespace ("1 2 3", as one quoted argument); each by parseReal's rule.
+// Nothing when any item is not such a number.
+std::optional<std::vector<double>> parseRealList(std::string_view text);
 
 // "expected a number for argument 2 of 'vertex', got 'abc'" and its siblings; `what` names the
 // value ("argument 2 of 'vertex'") and `kind` what was expected ("a number", "an integer").

@@ -41,8 +41,8 @@ function(vkray_expect_usage_error name pattern)
            COMMAND ${CMAKE_COMMAND} -E env EXPECT_RC=2 ${CLI_DIR}/expect_error.sh "${pattern}" $<TARGET_FILE:vkray> ${ARGN})
   set_tests_properties(cli.usage.${name} PROPERTIES TIMEOUT 60)
 endfunction()
-vkray_expect_usage_error(unexpected_in_order "unexpected arguments: --frobnicate 4 \\(see 'vkray render --help'\\)" render ${CLI_DATA}/one_triangle.scene --frobnicate 4)
-vkray_expect_usage_error(flag_typo "unexpected arguments: --thread 2; did you mean --threads\\?" render ${CLI_DATA}/one_triangle.scene --thread 2)
+vkray_expect_usage_error(unexpected_in_order "unexpected arguments: --frobnicate --zap \\(see 'vkray render --help'\\)" render ${CLI_DATA}/one_triangle.scene --frobnicate --zap)
+vkray_expect_usage_error(flag_typo "unexpected argument: --thread; did you mean --threads\\?" render ${CLI_DATA}/one_triangle.scene --thread 2)
 vkray_expect_usage_error(command_typo "unknown command 'rendr' \\(did you mean 'render'\\?\\)" rendr ${CLI_DATA}/one_triangle.scene)
 vkray_expect_usage_error(missing_value "--size: 1 required TEXT missing" render ${CLI_DATA}/one_triangle.scene --size)
 vkray_expect_usage_error(cpu_device "--cpu excludes --device" render ${CLI_DATA}/one_triangle.scene --cpu --device 7)
@@ -60,7 +60,7 @@ vkray_expect_error(unknown_aov "unknown AOV 'albedo'" render ${CLI_DATA}/one_tri
 vkray_expect_error(unknown_device "--device 999" render ${CLI_DATA}/one_triangle.scene --device 999 -o ${CLI_OUT}/x.png)
 vkray_expect_error(unwritable_output "${CLI_OUT}/no/such/dir/x\\.png" render ${CLI_DATA}/one_triangle.scene -o ${CLI_OUT}/no/such/dir/x.png)
 vkray_expect_error(unsupported_output "x\\.jpg.*supported: \\.png" render ${CLI_DATA}/one_triangle.scene -o ${CLI_OUT}/x.jpg)
-vkray_expect_error(aov_not_pfm "d\\.png: AOV files are PFM: the name must end in \\.pfm" render ${CLI_DATA}/one_triangle.scene --aov depth=${CLI_OUT}/d.png -o ${CLI_OUT}/x.png)
+vkray_expect_error(aov_not_pfm "d\\.png: AOV files are PFM or EXR: the name must end in \\.pfm or \\.exr" render ${CLI_DATA}/one_triangle.scene --aov depth=${CLI_OUT}/d.png -o ${CLI_OUT}/x.png)
 vkray_expect_error(compare_missing "missing\\.png" compare ${CLI_OUT}/missing.png ${CLI_OUT}/missing2.png)
 
 # Success paths: devices, a GPU render with AOVs, the CPU reference, and compare between them.
@@ -280,3 +280,25 @@ vkray_expect_error(accel_file_missing "no-such\\.vkacc: cannot open structure fi
   render ${CLI_DATA}/one_triangle.scene --load-accel ${CLI_OUT}/no-such.vkacc -o ${CLI_OUT}/x.png)
 vkray_expect_error(accel_file_unwritable "no/such/dir/s\\.vkacc: cannot write: directory .* does not exist"
   render ${CLI_DATA}/one_triangle.scene --save-accel ${CLI_OUT}/no/such/dir/s.vkacc -o ${CLI_OUT}/x.png)
+include(${CLI_DIR}/render_window_tests.cmake)
+
+# EXR, `vkray convert`, `vkray assemble` and --quiet (docs/outputs.md): a render to EXR converted to
+# PNG and back to PFM, the floats unchanged; --quiet prints nothing and keeps the exit status.
+add_test(NAME cli.render_exr_convert
+         COMMAND bash -c "\"$0\" render \"$1\" --cpu --size 16x12 --quiet -o \"$2/r.exr\" && \"$0\" convert \"$2/r.exr\" \"$2/r.png\" --quiet && \"$0\" convert \"$2/r.exr\" \"$2/r.pfm\" --quiet && \"$0\" compare \"$2/r.exr\" \"$2/r.pfm\" --threshold 0 --max-bad-fraction 0 --quiet && test -s \"$2/r.png\""
+                 $<TARGET_FILE:vkray> ${CLI_DATA}/one_triangle.scene ${CLI_OUT})
+add_test(NAME cli.compare_quiet_fails_silently
+         COMMAND bash -c "\"$0\" render \"$1\" --cpu --size 8x8 --quiet -o \"$2/q.pfm\" && \"$0\" render \"$1\" --cpu --size 8x8 --quiet --background 1,0,0 -o \"$2/q2.pfm\"; out=$(\"$0\" compare \"$2/q.pfm\" \"$2/q2.pfm\" --quiet --max-rmse 0); rc=$?; test $rc -eq 1 && test -z \"$out\""
+                 $<TARGET_FILE:vkray> ${CLI_DATA}/one_triangle.scene ${CLI_OUT})
+add_test(NAME cli.gen_quiet
+         COMMAND bash -c "out=$(\"$0\" gen soup --triangles 10 --force --quiet -o \"$1\") && test -z \"$out\" && test -s \"$1\""
+                 $<TARGET_FILE:vkray> ${CLI_OUT}/gen-quiet.scene)
+vkray_expect_error(convert_unsupported "x\\.jpg: unsupported image file extension.*\\.exr" convert ${CMAKE_SOURCE_DIR}/docs/images/default.png ${CLI_OUT}/x.jpg)
+vkray_expect_error(convert_missing "no-such\\.exr: cannot open" convert ${CLI_OUT}/no-such.exr ${CLI_OUT}/x.png)
+vkray_expect_error(assemble_not_exr "default\\.png: a tile must be an EXR" assemble ${CMAKE_SOURCE_DIR}/docs/images/default.png -o ${CLI_OUT}/x.exr)
+vkray_expect_error(aov_not_float "d\\.bmp: AOV files are PFM or EXR" render ${CLI_DATA}/one_triangle.scene --aov depth=${CLI_OUT}/d.bmp -o ${CLI_OUT}/x.exr)
+# --stats says which normalisation each SAH cost has (a BVH's and a kd-tree's are in different units).
+add_test(NAME cli.stats_sah_units
+         COMMAND ${CLI_DIR}/expect_output.sh "SAH cost relative to the root's surface area, Ct=1 a node, Ci=20 a triangle"
+                 $<TARGET_FILE:vkray> render ${CMAKE_SOURCE_DIR}/scenes/cornell.scene --cpu --size 8x6 --accel kd-stack --stats
+                 -o ${CLI_OUT}/sah-units.png)

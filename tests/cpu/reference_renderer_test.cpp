@@ -2,6 +2,7 @@
 // docs/shading.md. Images are 5x5 (odd): the centre pixel's ray runs exactly down -z from (0, 0, 5)
 // and meets the plane z = 0 at the origin, t = 5.
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <limits>
 #include <numbers>
@@ -11,8 +12,10 @@
 
 #include "core/error.h"
 #include "cpu/reference_renderer.h"
+#include "cpu/shading.h"
 #include "scene/camera.h"
 #include "support/scene_builder.h"
+#include "support/window_check.h"
 
 namespace vkray {
 namespace {
@@ -319,6 +322,57 @@ TEST(ReferenceRenderer, UnrenderableScenesAreErrors) {
     RenderOptions empty = fiveByFive();
     empty.width = 0;
     EXPECT_THROW(renderReference(floorScene(blackMaterial()), empty), Error);
+}
+
+TEST(ReferenceRenderer, WindowPixelsAreBitIdenticalToTheWholeImages) {
+    Material m = blackMaterial();
+    m.diffuse = glm::vec3(0.7f, 0.5f, 0.3f);
+    m.specular = glm::vec3(0.2f);
+    m.shininess = 10.0f;
+    Scene s = floorScene(m);
+    addPointLight(s, {1.0f, 0.5f, 2.0f}, glm::vec3(1.0f));
+    RenderOptions o;
+    o.width = 41;
+    o.height = 23;
+    o.spp = 3;
+    const Frame whole = renderReference(s, o);
+    for (const PixelWindow w : {PixelWindow{3, 4, 40, 11}, PixelWindow{40, 22, 41, 23}, PixelWindow{0, 0, 41, 1}}) {
+        RenderOptions part = o;
+        part.window = w;
+        test::expectSamePixels(whole, renderReference(s, part), w);
+    }
+    o.window = PixelWindow{0, 0, 42, 1};  // past the right edge
+    EXPECT_THROW(renderReference(s, o), Error);
+}
+
+TEST(ReferenceRenderer, TracePixelLogsEveryRayAndEndsWithThePixelsRadiance) {
+    Material m = blackMaterial();
+    m.diffuse = glm::vec3(0.5f);
+    m.ambient = glm::vec3(0.1f);
+    m.reflect = glm::vec3(0.5f);  // a mirror: one reflected ray, which misses
+    Scene s = floorScene(m);
+    addPointLight(s, {0.0f, 0.0f, 2.0f}, glm::vec3(1.0f));
+    addPointLight(s, {0.0f, 0.0f, -2.0f}, glm::vec3(1.0f));  // below the floor
+    RenderOptions o = fiveByFive(2);
+    const Frame f = renderReference(s, o);
+    const std::vector<std::string> log = tracePixel(s, o, 2, 2);
+    const auto has = [&](const std::string& start) {
+        for (const std::string& line : log)
+            if (line.find(start) != std::string::npos) return true;
+        return false;
+    };
+    EXPECT_TRUE(has("camera ray, depth 1: origin"));
+    EXPECT_TRUE(has("hit triangle"));
+    EXPECT_TRUE(has("light 0 (point): visible, adds"));
+    EXPECT_TRUE(has("light 1 (point): behind the surface"));
+    EXPECT_TRUE(has("reflected ray, depth 2"));
+    EXPECT_TRUE(has("miss: background"));
+    ASSERT_FALSE(log.empty());
+    // The logged radiance is the rendered pixel's (to the 6 digits printed).
+    double r = 0.0, g = 0.0, b = 0.0;
+    ASSERT_EQ(std::sscanf(log.back().c_str(), "radiance %lf %lf %lf", &r, &g, &b), 3);
+    expectColor(centre(f), {r, g, b}, 1e-5);
+    EXPECT_THROW(tracePixel(s, o, 5, 0), Error);
 }
 
 }  // namespace

@@ -7,6 +7,7 @@
 #include "core/error.h"
 #include "cpu/reference_renderer.h"
 #include "support/scene_builder.h"
+#include "support/window_check.h"
 #include "gpu/buffer.h"
 #include "gpu/gpu_renderer.h"
 #include "gpu_test_util.h"
@@ -41,6 +42,34 @@ TEST(GpuRenderer, TilesCoverTheImageInPlace) {
         for (int ch = 0; ch < 3; ++ch)
             ASSERT_NEAR(g.color[i][ch], c.color[i][ch], 1e-4f) << "pixel " << i % 300 << "," << i / 300;
     }
+}
+
+TEST(GpuRenderer, WindowPixelsAreBitIdenticalToTheWholeImages) {
+    // A window crossing the 256-pixel tile edges, one corner pixel and a band of rows, with two
+    // samples a pixel and a reflection: the same rays as the whole render, whatever the tiling.
+    Scene s = litSquare();
+    s.materials[0].reflect = glm::vec3(0.5f);
+    test::addPointLight(s, {-1.0f, -0.5f, 3.0f}, glm::vec3(0.5f));
+    RenderOptions o{.width = 300, .height = 260, .maxDepth = 3, .spp = 2};
+    for (const char* accel : {"bvh", "kd-backtrack"}) {
+        SCOPED_TRACE(accel);
+        const Frame whole = test::renderGpu(s, o, nullptr, accel);
+        for (const PixelWindow w : {PixelWindow{37, 5, 290, 200}, PixelWindow{299, 259, 300, 260},
+                                    PixelWindow{0, 130, 300, 195}}) {
+            RenderOptions part = o;
+            part.window = w;
+            gpu::GpuRenderReport report;
+            test::expectSamePixels(whole, test::renderGpu(s, part, &report, accel), w);
+            EXPECT_GT(report.raysTraced, 0u);
+        }
+    }
+}
+
+TEST(GpuRenderer, WindowOutsideTheImageIsAnError) {
+    RenderOptions o{.width = 64, .height = 48, .maxDepth = 1, .window = PixelWindow{10, 10, 65, 20}};
+    EXPECT_THROW(test::renderGpu(litSquare(), o), Error);
+    o.window = PixelWindow{10, 10, 10, 20};  // empty
+    EXPECT_THROW(test::renderGpu(litSquare(), o), Error);
 }
 
 TEST(GpuRenderer, DepthAndPrimIdAovs) {

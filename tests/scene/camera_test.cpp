@@ -119,9 +119,26 @@ TEST(ViewCamera, ExplicitEyeCentreAndFovy) {
     EXPECT_EQ(viewCamera(s, "1,2,3,0,0,0").fovyDegrees, 60.0f);
 }
 
+TEST(ViewCamera, TheWholeCameraLine) {
+    const Scene s = unitCubeCorners();
+    const Camera c = viewCamera(s, "1,2,3,0,0.5,-10,1,0,0,45");
+    EXPECT_EQ(c.eye, glm::vec3(1, 2, 3));
+    EXPECT_EQ(c.center, glm::vec3(0, 0.5f, -10));
+    EXPECT_EQ(c.up, glm::vec3(1, 0, 0));
+    EXPECT_EQ(c.fovyDegrees, 45.0f);
+    // As one quoted argument with the scene file's spaces, pbrt and CSE167 style.
+    const Camera spaced = viewCamera(s, " 1 2 3  0 0.5 -10\t1 0 0 45");
+    EXPECT_EQ(spaced.eye, c.eye);
+    EXPECT_EQ(spaced.center, c.center);
+    EXPECT_EQ(spaced.up, c.up);
+    EXPECT_EQ(spaced.fovyDegrees, c.fovyDegrees);
+    EXPECT_THROW(viewCamera(s, "0,0,5,0,0,0,0,0,1,45"), Error);  // up along the view direction
+    EXPECT_THROW(viewCamera(s, "1 2 3 0 0.5 -10 1 0 0 45 # x"), Error);
+}
+
 TEST(ViewCamera, BadTextIsAnErrorNamingTheOption) {
     const Scene s = unitCubeCorners();
-    for (const char* bad : {"", "near", "1,2,3", "1,2,3,4,5", "1,2,3,4,5,6,7,8", "1,2,x,4,5,6", "1,2,3,4,5,6,",
+    for (const char* bad : {"", "near", "1,2,3", "1,2,3,4,5", "1,2,3,4,5,6,7,8", "1,2,3,4,5,6,7,8,9", "1,2,x,4,5,6", "1,2,3,4,5,6,",
                             "1,2,3,4,5,nan", "1,2,3,1,2,3", "0,5,0,0,0,0", "1,2,3,4,5,6,180"}) {
         try {
             viewCamera(s, bad);
