@@ -124,12 +124,23 @@ struct EmbreeResult {
     std::string note;                  // why there is none
     int threads = 0;
     Spread singleMs, packetMs;         // over every repeat of every accelerator
+    // The timings those spreads summarise, so that `vkray bench --merge` summarises the samples of
+    // every shard as one run would.
+    std::vector<double> singleSamples, packetSamples;
     // Camera rays on which Embree names the reference's triangle (primary hit), as a check that the
     // baseline traces the same rays; below 1 only through ties and float rounding at edges.
     double agreement = 0.0;
 };
 
+// One unit of measurement of the run (bench_shard.h): "reference", "accel NAME", "concurrent",
+// "aac-delta D" or "maxdepth-sweep", and the shard that measured it (0 in an unsharded run).
+struct ConfigurationRun {
+    std::string label;
+    int shard = 0;
+};
+
 struct SceneResult {
+    int index = 0;             // 0-based position among the run's scenes (a scene may be given twice)
     std::string file;          // as given on the command line
     std::string name;          // file stem, for headings and image names
     std::string view;          // the camera: "scene", "close" or the --camera text
@@ -147,6 +158,34 @@ struct SceneResult {
     std::vector<DeltaResult> deltas;
     std::vector<ErrorPoint> errorPoints;
     std::optional<ConcurrentBuild> concurrent;
+    std::vector<ConfigurationRun> configurations;  // what of this scene the run measured, in run order
+};
+
+// The settings that decide what a run measures; shards merge only when theirs are equal.
+struct BenchSettings {
+    std::vector<std::string> scenes, accels;
+    int width = 0, height = 0;        // 0: each scene's size
+    std::string view = "scene";
+    int repeat = 0;
+    std::vector<int> threads;         // resolved build thread counts
+    std::vector<int> deltas, maxDepths;
+    bool maxDepthSweep = true;
+};
+
+// A share of the run: shard `index` of `count` (0-based).
+struct ShardSpec {
+    int index = 0, count = 1;
+};
+
+// Where and when one shard ran, as a merged report lists it.
+struct ShardInfo {
+    ShardSpec shard;
+    std::string node, device, driver, deviceType, vulkanApi;
+    int hardwareThreads = 0;
+    std::string commandLine, startedAt;
+    double elapsedSeconds = 0.0;
+    size_t configurations = 0;        // how many this shard measured
+    std::string source;               // the bench.json it was read from
 };
 
 struct BenchResults {
@@ -159,6 +198,13 @@ struct BenchResults {
     int repeat = 0;                       // timed repeats after one warm-up
     std::vector<int> threadCounts;        // build-scaling thread counts
     std::vector<SceneResult> scenes;
+
+    std::string node;                     // the machine's host name
+    BenchSettings settings;
+    ShardSpec shard;                      // 0/1 for an unsharded run
+    size_t configurationCount = 0;        // of the whole run, every shard together
+    std::string configurationHash;        // of that list (bench_shard.h)
+    std::vector<ShardInfo> shards;        // a merged report: every shard; empty otherwise
 };
 
 }  // namespace vkray::bench

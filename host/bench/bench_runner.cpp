@@ -8,8 +8,11 @@
 #include <memory>
 #include <thread>
 
+#include <unistd.h>
+
 #include "accel/accel.h"
 #include "bench/embree_baseline.h"
+#include "bench/bench_shard.h"
 #include "bench/report.h"
 #include "core/error.h"
 #include "core/timing.h"
@@ -23,7 +26,6 @@
 
 namespace vkray::bench {
 namespace {
-
 
 // Differences within this many 8-bit levels are what float vs double rounding gives
 // (tests/golden): the difference images show them blue, beyond it red.
@@ -71,8 +73,9 @@ public:
     Runner(const gpu::VulkanContext& ctx, const BenchOptions& options, const BenchProgressFn& progress)
         : ctx_(ctx), options_(options), progress_(progress), start_(Clock::now()) {}
 
-    SceneResult runScene(const std::string& file, int index, int count) {
-        sceneIndex_ = index;
+    // The work of one scene: everything in an unsharded run, the shard's share otherwise.
+    SceneResult runScene(const std::string& file, int index, int count, const SceneWork& work) {
+        sceneIndex_ = index + 1;
         sceneCount_ = count;
         sceneName_ = std::filesystem::path(file).stem().string();
         step("load");
@@ -80,6 +83,7 @@ public:
         scene.camera = viewCamera(scene, options_.view);
         gpu::checkSceneFits(ctx_, scene);
         SceneResult result;
+        result.index = index;
         result.file = file;
         result.name = sceneName_;
         result.view = options_.view;
@@ -97,16 +101,17 @@ public:
         Scene dark = scene;
         dark.lights.clear();
 
-        const Frame reference = renderReferenceImage(scene, render, result);
-        startEmbree(scene, reference, result);
-        for (const std::string& name : options_.accels)
+        Frame reference;
+        if (work.needsReferenceImage()) reference = renderReferenceImage(scene, render, result);
+        if (!work.accels.empty()) startEmbree(scene, reference, result);
+        for (const std::string& name : work.accels)
             result.accels.push_back(runAccel(scene, dark, render, accel::resolveAccel(name), reference, result));
         for (const AccelResult& a : result.accels) result.errorPoints.push_back(acceleratorPoint(a, scene.maxDepth));
         finishEmbree(result);
-        result.concurrent = runConcurrentBuild(scene);
-        for (int delta : options_.deltas) runDelta(scene, render, delta, reference, result);
-        if (options_.maxDepthSweep) runMaxDepthSweep(scene, render, reference, result);
-        result.errorPoints.push_back(cpuReferencePoint(result));
+        if (work.concurrent) result.concurrent = runConcurrentBuild(scene);
+        for (int delta : work.deltas) runDelta(scene, render, delta, reference, result);
+        if (work.maxDepthSweep) runMaxDepthSweep(scene, render, reference, result);
+        if (work.reference) result.errorPoints.push_back(cpuReferencePoint(result));
         markParetoFront(result.errorPoints);
         return result;
     }
@@ -167,6 +172,8 @@ private:
         if (!embree_ || embreeSingle_.empty()) return;
         result.embree.singleMs = spreadOf(embreeSingle_);
         result.embree.packetMs = spreadOf(embreePacket_);
+        result.embree.singleSamples = embreeSingle_;
+        result.embree.packetSamples = embreePacket_;
         embree_.reset();
     }
 
@@ -196,6 +203,14 @@ private:
     Built buildOnce(const Scene& scene, const accel::AccelSpec& spec, std::vector<ThreadTiming> timings) {
         step("build " + spec.name);
         return {accel::buildAccel(scene, spec, {.threads = maxThreads(threads_), .progress = {}}), std::move(timings)};
+    }
+
+    // The build timings of a structure, timed now when this run has not timed it yet (a shard
+    // without its accelerator).
+    const std::vector<ThreadTiming>& timingsOf(const Scene& scene, const accel::AccelSpec& spec) {
+        const std::string key = accel::structureKey(spec);
+        if (!buildTimings_.contains(key)) buildTimings_[key] = timeBuilds(scene, spec, threads_).timings;
+        return buildTimings_.at(key);
     }
 
     Built buildTimed(const Scene& scene, const accel::AccelSpec& spec) {
@@ -378,8 +393,8 @@ private:
         ConcurrentBuild c;
         c.bvhAccel = bvh->name;
         c.kdAccel = kd->name;
-        c.bvhMs = buildTimings_.at(accel::structureKey(*bvh)).back().ms;
-        c.kdMs = buildTimings_.at(accel::structureKey(*kd)).back().ms;
+        c.bvhMs = timingsOf(scene, *bvh).back().ms;
+        c.kdMs = timingsOf(scene, *kd).back().ms;
         std::vector<double> ms;
         const accel::BuildOptions all{.threads = maxThreads(threads_), .progress = {}};
         for (int r = 0; r <= options_.repeat; ++r) {
@@ -445,19 +460,17 @@ private:
         if (depths.empty())
             for (int d = 1; d < scene.maxDepth; ++d) depths.push_back(d);
         std::erase_if(depths, [&](int d) { return d < 1 || d >= scene.maxDepth; });
-        if (depths.empty() || result.accels.empty()) return;
-        std::string name = result.accels.front().accel;
-        for (const AccelResult& a : result.accels)
-            if (accel::resolveAccel(a.accel).family == accel::Family::Bvh) {
-                name = a.accel;
+        if (depths.empty()) return;
+        std::string name = options_.accels.front();
+        for (const std::string& a : options_.accels)
+            if (accel::resolveAccel(a).family == accel::Family::Bvh) {
+                name = a;
                 break;
             }
         const accel::AccelSpec spec = accel::resolveAccel(name);
-        const Built built = buildOnce(scene, spec, {});
+        const Built built = buildTimed(scene, spec);  // timed once per run, like the accelerator
         const accel::GpuAccelData data = built.accel->gpuData();
-        double buildMs = 0.0;
-        for (const AccelResult& a : result.accels)
-            if (a.accel == name) buildMs = a.build.back().ms.median;
+        const double buildMs = built.timings.back().ms.median;
         for (int depth : depths) {
             RenderOptions shallow = render;
             shallow.maxDepth = depth;
@@ -503,7 +516,15 @@ std::string isoTimeUtc() {
     return text;
 }
 
+std::string hostName() {
+    char name[256] = {};
+    if (gethostname(name, sizeof name - 1) != 0) return "unknown";
+    return name;
+}
+
 void checkOptions(const BenchOptions& o) {
+    if (o.shard.count < 1 || o.shard.index < 0 || o.shard.index >= o.shard.count)
+        throw Error("--shard " + shardText(o.shard) + ": expected I/N with 0 <= I < N");
     if (o.scenes.empty()) throw Error("vkray bench: no scene given");
     if (o.accels.empty()) throw Error("vkray bench: --accel names no accelerator");
     if (o.repeat < 1 || o.repeat > 1000) throw Error("--repeat " + std::to_string(o.repeat) + ": expected 1..1000");
@@ -543,11 +564,21 @@ BenchResults runBench(const gpu::VulkanContext& ctx, const BenchOptions& options
     results.vulkanApi = ctx.info().apiVersion;
     results.hardwareThreads = int(std::thread::hardware_concurrency());
     results.repeat = options.repeat;
+    results.node = hostName();
+    results.settings = benchSettings(options);
+    results.shard = options.shard;
+    const std::vector<Configuration> list = configurationList(results.settings);
+    results.configurationCount = list.size();
+    results.configurationHash = configurationHash(list);
     Runner runner(ctx, options, progress);
     results.threadCounts = runner.threads();
+    const std::vector<SceneWork> work = shardWork(results.settings, options.shard);
     for (size_t i = 0; i < options.scenes.size(); ++i) {
+        if (work[i].empty()) continue;  // none of this scene's configurations is in the shard
         runner.startScene();
-        results.scenes.push_back(runner.runScene(options.scenes[i], int(i) + 1, int(options.scenes.size())));
+        SceneResult scene = runner.runScene(options.scenes[i], int(i), int(options.scenes.size()), work[i]);
+        for (const std::string& label : work[i].labels) scene.configurations.push_back({label, options.shard.index});
+        results.scenes.push_back(std::move(scene));
     }
     results.elapsedSeconds = msSince(start) / 1000.0;
     return results;

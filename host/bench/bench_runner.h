@@ -33,6 +33,8 @@ struct BenchOptions {
     // are left out (the reference is rendered at the scene's maxdepth).
     std::vector<int> maxDepths;
     bool maxDepthSweep = true;
+    // The share of the run's configurations this run measures (bench_shard.h); 0/1: all of them.
+    ShardSpec shard;
 };
 
 // What the runner is doing, for a progress line.
@@ -48,7 +50,7 @@ using BenchProgressFn = std::function<void(const BenchProgress&)>;
 // The default build-scaling thread counts for this machine: 1, 2, 4, ... and all cores.
 std::vector<int> defaultThreadCounts();
 
-// Runs the whole benchmark. Throws vkray::Error (a scene that does not load or does not fit the
+// Runs the whole benchmark, or the options' shard of it. Throws vkray::Error (a scene that does not load or does not fit the
 // device, an unknown accelerator, a render the device cuts short) before writing anything.
 BenchResults runBench(const gpu::VulkanContext& ctx, const BenchOptions& options,
                       const std::string& commandLine, const BenchProgressFn& progress = {});

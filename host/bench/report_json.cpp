@@ -1,10 +1,12 @@
 // bench.json: every figure of a BenchResults, for scripts. Keys are snake_case and stable; a figure
 // that could not be measured is null, with a "note" saying why where there is one. Images are not
-// in the JSON (report.html and images/ have them); their sizes are.
+// in the JSON (report.html and images/ have them); their file names are.
 #include <cmath>
 
 #include <nlohmann/json.hpp>
 
+#include "bench/bench_json.h"
+#include "bench/bench_shard.h"
 #include "bench/report.h"
 
 namespace vkray::bench {
@@ -25,7 +27,38 @@ Json imageError(const ImageError& e) {
             {"primary_hit_mismatch", number(e.primaryMismatch)}};
 }
 
-Json accelResult(const AccelResult& a) {
+// Where a report's pictures of one scene went: by accelerator ("" for the reference) and role.
+class ImageNames {
+public:
+    ImageNames(const std::vector<ReportImage>& images, size_t scene, bool pixels)
+        : images_(images), scene_(scene), pixels_(pixels) {}
+    Json of(const std::string& accel) const {
+        Json j = Json::object(), pixels = Json::object();
+        for (const ReportImage& im : images_) {
+            if (im.scene != scene_ || im.accel != accel) continue;
+            j[roleName(im.role)] = im.fileName;
+            pixels[roleName(im.role)] = pixelsFileName(im.fileName);
+        }
+        if (pixels_ && !pixels.empty()) j["pixels"] = pixels;
+        return j;
+    }
+
+private:
+    static const char* roleName(ImageRole r) {
+        switch (r) {
+        case ImageRole::Reference: return "reference";
+        case ImageRole::Render: return "render";
+        case ImageRole::Difference: return "difference";
+        case ImageRole::Heatmap: return "heatmap";
+        }
+        return "image";
+    }
+    const std::vector<ReportImage>& images_;
+    size_t scene_;
+    bool pixels_;
+};
+
+Json accelResult(const AccelResult& a, const ImageNames& names) {
     Json build = Json::array();
     for (const ThreadTiming& t : a.build) build.push_back({{"threads", t.threads}, {"ms", spread(t.ms)}});
     Json stats = Json::object();
@@ -56,7 +89,8 @@ Json accelResult(const AccelResult& a) {
                          {"restarts", number(a.restartsPerRay)}}},
             {"per_primary_ray", {{"nodes", number(a.primaryNodesPerRay)}, {"triangles", number(a.primaryTrianglesPerRay)}}},
             {"capped_rays", a.cappedRays},
-            {"error", imageError(a.error)}};
+            {"error", imageError(a.error)},
+            {"images", names.of(a.accel)}};
 }
 
 Json errorPoint(const ErrorPoint& p) {
@@ -91,15 +125,19 @@ Json embree(const EmbreeResult& e, double rays) {
             {"intersect16_ms", spread(e.packetMs)},
             {"intersect1_mrays_per_s", number(mraysPerSecond(rays, e.singleMs.median))},
             {"intersect16_mrays_per_s", number(mraysPerSecond(rays, e.packetMs.median))},
-            {"agreement_with_reference", number(e.agreement)}};
+            {"agreement_with_reference", number(e.agreement)},
+            {"intersect1_samples_ms", e.singleSamples},
+            {"intersect16_samples_ms", e.packetSamples}};
 }
 
-Json sceneResult(const SceneResult& s) {
-    Json accels = Json::array(), points = Json::array(), deltas = Json::array();
-    for (const AccelResult& a : s.accels) accels.push_back(accelResult(a));
+Json sceneResult(const SceneResult& s, const ImageNames& names) {
+    Json accels = Json::array(), points = Json::array(), deltas = Json::array(), configs = Json::array();
+    for (const AccelResult& a : s.accels) accels.push_back(accelResult(a, names));
     for (const ErrorPoint& p : s.errorPoints) points.push_back(errorPoint(p));
     for (const DeltaResult& d : s.deltas) deltas.push_back(deltaResult(d));
-    Json j = {{"file", s.file},
+    for (const ConfigurationRun& c : s.configurations) configs.push_back({{"label", c.label}, {"shard", c.shard}});
+    Json j = {{"index", s.index},
+              {"file", s.file},
               {"name", s.name},
               {"triangles", s.triangles},
               {"width", s.width},
@@ -108,12 +146,14 @@ Json sceneResult(const SceneResult& s) {
               {"reference", {{"renderer", "CPU, double precision"},
                              {"accel", s.referenceAccel},
                              {"build_ms", number(s.referenceBuildMs)},
-                             {"render_ms", number(s.referenceRenderMs)}}},
+                             {"render_ms", number(s.referenceRenderMs)},
+                             {"images", names.of("")}}},
               {"view", s.view},
               {"embree", embree(s.embree, double(s.width) * double(s.height))},
               {"accelerators", accels},
               {"aac_delta_sweep", deltas},
-              {"error_vs_time", points}};
+              {"error_vs_time", points},
+              {"configurations", configs}};
     if (s.concurrent) {
         const ConcurrentBuild& c = *s.concurrent;
         j["concurrent_build"] = {{"bvh", c.bvhAccel},
@@ -128,17 +168,44 @@ Json sceneResult(const SceneResult& s) {
     return j;
 }
 
+Json shardInfo(const ShardInfo& s) {
+    return {{"index", s.shard.index},
+            {"count", s.shard.count},
+            {"node", s.node},
+            {"device", {{"name", s.device}, {"type", s.deviceType}, {"driver", s.driver}, {"vulkan", s.vulkanApi}}},
+            {"hardware_threads", s.hardwareThreads},
+            {"command_line", s.commandLine},
+            {"started_at", s.startedAt},
+            {"elapsed_s", number(s.elapsedSeconds)},
+            {"configurations", s.configurations},
+            {"source", s.source}};
+}
+
 }  // namespace
 
-std::string benchJson(const BenchResults& r) {
+std::string pixelsFileName(const std::string& png) {
+    const std::string stem = png.ends_with(".png") ? png.substr(0, png.size() - 4) : png;
+    return stem + ".pfm";
+}
+
+std::string benchJson(const BenchResults& r) { return benchJson(r, reportImages(r)); }
+
+std::string benchJson(const BenchResults& r, const std::vector<ReportImage>& images) {
     Json scenes = Json::array();
-    for (const SceneResult& s : r.scenes) scenes.push_back(sceneResult(s));
+    for (size_t i = 0; i < r.scenes.size(); ++i)
+        scenes.push_back(sceneResult(r.scenes[i], ImageNames(images, i, keepsPixels(r))));
+    Json shards = Json::array();
+    for (const ShardInfo& s : r.shards) shards.push_back(shardInfo(s));
     const Json j = {{"vkray", {{"version", r.vkrayVersion}, {"revision", r.revision}}},
                     {"command_line", r.commandLine},
                     {"started_at", r.startedAt},
                     {"elapsed_s", number(r.elapsedSeconds)},
                     {"device", {{"name", r.device}, {"type", r.deviceType}, {"driver", r.driver}, {"vulkan", r.vulkanApi}}},
-                    {"host", {{"hardware_threads", r.hardwareThreads}}},
+                    {"host", {{"hardware_threads", r.hardwareThreads}, {"node", r.node}}},
+                    {"settings", settingsJson(r.settings)},
+                    {"shard", {{"index", r.shard.index}, {"count", r.shard.count}}},
+                    {"configurations", {{"count", r.configurationCount}, {"hash", r.configurationHash}}},
+                    {"shards", shards},
                     {"method", {{"repeat", r.repeat},
                                 {"warm_up_runs", 1},
                                 {"statistic", "median with min-max"},

@@ -3,10 +3,13 @@
 #include <string>
 #include <system_error>
 
+#include "bench/bench_json.h"
+#include "bench/bench_merge.h"
 #include "bench/report.h"
 #include "bench/report_images.h"
 #include "core/error.h"
 #include "core/file_output.h"
+#include "image/image_io.h"
 
 namespace fs = std::filesystem;
 
@@ -23,15 +26,52 @@ void makeDirectory(const fs::path& dir) {
         throw fileError(dir, "cannot create the directory" + (ec ? ": " + ec.message() : ": a file of that name exists"));
 }
 
+// A merged report lists its shards right after the run's facts (the first table of report.html, the
+// first list of bench.md).
+std::string withShardsMarkdown(const std::string& markdown, const BenchResults& r) {
+    const std::string section = shardsMarkdown(r);
+    if (section.empty()) return markdown;
+    size_t at = markdown.find("\n## ");
+    at = at == std::string::npos ? markdown.size() : at + 1;
+    return markdown.substr(0, at) + section + markdown.substr(at);
+}
+
+std::string withShardsHtml(const std::string& html, const BenchResults& r) {
+    const std::string section = shardsHtml(r);
+    if (section.empty()) return html;
+    const std::string factsEnd = "</table>\n";
+    size_t at = html.find(factsEnd, html.find("<h1>"));
+    at = at == std::string::npos ? html.rfind("</body>") : at + factsEnd.size();
+    return html.substr(0, at) + section + html.substr(at);
+}
+
+// What each picture is drawn from, as a PFM beside it (bench_json.h, pixelsFileName).
+void writePixels(const BenchResults& results, const std::vector<ReportImage>& images, const fs::path& dir) {
+    for (const ReportImage& im : images) {
+        const SceneResult& scene = results.scenes[im.scene];
+        const fs::path path = dir / "images" / pixelsFileName(im.fileName);
+        if (im.role == ImageRole::Reference) writeImage(path, scene.reference);
+        for (const AccelResult& a : scene.accels) {
+            if (a.accel != im.accel) continue;
+            if (im.role == ImageRole::Render) writeImage(path, a.image);
+            if (im.role == ImageRole::Difference) writeImage(path, a.diff);
+            if (im.role == ImageRole::Heatmap) {
+                const std::vector<float> counts(a.nodesPerPixel.begin(), a.nodesPerPixel.end());
+                writePfm(path, im.width, im.height, 1, counts.data());
+            }
+        }
+    }
+}
+
 }  // namespace
 
 void writeBenchReport(const BenchResults& results, const fs::path& dir) {
     // Everything is produced before the first file is written, so a failure to encode cannot leave
     // a half-written report behind.
     const std::vector<ReportImage> images = reportImages(results);
-    const std::string json = benchJson(results);
-    const std::string markdown = benchMarkdown(results);
-    const std::string html = benchHtml(results, images);
+    const std::string json = benchJson(results, images);
+    const std::string markdown = withShardsMarkdown(benchMarkdown(results), results);
+    const std::string html = withShardsHtml(benchHtml(results, images), results);
 
     makeDirectory(dir);
     makeDirectory(dir / "images");
@@ -39,6 +79,7 @@ void writeBenchReport(const BenchResults& results, const fs::path& dir) {
     writeFileText(dir / "bench.md", markdown);
     writeFileText(dir / "report.html", html);
     for (const ReportImage& im : images) writeFileBytes(dir / "images" / im.fileName, im.png.data(), im.png.size());
+    if (keepsPixels(results)) writePixels(results, images, dir);
 }
 
 }  // namespace vkray::bench

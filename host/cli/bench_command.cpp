@@ -1,6 +1,7 @@
 // `vkray bench SCENE...`: the accelerators against each other on one Vulkan device:
 // build and trace time, work per ray, error against run time; writes bench.json, bench.md,
-// report.html and images/ into --out.
+// report.html and images/ into --out. `--shard I/N` measures a share of the configurations,
+// `--merge DIR...` joins the shards' reports into one (docs/cluster.md).
 #include <unistd.h>
 
 #include <cstdio>
@@ -12,7 +13,9 @@
 #include <tbb/info.h>
 
 #include "accel/accel.h"
+#include "bench/bench_merge.h"
 #include "bench/bench_runner.h"
+#include "bench/bench_shard.h"
 #include "bench/report.h"
 #include "cli/cli_options.h"
 #include "cli/commands.h"
@@ -33,6 +36,8 @@ struct BenchArgs {
     std::string threads;
     std::string deltas;
     std::string maxDepths;
+    std::string shard;
+    std::vector<std::string> merge;
     bool quiet = false;
 };
 
@@ -55,6 +60,7 @@ bench::BenchOptions resolveOptions(const BenchArgs& args) {
     if (!args.deltas.empty()) o.deltas = parseIntList(args.deltas, "--deltas", 1, 1024, true);
     if (args.maxDepths == "none") o.maxDepthSweep = false;
     else if (!args.maxDepths.empty()) o.maxDepths = parseIntList(args.maxDepths, "--maxdepths", 1, 64, false);
+    if (!args.shard.empty()) o.shard = bench::parseShard(args.shard);
     return o;
 }
 
@@ -94,6 +100,13 @@ private:
 
 void printSummary(const bench::BenchResults& r, const std::filesystem::path& dir) {
     std::printf("device: %s (%s)\n", r.device.c_str(), r.driver.c_str());
+    size_t measured = 0;
+    for (const bench::SceneResult& s : r.scenes) measured += s.configurations.size();
+    if (r.shard.count > 1)
+        std::printf("shard %s on %s: %zu of %zu configurations\n", bench::shardText(r.shard).c_str(), r.node.c_str(),
+                    measured, r.configurationCount);
+    if (!r.shards.empty())
+        std::printf("merged %zu shards: %zu of %zu configurations\n", r.shards.size(), measured, r.configurationCount);
     for (const bench::SceneResult& s : r.scenes) {
         std::printf("%s (%llu triangles, %dx%d):\n", s.file.c_str(), (unsigned long long)s.triangles, s.width,
                     s.height);
@@ -125,12 +138,22 @@ void prepareOutputDir(const std::filesystem::path& dir) {
     if (access(dir.c_str(), W_OK) != 0) throw Error("--out " + dir.string() + ": the folder is not writable");
 }
 
+// `--merge DIR...`: no measuring, no device; the shards' reports become one.
+void mergeReports(const BenchArgs& args, const std::string& commandLine) {
+    const std::vector<std::filesystem::path> dirs(args.merge.begin(), args.merge.end());
+    const bench::BenchResults merged = bench::mergeBenchReports(dirs, commandLine);
+    const std::filesystem::path dir = args.out;
+    prepareOutputDir(dir);
+    bench::writeBenchReport(merged, dir);
+    printSummary(merged, dir);
+}
+
 }  // namespace
 
 void registerBenchCommand(CLI::App& app, int& exitCode, int argc, const char* const* argv) {
     auto* cmd = app.add_subcommand("bench", "Compare accelerators: build and trace time, work per ray, error against run time");
     auto args = std::make_shared<BenchArgs>();
-    cmd->add_option("scenes", args->scenes, "Scene files")->required();
+    auto* scenes = cmd->add_option("scenes", args->scenes, "Scene files (required unless --merge)");
     cmd->add_option("--accel", args->accels,
                     "Comma-separated accelerators (default bvh,bvh-fast,bvh-hq,bvh-stackless,kd-stack,kd-shortstack,kd-restart,kd-pushdown,kd-ropes,"
                     "kd-backtrack)");
@@ -144,9 +167,21 @@ void registerBenchCommand(CLI::App& app, int& exitCode, int argc, const char* co
                     "Build-scaling thread counts, e.g. 1,2; 0 = all cores (default 1, 2, 4, ... all cores)");
     cmd->add_option("--deltas", args->deltas, "AAC delta sweep (as in Table 5.5 of A. F. Mahmuda's 2017 AAC thesis), e.g. 4,6,8,...,50, or none (default 4,8,12,20,30,50)");
     cmd->add_option("--maxdepths", args->maxDepths, "maxdepth sweep below the scene's, e.g. 1,2, or none (default: every depth below the scene's)");
+    cmd->add_option("--shard", args->shard,
+                    "Measure only shard I of N (0-based) of the configurations, round-robin (docs/cluster.md)");
+    cmd->add_option("--merge", args->merge, "Merge the reports of every shard of one run, one folder each, into --out")
+        ->expected(1, -1)
+        ->excludes(scenes);
     cmd->add_flag("--quiet", args->quiet, "No progress line");
     const std::string commandLine = joinCommandLine(argc, argv);
     cmd->callback([args, commandLine, &exitCode] {
+        if (!args->merge.empty()) {
+            if (!args->shard.empty()) throw CLI::ValidationError("--merge", "--shard measures, --merge only merges");
+            mergeReports(*args, commandLine);
+            exitCode = 0;
+            return;
+        }
+        if (args->scenes.empty()) throw CLI::RequiredError("scenes");
         const bench::BenchOptions options = resolveOptions(*args);
         for (const std::string& file : options.scenes)
             if (!std::filesystem::is_regular_file(file)) throw Error(file + ": no such scene file");

@@ -23,3 +23,9 @@ vkray_bench_error(bad_threads "--threads -1" ${BENCH_SCENE} --threads -1 --out $
 vkray_bench_error(huge_threads "--threads 1,2000: '2000' is not an integer in 0\\.\\.1024" ${BENCH_SCENE} --threads 1,2000 --out ${BENCH_OUT}/x)
 vkray_bench_error(bad_size "--size 10x" ${BENCH_SCENE} --size 10x --out ${BENCH_OUT}/x)
 vkray_bench_error(out_not_a_folder "--out .*cannot create" ${BENCH_SCENE} --out ${BENCH_SCENE}/sub)
+# --shard and --merge (docs/cluster.md); a merge that works is run by tests/slurm and bench_shard_test.
+vkray_bench_error(bad_shard "--shard 4/4: expected I/N with 0 <= I < N" ${BENCH_SCENE} --shard 4/4 --out ${BENCH_OUT}/x)
+vkray_bench_error(shard_not_a_fraction "--shard 1: expected I/N" ${BENCH_SCENE} --shard 1 --out ${BENCH_OUT}/x)
+vkray_bench_error(merge_no_report "nope/bench.json: no such file" --merge ${BENCH_OUT}/nope --out ${BENCH_OUT}/x)
+vkray_bench_error(merge_with_shard "--shard measures, --merge only merges" --merge ${BENCH_OUT}/nope --shard 0/2 --out ${BENCH_OUT}/x)
+vkray_bench_error(merge_with_scenes "scenes excludes --merge|--merge excludes scenes" ${BENCH_SCENE} --merge ${BENCH_OUT}/nope --out ${BENCH_OUT}/x)

@@ -1,0 +1,30 @@
+// `vkray bench --merge DIR...`: the reports of the shards of one run (`vkray bench --shard I/N`,
+// bench_shard.h) as the one report an unsharded run writes — every configuration, each with the
+// figures of the shard that measured it — plus which shard, node and device measured what.
+#pragma once
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "bench/bench_results.h"
+
+namespace vkray::bench {
+
+// Reads DIR/bench.json (and DIR/images/) of every folder and merges them. Throws vkray::Error, one
+// line naming the file and the difference, for: a folder without a readable bench.json, a merged
+// report given as a shard, another vkray version or revision, other settings, another shard count or
+// configuration list, a shard given twice, missing shards ("missing shards 1, 3 of 4"), a shard
+// without a configuration it should have measured.
+//
+// What is not one shard's figure: the Pareto front is marked again over all the points of a scene,
+// and the scene's Embree summary is the median (min-max) of every shard's Embree samples together.
+BenchResults mergeBenchReports(const std::vector<std::filesystem::path>& dirs, const std::string& commandLine);
+
+// The sections a merged report adds after the run's facts: one row per shard (node, device, driver,
+// when, how many configurations) and, per scene, which shard measured each configuration. Empty
+// for a report that is not merged.
+std::string shardsMarkdown(const BenchResults& results);
+std::string shardsHtml(const BenchResults& results);
+
+}  // namespace vkray::bench

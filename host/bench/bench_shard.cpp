@@ -1,0 +1,148 @@
+// The configuration list of a bench run and its shards (bench_shard.h).
+#include "bench/bench_shard.h"
+
+#include <charconv>
+#include <cstdint>
+#include <cstdio>
+#include <optional>
+
+#include "accel/accel.h"
+#include "core/error.h"
+
+namespace vkray::bench {
+namespace {
+
+using Json = nlohmann::ordered_json;
+
+// The first BVH and the first kd-tree of the accelerators: the pair the concurrent build times.
+std::optional<std::string> concurrentLabel(const std::vector<std::string>& accels) {
+    std::optional<std::string> bvh, kd;
+    for (const std::string& name : accels) {
+        const accel::AccelSpec spec = accel::resolveAccel(name);
+        if (spec.family == accel::Family::Bvh && !bvh) bvh = spec.name;
+        if (spec.family == accel::Family::Kd && !kd) kd = spec.name;
+    }
+    if (!bvh || !kd) return std::nullopt;
+    return "concurrent " + *bvh + "+" + *kd;
+}
+
+std::optional<int> parseInt(std::string_view text) {
+    int v = 0;
+    const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
+    if (ec != std::errc() || end != text.data() + text.size() || text.empty()) return std::nullopt;
+    return v;
+}
+
+template <typename T>
+T field(const Json& j, const char* key) {
+    if (!j.contains(key)) throw Error(std::string("settings: no \"") + key + "\"");
+    try {
+        return j.at(key).get<T>();
+    } catch (const nlohmann::json::exception&) {
+        throw Error(std::string("settings: \"") + key + "\" is not what a bench run writes");
+    }
+}
+
+}  // namespace
+
+BenchSettings benchSettings(const BenchOptions& o) {
+    BenchSettings s;
+    s.scenes = o.scenes;
+    s.accels = o.accels;
+    s.width = o.width;
+    s.height = o.height;
+    s.view = o.view;
+    s.repeat = o.repeat;
+    s.threads = o.threads.empty() ? defaultThreadCounts() : o.threads;
+    s.deltas = o.deltas;
+    s.maxDepths = o.maxDepths;
+    s.maxDepthSweep = o.maxDepthSweep;
+    return s;
+}
+
+std::vector<Configuration> configurationList(const BenchSettings& s) {
+    std::vector<Configuration> list;
+    const std::optional<std::string> concurrent = concurrentLabel(s.accels);
+    for (size_t i = 0; i < s.scenes.size(); ++i) {
+        const int scene = int(i);
+        list.push_back({scene, "reference"});
+        for (const std::string& a : s.accels) list.push_back({scene, "accel " + a});
+        if (concurrent) list.push_back({scene, *concurrent});
+        for (int d : s.deltas) list.push_back({scene, "aac-delta " + std::to_string(d)});
+        if (s.maxDepthSweep) list.push_back({scene, "maxdepth-sweep"});
+    }
+    return list;
+}
+
+std::string configurationHash(const std::vector<Configuration>& list) {
+    // FNV-1a, 64 bits: stable across machines and builds, which is all this needs.
+    uint64_t h = 0xcbf29ce484222325ull;
+    auto add = [&h](const std::string& text) {
+        for (unsigned char c : text) h = (h ^ c) * 0x100000001b3ull;
+    };
+    for (const Configuration& c : list) add(std::to_string(c.scene) + "\t" + c.label + "\n");
+    char hex[17];
+    std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(h));
+    return hex;
+}
+
+ShardSpec parseShard(const std::string& text, const std::string& option) {
+    const size_t slash = text.find('/');
+    const Error bad(option + " " + text + ": expected I/N with 0 <= I < N, e.g. 0/4");
+    if (slash == std::string::npos) throw bad;
+    const auto i = parseInt(std::string_view(text).substr(0, slash));
+    const auto n = parseInt(std::string_view(text).substr(slash + 1));
+    if (!i || !n || *n < 1 || *n > 10000 || *i < 0 || *i >= *n) throw bad;
+    return {*i, *n};
+}
+
+std::string shardText(const ShardSpec& s) { return std::to_string(s.index) + "/" + std::to_string(s.count); }
+
+std::vector<SceneWork> shardWork(const BenchSettings& settings, const ShardSpec& shard) {
+    std::vector<SceneWork> work(settings.scenes.size());
+    const std::vector<Configuration> list = configurationList(settings);
+    for (size_t k = 0; k < list.size(); ++k) {
+        if (!inShard(k, shard)) continue;
+        const std::string& label = list[k].label;
+        SceneWork& w = work[size_t(list[k].scene)];
+        w.labels.push_back(label);
+        if (label == "reference") w.reference = true;
+        else if (label.starts_with("accel ")) w.accels.push_back(label.substr(6));
+        else if (label.starts_with("concurrent ")) w.concurrent = true;
+        else if (label.starts_with("aac-delta ")) w.deltas.push_back(*parseInt(label.substr(10)));
+        else if (label == "maxdepth-sweep") w.maxDepthSweep = true;
+    }
+    return work;
+}
+
+Json settingsJson(const BenchSettings& s) {
+    return {{"scenes", s.scenes},
+            {"accels", s.accels},
+            {"width", s.width},
+            {"height", s.height},
+            {"view", s.view},
+            {"repeat", s.repeat},
+            {"build_threads", s.threads},
+            {"aac_deltas", s.deltas},
+            {"maxdepth_sweep", s.maxDepthSweep},
+            {"maxdepths", s.maxDepths}};
+}
+
+BenchSettings settingsFromJson(const Json& j) {
+    if (!j.is_object()) throw Error("settings: not an object");
+    BenchSettings s;
+    s.scenes = field<std::vector<std::string>>(j, "scenes");
+    s.accels = field<std::vector<std::string>>(j, "accels");
+    s.width = field<int>(j, "width");
+    s.height = field<int>(j, "height");
+    s.view = field<std::string>(j, "view");
+    s.repeat = field<int>(j, "repeat");
+    s.threads = field<std::vector<int>>(j, "build_threads");
+    s.deltas = field<std::vector<int>>(j, "aac_deltas");
+    s.maxDepthSweep = field<bool>(j, "maxdepth_sweep");
+    s.maxDepths = field<std::vector<int>>(j, "maxdepths");
+    for (const std::string& a : s.accels) accel::resolveAccel(a);  // a name this vkray knows
+    return s;
+}
+
+}  // namespace vkray::bench
