@@ -145,7 +145,7 @@ void mergeReports(const BenchArgs& args, const std::string& commandLine) {
     const std::filesystem::path dir = args.out;
     prepareOutputDir(dir);
     bench::writeBenchReport(merged, dir);
-    printSummary(merged, dir);
+    if (!args.quiet) printSummary(merged, dir);
 }
 
 }  // namespace
@@ -172,7 +172,7 @@ void registerBenchCommand(CLI::App& app, int& exitCode, int argc, const char* co
     cmd->add_option("--merge", args->merge, "Merge the reports of every shard of one run, one folder each, into --out")
         ->expected(1, -1)
         ->excludes(scenes);
-    cmd->add_flag("--quiet", args->quiet, "No progress line");
+    cmd->add_flag("--quiet", args->quiet, "No progress line and no summary: errors and warnings only (as render's)");
     const std::string commandLine = joinCommandLine(argc, argv);
     cmd->callback([args, commandLine, &exitCode] {
         if (!args->merge.empty()) {
@@ -200,7 +200,7 @@ void registerBenchCommand(CLI::App& app, int& exitCode, int argc, const char* co
         }
         progress.finish();
         bench::writeBenchReport(results, dir);
-        printSummary(results, dir);
+        if (!args->quiet) printSummary(results, dir);
         exitCode = 0;
     });
 }

@@ -29,6 +29,7 @@
 #include "scene/camera.h"
 #include "scene/scene.h"
 #include "scene/scene_parser.h"
+#include "vkray_revision.h"  // generated at build time by scripts/revision.cmake
 
 namespace vkray::cli {
 namespace {
@@ -304,7 +305,7 @@ ImageMeta outputMeta(const RenderArgs& args, const std::string& sceneFile, const
                   options.width, options.height, options.spp, options.maxDepth, report.accel.c_str(), c.eye.x, c.eye.y,
                   c.eye.z, c.center.x, c.center.y, c.center.z, c.up.x, c.up.y, c.up.z, c.fovyDegrees, scene.background.x,
                   scene.background.y, scene.background.z, report.device.c_str());
-    meta.attributes["vkray:version"] = VKRAY_VERSION;
+    meta.attributes["vkray:version"] = std::string(VKRAY_VERSION) + " (revision " + VKRAY_REVISION + ")";
     meta.attributes["vkray:scene"] = std::filesystem::path(sceneFile).filename().string() + " file " +
                                      fileHash(sceneFile) + " geometry " + geometry;
     meta.attributes["vkray:settings"] = settings;

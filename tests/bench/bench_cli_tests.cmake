@@ -29,3 +29,8 @@ vkray_bench_error(shard_not_a_fraction "--shard 1: expected I/N" ${BENCH_SCENE} 
 vkray_bench_error(merge_no_report "nope/bench.json: no such file" --merge ${BENCH_OUT}/nope --out ${BENCH_OUT}/x)
 vkray_bench_error(merge_with_shard "--shard measures, --merge only merges" --merge ${BENCH_OUT}/nope --shard 0/2 --out ${BENCH_OUT}/x)
 vkray_bench_error(merge_with_scenes "scenes excludes --merge|--merge excludes scenes" ${BENCH_SCENE} --merge ${BENCH_OUT}/nope --out ${BENCH_OUT}/x)
+# --quiet as render's: the report is written and nothing is printed.
+add_test(NAME bench.cli.quiet
+         COMMAND bash -c "out=$(\"$0\" bench \"$1\" --size 16x12 --repeat 1 --threads 1 --accel bvh --deltas none --maxdepths none --quiet --out \"$2\") && test -z \"$out\" && test -s \"$2/bench.json\""
+                 $<TARGET_FILE:vkray> ${CMAKE_SOURCE_DIR}/tests/cli/data/one_triangle.scene ${BENCH_OUT}/quiet)
+set_tests_properties(bench.cli.quiet PROPERTIES TIMEOUT 300 ENVIRONMENT "VKRAY_VALIDATION=1")
