@@ -59,6 +59,7 @@ struct RenderArgs {
     bool json = false;
     bool quiet = false;  // no progress line, no summary: errors and warnings only
     std::string saveAccel, loadAccel;  // structure files (accel/accel_file.h)
+    bool buildOnly = false;  // build and save the structure, render nothing
 };
 
 // "depth=d.pfm" -> {"depth", "d.pfm"}, names and file names checked by image_io's rules.
@@ -89,7 +90,7 @@ std::filesystem::path outputPath(const RenderArgs& args, const std::string& scen
             throw Error("-o " + args.output + ": names a directory; name the image file");
         return withPng(args.output);
     }
-    if (!args.pixel.empty()) return {};
+    if (!args.pixel.empty() || args.buildOnly) return {};
     const std::filesystem::path name =
         !scene.output.empty() ? withPng(scene.output) : std::filesystem::path(std::filesystem::path(sceneFile).stem().string() + ".png");
     if (args.outDir.empty()) return name;
@@ -259,7 +260,7 @@ Frame renderFrame(const Scene& scene, const RenderOptions& options, const accel:
 class Device {
 public:
     explicit Device(const RenderArgs& args) {
-        if (args.cpu) return;
+        if (args.cpu || args.buildOnly) return;
         opening_ = std::async(std::launch::async, [device = args.device] {
             return std::make_unique<gpu::VulkanContext>(
                 gpu::ContextOptions{.validation = gpu::validationRequestedByEnvironment(), .device = device});
@@ -342,6 +343,16 @@ Encoding outputEncoding(const RenderArgs& args, const std::string& sceneFile) {
     return parseEncoding(name, args.exposure);
 }
 
+void fillSceneReport(const std::string& sceneFile, const Scene& scene, const RenderOptions& options,
+                     RenderReport& report) {
+    report.scene = sceneFile;
+    report.options = options;
+    report.triangles = scene.triangles.size();
+    report.materials = scene.materials.size();
+    report.lights = scene.lights.size();
+    report.origin = {scene.origin.x, scene.origin.y, scene.origin.z};
+}
+
 // Loads, renders and writes one scene of the command line; `written` holds the images written by
 // the scenes before it, so that two scenes never write the same file.
 RenderReport renderScene(const RenderArgs& args, const std::string& sceneFile, const accel::AccelSpec& spec,
@@ -378,24 +389,25 @@ RenderReport renderScene(const RenderArgs& args, const std::string& sceneFile, c
         report.device = ctx->info().name + " (" + ctx->info().driver + ")";
         gpu::checkSceneFits(*ctx, scene);
     } else {
-        report.device = "CPU reference (double precision)";
+        report.device = args.buildOnly ? "none (--build-only)" : "CPU reference (double precision)";
     }
     report.accel = spec.name;
+    fillSceneReport(sceneFile, scene, options, report);
+    if (args.buildOnly) {  // the GPU's arrays, as --load-accel will read them
+        prepareStructure(scene, options, spec, accelFiles, true, showProgress, report);
+        report.buildOnly = true;
+        report.totalMs = msSince(t0);
+        return report;
+    }
 
     const Frame frame = renderFrame(scene, options, spec, ctx, accelFiles, showProgress, report);
     const ImageMeta meta = outputMeta(args, sceneFile, scene, options, report);
     if (!out.empty()) writeColorImage(out, frame.width, frame.height, frame.color, meta, encoding);
     for (const auto& [name, file] : aovFiles) writeAov(file, frame, name, meta);
 
-    report.scene = sceneFile;
     report.output = out.string();
     report.aovs = aovFiles;
-    report.options = options;
     report.totalMs = msSince(t0);
-    report.triangles = scene.triangles.size();
-    report.materials = scene.materials.size();
-    report.lights = scene.lights.size();
-    report.origin = {scene.origin.x, scene.origin.y, scene.origin.z};
     if (!args.pixel.empty()) {
         printPixel(frame, report);
         std::printf("its centre ray, traced by the CPU reference (double precision, brute force):\n");
@@ -455,7 +467,7 @@ void registerRenderCommand(CLI::App& app, int& exitCode) {
     CLI::Option* output = cmd->add_option(
         "-o,--output", args->output,
         "Output image (.png, .bmp, .exr or .pfm); default: the scene's 'output' or SCENE.png");
-    cmd->add_option("--out-dir", args->outDir,
+    CLI::Option* outDir = cmd->add_option("--out-dir", args->outDir,
                     "Folder for the images (each scene's 'output' name or SCENE.png): for several scenes a call")
         ->type_name("DIR")
         ->excludes(output);
@@ -502,10 +514,17 @@ void registerRenderCommand(CLI::App& app, int& exitCode) {
                     "R,G,B: the radiance of rays that hit nothing (overrides the scene's 'background'; default black)");
     cmd->add_option("--maxdepth", args->maxDepth, "Ray depth, primary rays count as 1 (overrides the scene's)");
     cmd->add_option("--threads", args->threads, "CPU threads (0 = all cores)");
-    cmd->add_option("--aov", args->aovs, "Write an AOV: depth=F.pfm, primid=F.pfm, normal=F.pfm (repeatable)");
-    cmd->add_option("--save-accel", args->saveAccel,
-                    "Write the built structure to FILE, for --load-accel in later renders of the same scene")
-        ->type_name("FILE");
+    CLI::Option* aov = cmd->add_option("--aov", args->aovs, "Write an AOV: depth=F.pfm, primid=F.pfm, normal=F.pfm (repeatable)");
+    CLI::Option* saveAccel =
+        cmd->add_option("--save-accel", args->saveAccel,
+                        "Write the built structure to FILE, for --load-accel in later renders of the same scene")
+            ->type_name("FILE");
+    CLI::Option* buildOnly = cmd->add_flag(
+        "--build-only", args->buildOnly,
+        "Build the structure and write it with --save-accel, render nothing (the first step of a tiled render)");
+    buildOnly->needs(saveAccel);
+    for (CLI::Option* o : {output, outDir, aov, cpu, counters}) buildOnly->excludes(o);
+    for (CLI::Option* o : windows) buildOnly->excludes(o);
     cmd->add_option("--load-accel", args->loadAccel,
                     "Read the structure from FILE (written by --save-accel for this scene and --accel) "
                     "instead of building it; GPU only")

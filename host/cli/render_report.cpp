@@ -141,7 +141,8 @@ std::string reportJson(const RenderReport& r) {
     j["load_ms"] = r.loadMs;
     j["render_ms"] = r.renderMs;
     j["total_ms"] = r.totalMs;
-    if (r.output.empty()) j["output"] = nullptr;  // --pixel without -o writes no image
+    if (r.buildOnly) j["build_only"] = true;
+    if (r.output.empty()) j["output"] = nullptr;  // --pixel without -o, --build-only: no image
     else j["output"] = r.output;
     for (const auto& [name, file] : r.aovs) j["aov"][name] = file;
     return j.dump(2);
@@ -159,9 +160,13 @@ void printReport(const RenderReport& r, bool stats) {
     const std::string structure = r.accelFile && r.accelFile->loaded
                                       ? "structure loaded " + formatMs(r.accelFile->ms)
                                       : "build " + formatMs(r.buildMs);
-    std::printf("render time: %s (load %s, %s; total %s)\n", formatMs(r.renderMs).c_str(),
-                formatMs(r.loadMs).c_str(), structure.c_str(), formatMs(r.totalMs).c_str());
-    std::printf("output:      %s\n", r.output.c_str());
+    if (r.buildOnly)
+        std::printf("build time:  %s (load %s; total %s), nothing rendered\n", formatMs(r.buildMs).c_str(),
+                    formatMs(r.loadMs).c_str(), formatMs(r.totalMs).c_str());
+    else
+        std::printf("render time: %s (load %s, %s; total %s)\n", formatMs(r.renderMs).c_str(),
+                    formatMs(r.loadMs).c_str(), structure.c_str(), formatMs(r.totalMs).c_str());
+    if (!r.output.empty()) std::printf("output:      %s\n", r.output.c_str());
     for (const auto& [name, file] : r.aovs) std::printf("aov %-7s  %s\n", name.c_str(), file.c_str());
     if (r.accelFile)
         std::printf("accel file:  %s %s in %.1f ms\n", r.accelFile->loaded ? "loaded from" : "saved to",

@@ -36,6 +36,7 @@ struct RenderReport {
     double loadMs = 0.0, renderMs = 0.0;
     double totalMs = 0.0;  // the whole command until the images are written: load, build, render, output
     std::optional<gpu::GpuRenderReport> gpu;  // GPU renders only
+    bool buildOnly = false;  // --build-only: the structure built and saved, nothing rendered
 };
 
 // The whole report as one JSON object (--json).

@@ -23,3 +23,6 @@ vkray_expect_usage_error(encoding_unknown "--encoding: gamma not in \\{auto,srgb
 add_test(NAME cli.render_camera_line
          COMMAND ${CLI_DIR}/expect_output.sh "output: +.*camera-line\\.png" $<TARGET_FILE:vkray> render ${one} --cpu --size 16x16
                  --camera 0,0,3,0,0,0,0,1,0,45 -o ${CLI_OUT}/camera-line.png)
+vkray_expect_usage_error(build_only_needs_save "--build-only requires --save-accel" render ${one} --build-only)
+vkray_expect_usage_error(build_only_no_image "-o excludes --build-only|--build-only excludes -o|--output excludes --build-only|--build-only excludes --output"
+                         render ${one} --build-only --save-accel ${CLI_OUT}/b.vkacc -o ${CLI_OUT}/x.png)

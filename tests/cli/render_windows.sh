@@ -12,7 +12,8 @@ scene=$scenes/default.scene
 args=(--size 96x72 --spp 2 --accel bvh)
 
 "$vkray" render "$scene" "${args[@]}" --quiet -o "$out/full.exr"
-"$vkray" render "$scene" "${args[@]}" --quiet --save-accel "$out/s.vkacc" -o "$out/unused.exr"
+"$vkray" render "$scene" "${args[@]}" --quiet --save-accel "$out/s.vkacc" --build-only
+[[ -s "$out/s.vkacc" ]] || fail "--build-only wrote no structure file"
 for i in 0 1 2 3; do
   "$vkray" render "$scene" "${args[@]}" --quiet --load-accel "$out/s.vkacc" --tile $i/4 -o "$out/tile-$i.exr"
 done
