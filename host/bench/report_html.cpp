@@ -84,28 +84,6 @@ std::string headerCell(const std::string& title) {
     return out;
 }
 
-std::string htmlTable(const Table& t) {
-    std::string out = "<h3>" + escapeXml(t.title) + "</h3>\n";
-    if (t.rows.empty()) return out + "<p class=\"missing\">" + escapeXml(t.whenEmpty) + "</p>\n";
-    auto isNumeric = [&](size_t i) { return i < t.numeric.size() && t.numeric[i]; };
-    out += "<div class=\"scroll\"><table>\n<thead><tr>";
-    for (const std::string& c : t.columns) out += "<th>" + headerCell(c) + "</th>";
-    out += "</tr></thead>\n<tbody>\n";
-    for (size_t r = 0; r < t.rows.size(); ++r) {
-        out += r < t.marked.size() && t.marked[r] ? "<tr class=\"marked\">" : "<tr>";
-        for (size_t i = 0; i < t.rows[r].size(); ++i)
-            out += isNumeric(i) ? "<td class=\"num\">" + numberCell(t.rows[r][i]) + "</td>"
-                                : "<td>" + escapeXml(t.rows[r][i]) + "</td>";
-        out += "</tr>\n";
-    }
-    out += "</tbody>\n</table></div>\n";
-    if (!t.notes.empty()) {
-        out += "<ul class=\"notes\">\n";
-        for (const std::string& n : t.notes) out += "<li>" + escapeXml(n) + "</li>\n";
-        out += "</ul>\n";
-    }
-    return out;
-}
 
 const ReportImage* findImage(const std::vector<ReportImage>& images, size_t scene, const std::string& accel,
                              ImageRole role) {
@@ -190,6 +168,29 @@ std::string sceneLinks(const BenchResults& r) {
 }
 
 }  // namespace
+
+std::string htmlTable(const Table& t) {
+    std::string out = "<h3>" + escapeXml(t.title) + "</h3>\n";
+    if (t.rows.empty()) return out + "<p class=\"missing\">" + escapeXml(t.whenEmpty) + "</p>\n";
+    auto isNumeric = [&](size_t i) { return i < t.numeric.size() && t.numeric[i]; };
+    out += "<div class=\"scroll\"><table>\n<thead><tr>";
+    for (const std::string& c : t.columns) out += "<th>" + headerCell(c) + "</th>";
+    out += "</tr></thead>\n<tbody>\n";
+    for (size_t r = 0; r < t.rows.size(); ++r) {
+        out += r < t.marked.size() && t.marked[r] ? "<tr class=\"marked\">" : "<tr>";
+        for (size_t i = 0; i < t.rows[r].size(); ++i)
+            out += isNumeric(i) ? "<td class=\"num\">" + numberCell(t.rows[r][i]) + "</td>"
+                                : "<td>" + escapeXml(t.rows[r][i]) + "</td>";
+        out += "</tr>\n";
+    }
+    out += "</tbody>\n</table></div>\n";
+    if (!t.notes.empty()) {
+        out += "<ul class=\"notes\">\n";
+        for (const std::string& n : t.notes) out += "<li>" + escapeXml(n) + "</li>\n";
+        out += "</ul>\n";
+    }
+    return out;
+}
 
 std::string benchHtml(const BenchResults& results, const std::vector<ReportImage>& images) {
     std::string out = "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n"

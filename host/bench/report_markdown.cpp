@@ -31,6 +31,16 @@ std::string tableRow(const std::vector<std::string>& cells) {
     return out + "\n";
 }
 
+
+std::string sceneSection(const SceneResult& scene) {
+    std::string out = "## " + scene.name + "\n\n" + factList(sceneFacts(scene));
+    out += "**Who wins:** " + whoWins(scene) + "\n\n";
+    for (const Table& t : sceneTables(scene)) out += markdownTable(t);
+    return out;
+}
+
+}  // namespace
+
 std::string markdownTable(const Table& t) {
     std::string out = "### " + t.title + "\n\n";
     if (t.rows.empty()) return out + t.whenEmpty + "\n\n";
@@ -43,15 +53,6 @@ std::string markdownTable(const Table& t) {
     for (const std::string& note : t.notes) out += note + "\n\n";
     return out;
 }
-
-std::string sceneSection(const SceneResult& scene) {
-    std::string out = "## " + scene.name + "\n\n" + factList(sceneFacts(scene));
-    out += "**Who wins:** " + whoWins(scene) + "\n\n";
-    for (const Table& t : sceneTables(scene)) out += markdownTable(t);
-    return out;
-}
-
-}  // namespace
 
 std::string benchMarkdown(const BenchResults& results) {
     std::string out = "# vkray bench\n\n" + factList(runFacts(results));

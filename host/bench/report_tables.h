@@ -31,6 +31,11 @@ struct Table {
 // Label and value pairs.
 using Facts = std::vector<std::pair<std::string, std::string>>;
 
+// A table with its title (a level-3 heading), rows and notes, as bench.md writes it
+// (report_markdown.cpp) and as report.html does (report_html.cpp).
+std::string markdownTable(const Table& t);
+std::string htmlTable(const Table& t);
+
 // The run: device, driver, vkray version and revision, command line, date, repeats, threads.
 Facts runFacts(const BenchResults& results);
 // The scene: file, triangles, size, maxdepth, the reference render.

@@ -2,6 +2,7 @@
 // the printed block and JSON, the diff image, and errors for missing files and bad thresholds.
 #include <filesystem>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -10,6 +11,7 @@
 #include "cli/commands.h"
 #include "core/error.h"
 #include "image/image_io.h"
+#include "run_cli.h"
 
 namespace fs = std::filesystem;
 using namespace vkray;
@@ -18,28 +20,11 @@ namespace {
 
 fs::path out(const std::string& name) { return fs::path(VKRAY_TEST_OUTPUT_DIR) / ("compare_cli_" + name); }
 
-struct Result {
-    int exitCode = -1;
-    std::string stdoutText;
-};
+using Result = test::CliResult;
 
 Result runCompare(std::vector<std::string> args) {
-    CLI::App app{"vkray"};
-    app.require_subcommand(1);
-    Result r;
-    cli::registerCompareCommand(app, r.exitCode);
-    args.insert(args.begin(), {"vkray", "compare"});
-    std::vector<const char*> argv;
-    for (const std::string& a : args) argv.push_back(a.c_str());
-    testing::internal::CaptureStdout();
-    try {
-        app.parse(int(argv.size()), argv.data());
-    } catch (...) {
-        testing::internal::GetCapturedStdout();
-        throw;
-    }
-    r.stdoutText = testing::internal::GetCapturedStdout();
-    return r;
+    args.insert(args.begin(), "compare");
+    return test::runVkray(std::move(args));
 }
 
 // Two 10x10 images: b differs from a by 10 levels (> 2/255) in the red channel of 3 pixels, and by

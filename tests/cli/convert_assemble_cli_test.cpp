@@ -10,6 +10,7 @@
 #include "cli/commands.h"
 #include "core/error.h"
 #include "image/image_io.h"
+#include "run_cli.h"
 
 namespace fs = std::filesystem;
 using namespace vkray;
@@ -18,32 +19,8 @@ namespace {
 
 fs::path out(const std::string& name) { return fs::path(VKRAY_TEST_OUTPUT_DIR) / ("convert_cli_" + name); }
 
-struct Result {
-    int exitCode = -1;
-    std::string stdoutText;
-};
-
-Result runVkray(std::vector<std::string> args) {
-    CLI::App app{"vkray"};
-    app.require_subcommand(1);
-    Result r;
-    cli::registerCompareCommand(app, r.exitCode);
-    cli::registerGenCommand(app, r.exitCode);
-    cli::registerConvertCommand(app, r.exitCode);
-    cli::registerAssembleCommand(app, r.exitCode);
-    args.insert(args.begin(), "vkray");
-    std::vector<const char*> argv;
-    for (const std::string& a : args) argv.push_back(a.c_str());
-    testing::internal::CaptureStdout();
-    try {
-        app.parse(int(argv.size()), argv.data());
-    } catch (...) {
-        testing::internal::GetCapturedStdout();
-        throw;
-    }
-    r.stdoutText = testing::internal::GetCapturedStdout();
-    return r;
-}
+using Result = test::CliResult;
+using test::runVkray;
 
 std::string errorOf(const std::vector<std::string>& args) {
     try {
