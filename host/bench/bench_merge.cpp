@@ -80,19 +80,21 @@ public:
     SceneMerger(const std::vector<const Shard*>& byIndex, int scene, std::string file)
         : byIndex_(byIndex), scene_(scene), file_(std::move(file)) {}
 
-    void add(const std::string& label, int shard) {
+    void add(const Configuration& c, int shard) {
         const Shard& from = *byIndex_[size_t(shard)];
         const SceneResult* s = sceneOf(from.results, scene_);
         const bool has = s && std::any_of(s->configurations.begin(), s->configurations.end(),
-                                          [&](const ConfigurationRun& c) { return c.label == label; });
-        if (!has) throw shardError(from, "has no figures for '" + label + "' of " + file_ + " (scene " + std::to_string(scene_ + 1) + ")");
+                                          [&](const ConfigurationRun& run) { return run.label == c.label; });
+        if (!has) throw shardError(from, "has no figures for '" + c.label + "' of " + file_ + " (scene " + std::to_string(scene_ + 1) + ")");
         checkSameScene(from, *s);
-        if (label == "reference") takeReference(*s);
-        else if (label.starts_with("accel ")) takeAccel(from, *s, label.substr(6));
-        else if (label.starts_with("concurrent ")) merged_.concurrent = s->concurrent;
-        else if (label.starts_with("aac-delta ")) takeDelta(from, *s, std::stoi(label.substr(10)));
-        else if (label == "maxdepth-sweep") takePoints(*s, "maxdepth", 0, depthPoints_);
-        merged_.configurations.push_back({label, shard});
+        switch (c.kind) {
+            case Configuration::Kind::Reference: takeReference(*s); break;
+            case Configuration::Kind::Accel: takeAccel(from, *s, c.accel); break;
+            case Configuration::Kind::Concurrent: merged_.concurrent = s->concurrent; break;
+            case Configuration::Kind::Delta: takeDelta(from, *s, c.delta); break;
+            case Configuration::Kind::MaxDepthSweep: takePoints(*s, "maxdepth", 0, depthPoints_); break;
+        }
+        merged_.configurations.push_back({c.label, shard});
     }
 
     SceneResult finish() {
@@ -241,11 +243,10 @@ BenchResults mergeBenchReports(const std::vector<fs::path>& dirs, const std::str
                                              ") is not the one this vkray makes of its settings (hash " +
                                              configurationHash(list) + ")");
     BenchResults merged = mergedRun(byIndex, commandLine);
-    const ShardSpec spec{0, int(byIndex.size())};
     for (size_t scene = 0; scene < settings.scenes.size(); ++scene) {
         SceneMerger m(byIndex, int(scene), settings.scenes[scene]);
         for (size_t k = 0; k < list.size(); ++k)
-            if (list[k].scene == int(scene)) m.add(list[k].label, int(k % size_t(spec.count)));
+            if (list[k].scene == int(scene)) m.add(list[k], shardOfConfiguration(k, int(byIndex.size())));
         merged.scenes.push_back(m.finish());
     }
     return merged;

@@ -21,10 +21,4 @@ namespace vkray::bench {
 // and the scene's Embree summary is the median (min-max) of every shard's Embree samples together.
 BenchResults mergeBenchReports(const std::vector<std::filesystem::path>& dirs, const std::string& commandLine);
 
-// The sections a merged report adds after the run's facts: one row per shard (node, device, driver,
-// when, how many configurations) and, per scene, which shard measured each configuration. Empty
-// for a report that is not merged.
-std::string shardsMarkdown(const BenchResults& results);
-std::string shardsHtml(const BenchResults& results);
-
 }  // namespace vkray::bench

@@ -1,13 +1,14 @@
 // The configuration list of a bench run and its shards (bench_shard.h).
 #include "bench/bench_shard.h"
 
-#include <charconv>
 #include <cstdint>
 #include <cstdio>
 #include <optional>
 
 #include "accel/accel.h"
 #include "core/error.h"
+#include "core/hash64.h"
+#include "scene/text_input.h"
 
 namespace vkray::bench {
 namespace {
@@ -24,13 +25,6 @@ std::optional<std::string> concurrentLabel(const std::vector<std::string>& accel
     }
     if (!bvh || !kd) return std::nullopt;
     return "concurrent " + *bvh + "+" + *kd;
-}
-
-std::optional<int> parseInt(std::string_view text) {
-    int v = 0;
-    const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
-    if (ec != std::errc() || end != text.data() + text.size() || text.empty()) return std::nullopt;
-    return v;
 }
 
 template <typename T>
@@ -65,35 +59,29 @@ std::vector<Configuration> configurationList(const BenchSettings& s) {
     const std::optional<std::string> concurrent = concurrentLabel(s.accels);
     for (size_t i = 0; i < s.scenes.size(); ++i) {
         const int scene = int(i);
-        list.push_back({scene, "reference"});
-        for (const std::string& a : s.accels) list.push_back({scene, "accel " + a});
-        if (concurrent) list.push_back({scene, *concurrent});
-        for (int d : s.deltas) list.push_back({scene, "aac-delta " + std::to_string(d)});
-        if (s.maxDepthSweep) list.push_back({scene, "maxdepth-sweep"});
+        using Kind = Configuration::Kind;
+        list.push_back({scene, "reference", Kind::Reference});
+        for (const std::string& a : s.accels) list.push_back({scene, "accel " + a, Kind::Accel, a});
+        if (concurrent) list.push_back({scene, *concurrent, Kind::Concurrent});
+        for (int d : s.deltas) list.push_back({scene, "aac-delta " + std::to_string(d), Kind::Delta, "", d});
+        if (s.maxDepthSweep) list.push_back({scene, "maxdepth-sweep", Kind::MaxDepthSweep});
     }
     return list;
 }
 
 std::string configurationHash(const std::vector<Configuration>& list) {
-    // FNV-1a, 64 bits: stable across machines and builds, which is all this needs.
-    uint64_t h = 0xcbf29ce484222325ull;
-    auto add = [&h](const std::string& text) {
-        for (unsigned char c : text) h = (h ^ c) * 0x100000001b3ull;
-    };
-    for (const Configuration& c : list) add(std::to_string(c.scene) + "\t" + c.label + "\n");
+    std::string text;
+    for (const Configuration& c : list) text += std::to_string(c.scene) + "\t" + c.label + "\n";
     char hex[17];
-    std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(h));
+    std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(hash64(text.data(), text.size())));
     return hex;
 }
 
 ShardSpec parseShard(const std::string& text, const std::string& option) {
-    const size_t slash = text.find('/');
-    const Error bad(option + " " + text + ": expected I/N with 0 <= I < N, e.g. 0/4");
-    if (slash == std::string::npos) throw bad;
-    const auto i = parseInt(std::string_view(text).substr(0, slash));
-    const auto n = parseInt(std::string_view(text).substr(slash + 1));
-    if (!i || !n || *n < 1 || *n > 10000 || *i < 0 || *i >= *n) throw bad;
-    return {*i, *n};
+    const std::optional<IndexOfCount> p = parseIndexOfCount(text);
+    if (!p || p->count < 1 || p->count > 10000 || p->index >= p->count)
+        throw Error(option + " " + text + ": expected I/N with 0 <= I < N, e.g. 0/4");
+    return {p->index, p->count};
 }
 
 std::string shardText(const ShardSpec& s) { return std::to_string(s.index) + "/" + std::to_string(s.count); }
@@ -103,14 +91,16 @@ std::vector<SceneWork> shardWork(const BenchSettings& settings, const ShardSpec&
     const std::vector<Configuration> list = configurationList(settings);
     for (size_t k = 0; k < list.size(); ++k) {
         if (!inShard(k, shard)) continue;
-        const std::string& label = list[k].label;
-        SceneWork& w = work[size_t(list[k].scene)];
-        w.labels.push_back(label);
-        if (label == "reference") w.reference = true;
-        else if (label.starts_with("accel ")) w.accels.push_back(label.substr(6));
-        else if (label.starts_with("concurrent ")) w.concurrent = true;
-        else if (label.starts_with("aac-delta ")) w.deltas.push_back(*parseInt(label.substr(10)));
-        else if (label == "maxdepth-sweep") w.maxDepthSweep = true;
+        const Configuration& c = list[k];
+        SceneWork& w = work[size_t(c.scene)];
+        w.labels.push_back(c.label);
+        switch (c.kind) {
+            case Configuration::Kind::Reference: w.reference = true; break;
+            case Configuration::Kind::Accel: w.accels.push_back(c.accel); break;
+            case Configuration::Kind::Concurrent: w.concurrent = true; break;
+            case Configuration::Kind::Delta: w.deltas.push_back(c.delta); break;
+            case Configuration::Kind::MaxDepthSweep: w.maxDepthSweep = true; break;
+        }
     }
     return work;
 }

@@ -24,9 +24,17 @@ BenchSettings benchSettings(const BenchOptions& options);
 // "concurrent BVH+KD" (when the accelerators hold a BVH and a kd-tree), "aac-delta D" for each
 // --deltas value, "maxdepth-sweep" (unless --maxdepths none).
 struct Configuration {
+    enum class Kind { Reference, Accel, Concurrent, Delta, MaxDepthSweep };
     int scene = 0;       // index into BenchSettings::scenes
     std::string label;
+    Kind kind = Kind::Reference;
+    std::string accel{};  // Kind::Accel: the accelerator
+    int delta = 0;       // Kind::Delta: the AAC delta
 };
+
+// Configuration k of a run's list belongs to shard k mod N (round-robin), so each shard gets a share
+// of every scene and of every kind of work.
+inline int shardOfConfiguration(size_t k, int count) { return int(k % size_t(count)); }
 
 // Every configuration of the run the settings describe, in run order.
 std::vector<Configuration> configurationList(const BenchSettings& settings);
@@ -34,9 +42,7 @@ std::vector<Configuration> configurationList(const BenchSettings& settings);
 // A hash of the list (scene files and labels): shards of one run carry the same one. 16 hex digits.
 std::string configurationHash(const std::vector<Configuration>& list);
 
-// Round-robin: configuration k of the list belongs to shard k mod N, so each shard gets a share of
-// every scene and of every kind of work.
-inline bool inShard(size_t k, const ShardSpec& shard) { return int(k % size_t(shard.count)) == shard.index; }
+inline bool inShard(size_t k, const ShardSpec& shard) { return shardOfConfiguration(k, shard.count) == shard.index; }
 
 // "I/N" with 0 <= I < N <= 10000; `option` names the flag in the error.
 ShardSpec parseShard(const std::string& text, const std::string& option = "--shard");

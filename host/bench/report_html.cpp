@@ -198,6 +198,7 @@ std::string benchHtml(const BenchResults& results, const std::vector<ReportImage
                       "<title>vkray bench: " + escapeXml(results.device) + "</title>\n<style>" + kStyle +
                       "</style>\n</head>\n<body>\n<h1>vkray bench</h1>\n";
     out += factTable(runFacts(results));
+    out += shardsHtml(results);  // a merged report's shards, right after the run's facts
     out += sceneLinks(results);
     if (results.scenes.empty()) out += "<p class=\"missing\">No scene was run.</p>\n";
     for (size_t i = 0; i < results.scenes.size(); ++i) out += sceneSection(results.scenes[i], i, images);

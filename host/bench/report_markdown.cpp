@@ -55,7 +55,8 @@ std::string markdownTable(const Table& t) {
 }
 
 std::string benchMarkdown(const BenchResults& results) {
-    std::string out = "# vkray bench\n\n" + factList(runFacts(results));
+    // A merged report lists its shards right after the run's facts.
+    std::string out = "# vkray bench\n\n" + factList(runFacts(results)) + shardsMarkdown(results);
     if (results.scenes.empty()) out += "No scene was run.\n";
     for (const SceneResult& scene : results.scenes) out += sceneSection(scene);
     return out;

@@ -36,6 +36,12 @@ using Facts = std::vector<std::pair<std::string, std::string>>;
 std::string markdownTable(const Table& t);
 std::string htmlTable(const Table& t);
 
+// The section a merged report (bench_merge.h) adds after the run's facts: one row per shard (node,
+// device, driver, when, how many configurations) and which shard measured each configuration.
+// Empty for a report that is not merged. report_shards.cpp.
+std::string shardsMarkdown(const BenchResults& results);
+std::string shardsHtml(const BenchResults& results);
+
 // The run: device, driver, vkray version and revision, command line, date, repeats, threads.
 Facts runFacts(const BenchResults& results);
 // The scene: file, triangles, size, maxdepth, the reference render.

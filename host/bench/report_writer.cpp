@@ -4,7 +4,6 @@
 #include <system_error>
 
 #include "bench/bench_json.h"
-#include "bench/bench_merge.h"
 #include "bench/report.h"
 #include "bench/report_images.h"
 #include "core/error.h"
@@ -24,25 +23,6 @@ void makeDirectory(const fs::path& dir) {
     // create_directories reports no error when the path exists as a file: check what is there.
     if (ec || !fs::is_directory(dir))
         throw fileError(dir, "cannot create the directory" + (ec ? ": " + ec.message() : ": a file of that name exists"));
-}
-
-// A merged report lists its shards right after the run's facts (the first table of report.html, the
-// first list of bench.md).
-std::string withShardsMarkdown(const std::string& markdown, const BenchResults& r) {
-    const std::string section = shardsMarkdown(r);
-    if (section.empty()) return markdown;
-    size_t at = markdown.find("\n## ");
-    at = at == std::string::npos ? markdown.size() : at + 1;
-    return markdown.substr(0, at) + section + markdown.substr(at);
-}
-
-std::string withShardsHtml(const std::string& html, const BenchResults& r) {
-    const std::string section = shardsHtml(r);
-    if (section.empty()) return html;
-    const std::string factsEnd = "</table>\n";
-    size_t at = html.find(factsEnd, html.find("<h1>"));
-    at = at == std::string::npos ? html.rfind("</body>") : at + factsEnd.size();
-    return html.substr(0, at) + section + html.substr(at);
 }
 
 // What each picture is drawn from, as a PFM beside it (bench_json.h, pixelsFileName).
@@ -70,8 +50,8 @@ void writeBenchReport(const BenchResults& results, const fs::path& dir) {
     // a half-written report behind.
     const std::vector<ReportImage> images = reportImages(results);
     const std::string json = benchJson(results, images);
-    const std::string markdown = withShardsMarkdown(benchMarkdown(results), results);
-    const std::string html = withShardsHtml(benchHtml(results, images), results);
+    const std::string markdown = benchMarkdown(results);
+    const std::string html = benchHtml(results, images);
 
     makeDirectory(dir);
     makeDirectory(dir / "images");

@@ -116,14 +116,12 @@ PixelWindow parsePixel(const std::string& text, int width, int height) {
 }
 
 TileIndex parseTile(const std::string& text) {
-    std::smatch m;
-    static const std::regex pattern(R"((\d{1,6})/(\d{1,6}))");
-    if (!std::regex_match(text, m, pattern))
-        throw Error("--tile " + text + ": expected I/N, tile I (counted from 0) of N, for example 0/4");
-    const TileIndex t{std::stoi(m[1]), std::stoi(m[2])};
-    if (t.count < 1 || t.index >= t.count)
-        throw Error("--tile " + text + ": I must be 0.." + std::to_string(std::max(t.count - 1, 0)) + " (tiles count from 0)");
-    return t;
+    const std::optional<TileIndex> t = parseIndexOfCount(text);
+    if (!t) throw Error("--tile " + text + ": expected I/N, tile I (counted from 0) of N, for example 0/4");
+    if (t->count < 1 || t->index >= t->count)
+        throw Error("--tile " + text + ": I must be 0.." + std::to_string(std::max(t->count - 1, 0)) +
+                    " (tiles count from 0)");
+    return *t;
 }
 
 PixelWindow tileWindow(const TileIndex& tile, int width, int height) {

@@ -9,6 +9,7 @@
 #include <glm/glm.hpp>
 
 #include "render/render_options.h"
+#include "scene/text_input.h"
 
 namespace vkray::cli {
 
@@ -39,9 +40,7 @@ std::vector<std::string> parseNameList(const std::string& text, const std::strin
 PixelWindow parseCrop(const std::string& text, int width, int height);
 PixelWindow parsePixelBounds(const std::string& text, int width, int height);
 PixelWindow parsePixel(const std::string& text, int width, int height);
-struct TileIndex {
-    int index = 0, count = 1;
-};
+using TileIndex = IndexOfCount;
 TileIndex parseTile(const std::string& text);
 PixelWindow tileWindow(const TileIndex& tile, int width, int height);
 

@@ -51,6 +51,7 @@ struct RenderArgs {
     // The pixels rendered (at most one of these; cli_options.h): a crop window, pixel bounds, one
     // pixel (its values printed), or a tile of a render farm.
     std::string crop, pixelBounds, pixel, tile;
+    std::optional<TileIndex> tileIndex;  // --tile, parsed
     std::string encoding = "auto";  // 8-bit outputs: srgb, linear, or auto (linear for CSE167 .test files)
     double exposure = 0.0;
     int threads = 0;
@@ -122,7 +123,7 @@ RenderOptions resolveOptions(const RenderArgs& args, const Scene& scene) {
     if (!args.crop.empty()) o.window = parseCrop(args.crop, o.width, o.height);
     if (!args.pixelBounds.empty()) o.window = parsePixelBounds(args.pixelBounds, o.width, o.height);
     if (!args.pixel.empty()) o.window = parsePixel(args.pixel, o.width, o.height);
-    if (!args.tile.empty()) o.window = tileWindow(parseTile(args.tile), o.width, o.height);
+    if (args.tileIndex) o.window = tileWindow(*args.tileIndex, o.width, o.height);
     return o;
 }
 
@@ -310,10 +311,8 @@ ImageMeta outputMeta(const RenderArgs& args, const std::string& sceneFile, const
     meta.attributes["vkray:scene"] = std::filesystem::path(sceneFile).filename().string() + " file " +
                                      fileHash(sceneFile) + " geometry " + geometry;
     meta.attributes["vkray:settings"] = settings;
-    if (!args.tile.empty()) {
-        const TileIndex t = parseTile(args.tile);
-        meta.attributes["vkray:tile"] = std::to_string(t.index) + "/" + std::to_string(t.count);
-    }
+    if (const auto& t = args.tileIndex)
+        meta.attributes["vkray:tile"] = std::to_string(t->index) + "/" + std::to_string(t->count);
     return meta;
 }
 
@@ -401,7 +400,10 @@ RenderReport renderScene(const RenderArgs& args, const std::string& sceneFile, c
     }
 
     const Frame frame = renderFrame(scene, options, spec, ctx, accelFiles, showProgress, report);
-    const ImageMeta meta = outputMeta(args, sceneFile, scene, options, report);
+    // Only an EXR keeps the metadata: the scene file and geometry are hashed for those alone.
+    bool anyExr = !out.empty() && imageFormatForPath(out) == ImageFormat::Exr;
+    for (const auto& [name, file] : aovFiles) anyExr = anyExr || imageFormatForPath(file) == ImageFormat::Exr;
+    const ImageMeta meta = anyExr ? outputMeta(args, sceneFile, scene, options, report) : ImageMeta{};
     if (!out.empty()) writeColorImage(out, frame.width, frame.height, frame.color, meta, encoding);
     for (const auto& [name, file] : aovFiles) writeAov(file, frame, name, meta);
 
@@ -535,6 +537,7 @@ void registerRenderCommand(CLI::App& app, int& exitCode) {
         ->excludes(json)
         ->excludes(stats);
     cmd->callback([args, &exitCode] {
+        if (!args->tile.empty()) args->tileIndex = parseTile(args->tile);
         runRender(*args);
         exitCode = 0;
     });

@@ -122,11 +122,12 @@ std::string logVector(const glm::dvec3& v) {
 }
 
 glm::dvec3 localShading(const Scene& scene, const Tracer& tracer, const SurfacePoint& s,
-                        const glm::dvec3& V, ShadingLog* log, const std::string& indent) {
+                        const glm::dvec3& V, ShadingLog* log, int depth) {
     const Material& m = scene.materials[s.material];
     glm::dvec3 color = d3(m.emission) + (1.0 - d3(m.transmit)) * d3(m.ambient);
+    const auto note = [&](const std::string& line) { log->push_back(std::string(size_t(2 * depth), ' ') + line); };
     if (log)
-        log->push_back(indent + "emission " + logVector(d3(m.emission)) + ", ambient x (1 - T) " +
+        note("emission " + logVector(d3(m.emission)) + ", ambient x (1 - T) " +
                        logVector((1.0 - d3(m.transmit)) * d3(m.ambient)));
     // Shadow rays leave from the side the ray came from; every triangle blocks (no caustics).
     const glm::dvec3 shadowOrigin = offsetRayOrigin(s.position, s.facingNormal, s.offsetScale);
@@ -134,29 +135,31 @@ glm::dvec3 localShading(const Scene& scene, const Tracer& tracer, const SurfaceP
         const Light& light = scene.lights[k];
         const glm::dvec3 C = d3(light.color);
         const bool point = light.type == Light::Type::Point;
-        glm::dvec3 term(0.0);
-        Ray shadow{shadowOrigin, glm::dvec3(0.0)};
-        double shadowLength = kInfinity;
+        glm::dvec3 term(0.0), L(0.0);
         if (point) {
             const glm::dvec3 toLight = d3(light.vector) - s.position;
             const double r = glm::length(toLight);
             term = blinnPhong(s, m, V, toLight / r, C) * pointLightAttenuation(d3(scene.attenuation), r);
+        } else {
+            L = glm::normalize(d3(light.vector));
+            term = blinnPhong(s, m, V, L, C);
+        }
+        const bool counts = term != glm::dvec3(0.0);  // no shadow ray where it cannot matter
+        bool lit = false;
+        if (counts && point) {
             // The shadow ray ends exactly at the light: direction and length from its own origin.
             const glm::dvec3 shadowPath = d3(light.vector) - shadowOrigin;
-            shadowLength = glm::length(shadowPath);
-            shadow.dir = shadowPath / shadowLength;
-        } else {
-            shadow.dir = glm::normalize(d3(light.vector));
-            term = blinnPhong(s, m, V, shadow.dir, C);
+            const double shadowLength = glm::length(shadowPath);
+            lit = !tracer.occluded(Ray{shadowOrigin, shadowPath / shadowLength}, shadowLength);
+        } else if (counts) {
+            lit = !tracer.occluded(Ray{shadowOrigin, L}, kInfinity);
         }
-        // No shadow ray where it cannot matter.
-        const bool lit = term != glm::dvec3(0.0) && !tracer.occluded(shadow, shadowLength);
         if (lit) color += term;
         if (log)
-            log->push_back(indent + "light " + std::to_string(k) + (point ? " (point)" : " (directional)") + ": " +
-                           (term == glm::dvec3(0.0) ? "behind the surface or no colour, no shadow ray"
-                            : lit ? "visible, adds " + logVector(term)
-                                  : "blocked (shadow ray from " + logVector(shadowOrigin) + "), would add " +
+            note("light " + std::to_string(k) + (point ? " (point)" : " (directional)") + ": " +
+                           (!counts ? "behind the surface or no colour, no shadow ray"
+                            : lit   ? "visible, adds " + logVector(term)
+                                    : "blocked (shadow ray from " + logVector(shadowOrigin) + "), would add " +
                                         logVector(term)));
     }
     return color;

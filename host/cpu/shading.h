@@ -96,8 +96,9 @@ using ShadingLog = std::vector<std::string>;
 std::string logVector(const glm::dvec3& v);
 
 // L_local: emission, (1 - T) ambient and every light with its attenuation and shadow ray; with
-// `log`, one line for the constant terms and one for each light (its term, or why it adds nothing).
+// `log`, one line for the constant terms and one for each light (its term, or why it adds nothing),
+// indented for a ray of `depth`.
 glm::dvec3 localShading(const Scene& scene, const Tracer& tracer, const SurfacePoint& s,
-                        const glm::dvec3& V, ShadingLog* log = nullptr, const std::string& indent = "");
+                        const glm::dvec3& V, ShadingLog* log = nullptr, int depth = 1);
 
 }  // namespace vkray::cpu

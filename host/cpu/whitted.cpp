@@ -52,10 +52,11 @@ PixelSample WhittedIntegrator::sample(const Ray& cameraRay) const {
 void WhittedIntegrator::addRadiance(const Ray& ray, const Hit& hit, int depth,
                                     const glm::dvec3& weight, glm::dvec3& radiance) const {
     const SurfacePoint s = surfaceAt(scene_, hit, ray.dir);
-    const std::string indent(log_ ? size_t(2 * depth) : 0, ' ');
-    const glm::dvec3 local = localShading(scene_, tracer_, s, -ray.dir, log_, indent);
+    const glm::dvec3 local = localShading(scene_, tracer_, s, -ray.dir, log_, depth);
     radiance += weight * local;
-    if (log_) log_->push_back(indent + "local shading " + logVector(local) + ", times the weight " + logVector(weight * local));
+    if (log_)
+        log_->push_back(std::string(size_t(2 * depth), ' ') + "local shading " + logVector(local) +
+                        ", times the weight " + logVector(weight * local));
     if (depth >= maxDepth_) return;  // a ray of depth k spawns children only while k < maxdepth
     const SecondaryRays children = secondaryRays(s, scene_.materials[s.material], ray.dir);
     for (const SecondaryRay* child : {&children.reflected, &children.refracted}) {
@@ -63,7 +64,8 @@ void WhittedIntegrator::addRadiance(const Ray& ray, const Hit& hit, int depth,
         const char* kind = child == &children.reflected ? "reflected" : "refracted";
         if (!worthTracing(childWeight)) {
             if (log_ && child->factor != glm::dvec3(0.0))
-                log_->push_back(indent + kind + " ray not traced: weight " + logVector(childWeight) + " below 1/1024");
+                log_->push_back(std::string(size_t(2 * depth), ' ') + kind + " ray not traced: weight " +
+                                logVector(childWeight) + " below 1/1024");
             continue;
         }
         const Hit childHit = tracer_.closest(child->ray, kInfinity);

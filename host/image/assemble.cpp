@@ -10,6 +10,7 @@
 
 #include "core/error.h"
 #include "image/image_io.h"
+#include "scene/text_input.h"
 
 namespace fs = std::filesystem;
 
@@ -58,18 +59,11 @@ void checkInside(const ImageTile& t) {
 std::optional<std::pair<int, int>> tileIndex(const ImageTile& t) {
     const auto it = t.meta.attributes.find(kTileAttribute);
     if (it == t.meta.attributes.end()) return std::nullopt;
-    const std::string& s = it->second;
-    int i = 0, n = 0;
-    const char* end = s.data() + s.size();
-    auto [p, ec] = std::from_chars(s.data(), end, i);
-    bool ok = ec == std::errc() && p != end && *p == '/';
-    if (ok) {
-        auto [q, ec2] = std::from_chars(p + 1, end, n);
-        ok = ec2 == std::errc() && q == end && i >= 0 && i < n;
-    }
-    if (!ok)
-        throw cannot(t.path.string() + ": attribute " + kTileAttribute + " '" + s + "' is not I/N with 0 <= I < N");
-    return std::pair{i, n};
+    const std::optional<IndexOfCount> p = parseIndexOfCount(it->second);
+    if (!p || p->index >= p->count)
+        throw cannot(t.path.string() + ": attribute " + kTileAttribute + " '" + it->second +
+                     "' is not I/N with 0 <= I < N");
+    return std::pair{p->index, p->count};
 }
 
 // The error for pixels no tile covers: the missing tile numbers when every tile names its own.

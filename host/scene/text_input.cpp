@@ -353,4 +353,20 @@ std::optional<std::vector<double>> parseRealList(std::string_view text) {
     }
 }
 
+std::optional<IndexOfCount> parseIndexOfCount(std::string_view text) {
+    const size_t slash = text.find('/');
+    const auto number = [](std::string_view digits) -> std::optional<int> {
+        if (digits.empty() || digits.size() > 9 ||
+            !std::all_of(digits.begin(), digits.end(), [](char c) { return c >= '0' && c <= '9'; }))
+            return std::nullopt;
+        int v = 0;
+        std::from_chars(digits.data(), digits.data() + digits.size(), v);
+        return v;
+    };
+    if (slash == std::string_view::npos) return std::nullopt;
+    const auto i = number(text.substr(0, slash)), n = number(text.substr(slash + 1));
+    if (!i || !n) return std::nullopt;
+    return IndexOfCount{*i, *n};
+}
+
 }  // namespace vkray

@@ -79,6 +79,13 @@ NumberStatus parseInt(std::string_view s, int64_t& out);
 // number, none empty) or by whitespace ("1 2 3", as one quoted argument); each by parseReal's rule.
 // Nothing when any item is not such a number.
 std::optional<std::vector<double>> parseRealList(std::string_view text);
+// "I/N", one part of several (`render --tile`, `bench --shard`, a tile's `vkray:tile`): two whole
+// numbers of digits alone, at most 1e9, with a slash between. Nothing when the text is not of that
+// form; the caller checks that 0 <= I < N.
+struct IndexOfCount {
+    int index = 0, count = 1;
+};
+std::optional<IndexOfCount> parseIndexOfCount(std::string_view text);
 
 // "expected a number for argument 2 of 'vertex', got 'abc'" and its siblings; `what` names the
 // value ("argument 2 of 'vertex'") and `kind` what was expected ("a number", "an integer").

@@ -6,6 +6,24 @@ repo=$(cd "$here/../.." && pwd)
 # The script's "# usage:" comment, without the "# ", on stderr.
 usage() { sed -n '/^# usage:/,/^[^#]/s/^# \{0,1\}//p' "$0" >&2; }
 
+# The options both submit scripts take before their arguments: --wait and --tasks LIST. Sets `wait`
+# and `tasks`, and `options_used` to the number of words they took (the caller shifts them away).
+parse_submit_options() {
+  wait=0 tasks="" options_used=0
+  while [[ $# -gt 0 && $1 == --* ]]; do
+    case $1 in
+      --wait) wait=1; shift; options_used=$((options_used + 1)) ;;
+      --tasks) tasks=${2:?--tasks needs a list}; shift 2; options_used=$((options_used + 2)) ;;
+      *) echo "$(basename "$0" .sh): unknown option $1" >&2; exit 2 ;;
+    esac
+  done
+}
+
+# Refuses a task count N that is not a positive number.
+check_count() {
+  [[ $1 =~ ^[1-9][0-9]*$ ]] || { echo "$(basename "$0" .sh): N must be a positive number, not '$1'" >&2; exit 2; }
+}
+
 # VKRAY, else vkray on PATH, else this checkout's build/vkray; as an absolute path, for the jobs.
 vkray_binary() {
   local v=${VKRAY:-}

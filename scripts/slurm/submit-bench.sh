@@ -13,18 +13,12 @@ set -euo pipefail
 # shellcheck source=scripts/slurm/common.sh
 source "$(dirname "${BASH_SOURCE[0]}")/common.sh"
 
-wait=0 tasks=""
-while [[ $# -gt 0 && $1 == --* ]]; do
-  case $1 in
-    --wait) wait=1; shift ;;
-    --tasks) tasks=${2:?--tasks needs a list}; shift 2 ;;
-    *) echo "submit-bench: unknown option $1" >&2; exit 2 ;;
-  esac
-done
+parse_submit_options "$@"
+shift "$options_used"
 [[ $# -ge 3 ]] || { usage; exit 2; }
 n=$1 out=$2
 shift 2
-[[ $n =~ ^[1-9][0-9]*$ ]] || { echo "submit-bench: N must be a positive number, not '$n'" >&2; exit 2; }
+check_count "$n"
 vkray=$(vkray_binary)
 mkdir -p "$out/logs"
 out=$(realpath "$out")
