@@ -110,8 +110,8 @@ std::vector<std::unique_ptr<BuiltAccel>> buildAccelsConcurrently(const Scene& sc
                                                                  const BuildOptions& options = {});
 
 // A typed array as raw bytes for GpuAccelData.
-template <class T>
-std::vector<std::byte> asBytes(const std::vector<T>& v) {
+template <class T, class A>
+std::vector<std::byte> asBytes(const std::vector<T, A>& v) {
     const auto* p = reinterpret_cast<const std::byte*>(v.data());
     return std::vector<std::byte>(p, p + v.size() * sizeof(T));
 }

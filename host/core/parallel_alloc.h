@@ -111,4 +111,24 @@ void resizeFirstTouched(std::vector<T, Alloc>& v, size_t n) {
     }
 }
 
+// Resizes the empty vector v to n elements that the caller writes, every one, before any is read
+// (C++23's "for overwrite"): the pages are populated in parallel and no element is initialised.
+// Populating costs less than faulting the pages in by touching them (200 MB on the development VM,
+// 2 threads: 27 ms against 40 ms), and the value-initialisation pass it saves was a write of the
+// whole array that the caller's own write then repeats. T must be an implicit-lifetime type
+// (trivially copyable and destructible), whose objects the caller's writes create.
+template <class T>
+void resizeForOverwrite(BuildArray<T>& v, size_t n) {
+    static_assert(std::is_trivially_copyable_v<T> && std::is_trivially_destructible_v<T>);
+    if (n * sizeof(T) < kFirstTouchBytes || !v.empty()) {
+        v.resize(n);
+        return;
+    }
+    v.reserve(n);
+    populatePages(v.data(), v.data() + n);
+    detail::gDeferValueInit = true;
+    v.resize(n);  // no element written
+    detail::gDeferValueInit = false;
+}
+
 }  // namespace vkray

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cstddef>
 #include <cstdint>
+#include <type_traits>
 #include <vector>
 
 #include <tbb/parallel_for.h>
@@ -54,7 +55,11 @@ void countingPass(const std::vector<T, A>& in, std::vector<T, A>& out, int shift
 template <class T, class A, class Key>
 void radixSortBits(std::vector<T, A>& values, int lowBit, int bits, const Key& key) {
     std::vector<T, A> scratch;
-    resizeFirstTouched(scratch, values.size());
+    if constexpr (std::is_same_v<A, FirstTouchAllocator<T>>) {
+        resizeForOverwrite(scratch, values.size());  // each pass writes every slot
+    } else {
+        resizeFirstTouched(scratch, values.size());
+    }
     for (int done = 0; done < bits; done += radix_detail::kDigitBits) {
         radix_detail::countingPass(values, scratch, lowBit + done, key);
         values.swap(scratch);

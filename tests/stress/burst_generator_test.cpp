@@ -27,8 +27,8 @@ TEST(BurstGenerator, EveryCentroidAndMortonCodeIsTheSame) {
     // The builders' own centroid, (p0 + p1 + p2) / 3 in float, is the centre for every triangle.
     for (const glm::vec3& c : prims.centroids) ASSERT_EQ(c, glm::vec3(0.0f, 0.5f, 0.0f));
     EXPECT_EQ(prims.centroidBounds.lo, prims.centroidBounds.hi);
-    const BuildArray<uint32_t> codes = bvh::mortonCodes(prims.centroids, prims.centroidBounds);
-    for (uint32_t code : codes) ASSERT_EQ(code, codes.front());
+    const BuildArray<bvh::MortonKey> keys = bvh::mortonKeys(prims.centroids, prims.centroidBounds);
+    for (bvh::MortonKey key : keys) ASSERT_EQ(bvh::keyCode(key), bvh::keyCode(keys.front()));
 }
 
 // (tests/scene/generators_test.cpp checks the other kinds the same way.)

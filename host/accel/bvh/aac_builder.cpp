@@ -75,7 +75,7 @@ public:
         BinaryTree tree;
         tree.primitives = uint32_t(n);
         if (n == 0) return tree;
-        resizeFirstTouched(nodes_, 2 * n - 1);
+        resizeForOverwrite(nodes_, 2 * n - 1);  // primitives, then the n - 1 merges fill every slot
         resizeFirstTouched(clusters_, n);
         resizeFirstTouched(free_, n);
         if (spheres_) resizeFirstTouched(sphereOf_, 2 * n - 1);
@@ -206,7 +206,7 @@ private:
                 s.move(last, hi, Spheres);
             }
             --k;
-            if (k == 1) break;
+            if (k == target) break;  // no later merge reads the partners
             // Whoever was closest to a merged cluster searches again (merging only grows boxes, so
             // no other cluster can have become closer to the new one than to its cached partner).
             for (size_t i = 0; i < k; ++i) {
@@ -303,14 +303,6 @@ private:
     size_t leafReduction_;             // f(delta), computed once: every range of at most delta primitives asks for it
 };
 
-BuildArray<MortonKey> mortonKeys(const PrimitiveSet& prims) {
-    const BuildArray<uint32_t> codes = mortonCodes(prims.centroids, prims.centroidBounds);
-    BuildArray<MortonKey> keys;
-    resizeFirstTouched(keys, codes.size());
-    tbb::parallel_for(size_t(0), codes.size(), [&](size_t i) { keys[i] = (MortonKey(codes[i]) << 32) | i; });
-    return keys;
-}
-
 }  // namespace
 
 AacReduction::AacReduction(int delta, double epsilon)
@@ -337,7 +329,7 @@ void validateAacConfig(const Config& config) {
 
 BinaryTree buildAac(const PrimitiveSet& prims, const Config& config, PhaseLog& log, CollapsedTree* collapsed) {
     validateAacConfig(config);
-    BuildArray<MortonKey> keys = log.run("morton", 0.1, [&] { return mortonKeys(prims); });
+    BuildArray<MortonKey> keys = log.run("morton", 0.1, [&] { return mortonKeys(prims.centroids, prims.centroidBounds); });
     log.run("sort", 0.2, [&] { radixSortByCode(keys); });
     return log.run("cluster", 0.85, [&] { return AacBuilder(prims, config, std::move(keys), collapsed).build(); });
 }

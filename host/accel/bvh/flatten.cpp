@@ -236,7 +236,7 @@ FlatBvh flatten(const BinaryTree& tree, const CollapsedTree& collapsed) {
     FlatBvh flat;
     flat.sahCost = collapsed.sahCost;
     if (tree.nodes.empty()) return flat;
-    resizeFirstTouched(flat.nodes, collapsed.nodes[tree.root].flatNodes);
+    resizeForOverwrite(flat.nodes, collapsed.nodes[tree.root].flatNodes);  // the walk writes each
     if (!tree.spheres.empty()) resizeFirstTouched(flat.spheres, flat.nodes.size());
     resizeFirstTouched(flat.triangleOrder, tree.primitives);
     flat.maxDepth = Flattener(tree, collapsed, flat).write(tree.root, 0, 0, 0);

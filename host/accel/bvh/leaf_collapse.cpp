@@ -24,9 +24,10 @@ double collapseInner(const Config& config, CollapsedTree& out, uint32_t id, doub
     return choice.cost;
 }
 
+// Every node's record is written, children before parents, before it is read.
 CollapsedTree allocate(size_t nodes) {
     CollapsedTree out;
-    resizeFirstTouched(out.nodes, nodes);
+    resizeForOverwrite(out.nodes, nodes);
     return out;
 }
 
@@ -77,7 +78,7 @@ CollapsedTree collapseLeaves(const BinaryTree& tree, const Config& config) {
 }
 
 CollapseRecorder::CollapseRecorder(const Config& config, size_t nodes) : config_(config), out_(allocate(nodes)) {
-    resizeFirstTouched(cost_, nodes);
+    resizeForOverwrite(cost_, nodes);  // as the records
 }
 
 void CollapseRecorder::primitive(uint32_t id, double area) { cost_[id] = collapsePrimitive(config_, out_, id, area); }

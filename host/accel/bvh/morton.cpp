@@ -36,13 +36,14 @@ uint32_t mortonCode(const glm::vec3& p, const Aabb& bounds) {
     return (expandBits(x) << 2) | (expandBits(y) << 1) | expandBits(z);
 }
 
-BuildArray<uint32_t> mortonCodes(std::span<const glm::vec3> centroids, const Aabb& centroidBounds) {
-    BuildArray<uint32_t> codes;
-    resizeFirstTouched(codes, centroids.size());
+BuildArray<MortonKey> mortonKeys(std::span<const glm::vec3> centroids, const Aabb& centroidBounds) {
+    BuildArray<MortonKey> keys;
+    resizeForOverwrite(keys, centroids.size());
     tbb::parallel_for(tbb::blocked_range<size_t>(0, centroids.size(), 4096), [&](const auto& r) {
-        for (size_t i = r.begin(); i < r.end(); ++i) codes[i] = mortonCode(centroids[i], centroidBounds);
+        for (size_t i = r.begin(); i < r.end(); ++i)
+            keys[i] = (MortonKey(mortonCode(centroids[i], centroidBounds)) << 32) | i;
     });
-    return codes;
+    return keys;
 }
 
 void radixSortByCode(BuildArray<MortonKey>& keys) {

@@ -26,13 +26,14 @@ uint32_t expandBits(uint32_t v);
 // The Morton code of point p quantised within `bounds` (a zero extent maps to cell 0).
 uint32_t mortonCode(const glm::vec3& p, const Aabb& bounds);
 
-// Codes of all centroids within their common bounds, computed in parallel.
-BuildArray<uint32_t> mortonCodes(std::span<const glm::vec3> centroids, const Aabb& centroidBounds);
-
 // A primitive keyed by its code: code in the high 32 bits, primitive index in the low 32 bits.
 using MortonKey = uint64_t;
 inline uint32_t keyCode(MortonKey k) { return uint32_t(k >> 32); }
 inline uint32_t keyPrimitive(MortonKey k) { return uint32_t(k); }
+
+// The key of every centroid (its code within their common bounds, its index), computed in parallel
+// straight into the array the sort takes: no separate array of codes to fault in and read again.
+BuildArray<MortonKey> mortonKeys(std::span<const glm::vec3> centroids, const Aabb& centroidBounds);
 
 // Sorts by code, stably (equal codes keep their primitive order), with a least-significant-digit
 // radix sort of 10-bit digits (three passes for 30-bit codes; Mahmuda 2017, section 2.8). Each pass

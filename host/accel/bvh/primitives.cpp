@@ -18,8 +18,8 @@ struct BoundsPair {
 
 PrimitiveSet primitivesOf(std::span<const Triangle> triangles, bool spheres) {
     PrimitiveSet set;
-    resizeFirstTouched(set.boxes, triangles.size());
-    resizeFirstTouched(set.centroids, triangles.size());
+    resizeForOverwrite(set.boxes, triangles.size());
+    resizeForOverwrite(set.centroids, triangles.size());
     if (spheres) resizeFirstTouched(set.spheres, triangles.size());
     using Range = tbb::blocked_range<size_t>;
     const BoundsPair all = tbb::parallel_reduce(

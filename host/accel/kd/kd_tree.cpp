@@ -68,7 +68,7 @@ KdTreeFigures measureTree(const KdTree& tree, const KdConfig& config) {
             pending.emplace_back(index + 1, depth + 1);
         }
     }
-    std::vector<uint32_t> distinct = tree.indices;
+    std::vector<uint32_t> distinct(tree.indices.begin(), tree.indices.end());
     std::sort(distinct.begin(), distinct.end());
     f.indexedTriangles = size_t(std::unique(distinct.begin(), distinct.end()) - distinct.begin());
     return f;

@@ -11,6 +11,7 @@
 
 #include <glm/glm.hpp>
 
+#include "core/parallel_alloc.h"
 #include "shared/kd_layout.h"
 
 namespace vkray::accel::kd {
@@ -82,9 +83,9 @@ struct Box {
 // `ropes` is filled only for kd-ropes (kd_ropes.h), after the build.
 struct KdTree {
     gpu::KdTreeHeader header{};
-    std::vector<gpu::KdNode> nodes;
-    std::vector<uint32_t> indices;
-    std::vector<gpu::KdNodeExtra> extra;
+    BuildArray<gpu::KdNode> nodes;
+    BuildArray<uint32_t> indices;
+    BuildArray<gpu::KdNodeExtra> extra;
     std::vector<gpu::KdRopeRecord> ropes;
 
     Box rootBox() const { return Box{header.lo, header.hi}; }
