@@ -151,13 +151,20 @@ Box clippedBounds(const Triangle& tri, const Box& box) {
     for (int axis = 0; axis < 3 && n > 0; ++axis)
         for (int upper = 0; upper < 2 && n > 0; ++upper) {
             const double plane = upper ? box.hi[axis] : box.lo[axis];
-            const auto inside = [&](const glm::dvec3& v) { return upper ? v[axis] <= plane : v[axis] >= plane; };
+            std::array<bool, 10> inside{};
+            bool all = true;
+            for (size_t i = 0; i < n; ++i) {
+                inside[i] = upper ? poly[i][axis] <= plane : poly[i][axis] >= plane;
+                all = all && inside[i];
+            }
+            if (all) continue;  // the plane cuts nothing off: the pass would copy the polygon as it is
             size_t m = 0;
             for (size_t i = 0; i < n; ++i) {
+                const size_t j = i + 1 == n ? 0 : i + 1;
                 const glm::dvec3& a = poly[i];
-                const glm::dvec3& b = poly[(i + 1) % n];
-                if (inside(a)) next[m++] = a;
-                if (inside(a) != inside(b)) {
+                const glm::dvec3& b = poly[j];
+                if (inside[i]) next[m++] = a;
+                if (inside[i] != inside[j]) {
                     glm::dvec3 v = a + (b - a) * ((plane - a[axis]) / (b[axis] - a[axis]));
                     v[axis] = plane;  // on the plane exactly, whatever the interpolation rounded to
                     next[m++] = v;
@@ -177,12 +184,11 @@ Box clippedBounds(const Triangle& tri, const Box& box) {
     return isEmpty(clipped) ? fallback : clipped;
 }
 
-// Events of one triangle from its clipped bounds `b` (Wald and Havran 4.2): a planar event where the
-// clipped part is flat on that axis, a start and an end otherwise. Flat clipped parts are not only
-// triangles lying in an axis plane: a triangle that meets the node only in an edge or a point on the
-// node's face is flat there too, and a planar event gives it exactly one side at any later split.
-// f(k, event) for each event of `triangle` (box b): on each axis k, one planar event or a start
-// and an end.
+// The events of one triangle from its clipped bounds `b` (Wald and Havran 4.2), f(k, event) for
+// each: on axis k a planar event where the clipped part is flat on that axis, a start and an end
+// otherwise. Flat clipped parts are not only triangles lying in an axis plane: a triangle that
+// meets the node only in an edge or a point on the node's face is flat there too, and a planar
+// event gives it exactly one side at any later split.
 template <class F>
 void forEachEvent(uint32_t triangle, const Box& b, const F& f) {
     for (int k = 0; k < 3; ++k) {
@@ -340,15 +346,17 @@ void Builder::sweepAxis(int axis, const AxisEvents& ev, const Box& box, size_t n
     for (size_t i = 0; i < ev.size();) {
         const float p = ev[i].pos();
         const uint32_t at = ev[i].orderedPos();
-        size_t ends = 0, planars = 0, starts = 0;
-        for (; i < ev.size() && ev[i].orderedPos() == at && ev[i].type() == EventType::End; ++i) ++ends;
-        for (; i < ev.size() && ev[i].orderedPos() == at && ev[i].type() == EventType::Planar; ++i) ++planars;
-        for (; i < ev.size() && ev[i].orderedPos() == at && ev[i].type() == EventType::Start; ++i) ++starts;
+        // The events at p, counted by type (they come sorted end, planar, start).
+        std::array<size_t, 3> count{};
+        for (; i < ev.size() && ev[i].orderedPos() == at; ++i) ++count[size_t(ev[i].type())];
+        const size_t ends = count[size_t(EventType::End)], planars = count[size_t(EventType::Planar)],
+                     starts = count[size_t(EventType::Start)];
         endingAfter -= ends + planars;
         if (usableSplit(box, axis, p) && double(startedBefore + endingAfter + planars) <= budget + 0.5) {
             const size_t below = startedBefore, above = endingAfter;
+            // Without planar triangles both placements are the same split, costed once.
             const double planarBelowCost = splitCost(areas, p, below + planars, above);
-            const double planarAboveCost = splitCost(areas, p, below, above + planars);
+            const double planarAboveCost = planars == 0 ? planarBelowCost : splitCost(areas, p, below, above + planars);
             const bool planarBelow = planarBelowCost <= planarAboveCost;
             const double cost = planarBelow ? planarBelowCost : planarAboveCost;
             if (cost < best.cost)
