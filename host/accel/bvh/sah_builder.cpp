@@ -57,9 +57,9 @@ public:
         BinaryTree tree;
         tree.primitives = uint32_t(n);
         if (n == 0) return tree;
-        resizeFirstTouched(order_, n);
+        resizeForOverwrite(order_, n);
         std::iota(order_.begin(), order_.end(), 0u);
-        resizeFirstTouched(nodes_, 2 * n - 1);
+        resizeForOverwrite(nodes_, 2 * n - 1);  // the ranges' ids cover [0, 2n - 1)
         tree.root = buildNode(0, n);
         tree.nodes = std::move(nodes_);
         return tree;
@@ -176,7 +176,7 @@ private:
 
     const PrimitiveSet& prims_;
     const Config& config_;
-    std::vector<uint32_t> order_;  // primitive indices; each node owns a contiguous run
+    BuildArray<uint32_t> order_;  // primitive indices; each node owns a contiguous run
     BuildArray<BinaryNode> nodes_;
 };
 

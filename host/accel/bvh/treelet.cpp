@@ -33,8 +33,9 @@ struct SubsetTable {
 class Restructurer {
 public:
     Restructurer(BinaryTree& tree, const Config& config) : tree_(tree), config_(config) {
-        resizeFirstTouched(cost_, tree.nodes.size());
-        resizeFirstTouched(count_, tree.nodes.size());
+        // The post-order visit writes every node's entries before its parent reads them.
+        resizeForOverwrite(cost_, tree.nodes.size());
+        resizeForOverwrite(count_, tree.nodes.size());
     }
 
     // Post-order: both subtrees final (and restructured) before the node's own treelet.
@@ -147,8 +148,8 @@ private:
 
     BinaryTree& tree_;
     const Config& config_;
-    std::vector<double> cost_;
-    std::vector<uint32_t> count_;
+    BuildArray<double> cost_;
+    BuildArray<uint32_t> count_;
 };
 
 }  // namespace
