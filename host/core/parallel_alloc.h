@@ -13,7 +13,8 @@
 //
 // A BuildArray (a std::vector with FirstTouchAllocator) goes further: its elements are
 // value-initialised by all workers, each over its own run, which also takes that run's page faults,
-// so neither the faults nor the writes are left to one thread.
+// so neither the faults nor the writes are left to one thread. An array that its builder writes
+// whole before reading any of it needs no value at all: resizeForOverwrite only populates it.
 #pragma once
 
 #include <sys/mman.h>
