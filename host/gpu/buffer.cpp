@@ -1,9 +1,11 @@
 #include "gpu/buffer.h"
 
 #include <algorithm>
+#include <bit>
 #include <cstring>
 
 #include "core/error.h"
+#include "shared/gpu_layout.h"
 
 namespace vkray::gpu {
 namespace {
@@ -73,18 +75,40 @@ void OneShotCommands::submitAndWait() {
     }
 }
 
+namespace {
+
+// log2 of the largest power of two of texels one view may hold.
+int viewBitsLimit(const VulkanContext& ctx) {
+    return std::bit_width(std::max<uint64_t>(ctx.info().maxTexelBufferElements, 1)) - 1;
+}
+
+}  // namespace
+
+uint64_t maxTexelArray(const VulkanContext& ctx) { return uint64_t(VKRAY_TEXEL_VIEWS) << viewBitsLimit(ctx); }
+
 void checkTexelArrayFits(const VulkanContext& ctx, uint64_t texels, const std::string& what) {
-    const uint64_t limit = ctx.info().maxTexelBufferElements;
-    if (texels > limit)
+    if (texels > maxTexelArray(ctx))
         throw Error("the scene's " + what + " need " + std::to_string(texels) + " texels, more than the " +
-                    std::to_string(limit) + " one texel buffer may hold on '" + ctx.info().name +
-                    "' (maxTexelBufferElements)");
+                    std::to_string(VKRAY_TEXEL_VIEWS) + " views of " + std::to_string(uint64_t(1) << viewBitsLimit(ctx)) +
+                    " texels (maxTexelBufferElements " + std::to_string(ctx.info().maxTexelBufferElements) +
+                    ") a kernel binding holds on '" + ctx.info().name + "'");
+}
+
+int texelViewBits(const VulkanContext& ctx, std::span<const TexelArraySize> arrays) {
+    bool split = false;
+    for (const TexelArraySize& a : arrays) {
+        checkTexelArrayFits(ctx, a.texels, a.what);
+        split = split || a.texels > ctx.info().maxTexelBufferElements;
+    }
+    return split ? viewBitsLimit(ctx) : 0;
 }
 
 TexelView::TexelView(const VulkanContext& ctx, const Buffer& buffer, vk::Format format, uint32_t texelBytes,
                      const std::string& what) {
     const vk::DeviceSize texels = buffer.size() / texelBytes;
-    checkTexelArrayFits(ctx, texels, what);
+    if (texels > ctx.info().maxTexelBufferElements)
+        throw Error("internal: a view of " + std::to_string(texels) + " texels of " + what + ", more than maxTexelBufferElements " +
+                    std::to_string(ctx.info().maxTexelBufferElements));
     view_ = vk::raii::BufferView(ctx.device(), vk::BufferViewCreateInfo{.buffer = buffer.handle(), .format = format,
                                                                         .offset = 0, .range = texels * texelBytes});
 }
@@ -111,20 +135,35 @@ void uploadThroughStaging(const VulkanContext& ctx, const Buffer& target, const 
 }  // namespace
 
 TexelArray uploadTexelArray(const VulkanContext& ctx, const void* data, size_t bytes, vk::Format format,
-                            uint32_t texelBytes, const std::string& what) {
+                            uint32_t texelBytes, const std::string& what, int viewBits) {
     if (bytes % texelBytes != 0)
         throw Error("internal: " + what + " are " + std::to_string(bytes) + " bytes, not whole texels of " +
                     std::to_string(texelBytes));
-    checkTexelArrayFits(ctx, bytes / texelBytes, what);
-    const vk::DeviceSize size = std::max<vk::DeviceSize>(bytes, texelBytes);
+    const uint64_t texels = bytes / texelBytes;
+    checkTexelArrayFits(ctx, texels, what);
+    const uint64_t perView = viewBits > 0 ? uint64_t(1) << viewBits : std::max<uint64_t>(texels, 1);
+    const uint64_t views = std::max<uint64_t>((texels + perView - 1) / perView, 1);
+    if (views > VKRAY_TEXEL_VIEWS || (viewBits == 0 && texels > ctx.info().maxTexelBufferElements))
+        throw Error("internal: " + what + " (" + std::to_string(texels) + " texels) do not fit views of " +
+                    std::to_string(perView) + " texels");
+    TexelArray array;
+    array.buffers.reserve(views);
+    array.views.reserve(views);
     using BU = vk::BufferUsageFlagBits;
-    Buffer target(ctx, size, BU::eUniformTexelBuffer | BU::eTransferDst, MemoryUse::DeviceLocal, what);
-    if (bytes > 0) {
-        if (target.hostVisible()) std::memcpy(target.mapped(), data, bytes);
-        else uploadThroughStaging(ctx, target, data, bytes, what);
+    for (uint64_t v = 0; v < views; ++v) {
+        const size_t first = size_t(v * perView) * texelBytes;
+        const size_t n = std::min(bytes - std::min(bytes, first), size_t(perView) * texelBytes);
+        const std::string part = views > 1 ? what + " (view " + std::to_string(v + 1) + " of " + std::to_string(views) + ")" : what;
+        Buffer& target = array.buffers.emplace_back(ctx, std::max<vk::DeviceSize>(n, texelBytes),
+                                                    BU::eUniformTexelBuffer | BU::eTransferDst, MemoryUse::DeviceLocal, part);
+        const void* src = static_cast<const char*>(data) + first;
+        if (n > 0) {
+            if (target.hostVisible()) std::memcpy(target.mapped(), src, n);
+            else uploadThroughStaging(ctx, target, src, n, part);
+        }
+        array.views.emplace_back(ctx, target, format, texelBytes, part);
     }
-    TexelView view(ctx, target, format, texelBytes, what);
-    return TexelArray{std::move(target), std::move(view)};
+    return array;
 }
 
 }  // namespace vkray::gpu

@@ -4,7 +4,10 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
+#include <span>
 #include <string>
+#include <vector>
 
 #include <vulkan/vulkan_raii.hpp>
 
@@ -57,8 +60,8 @@ private:
 class TexelView {
 public:
     TexelView() = default;
-    // Throws vkray::Error naming `what` when the buffer holds more texels than the device's
-    // maxTexelBufferElements.
+    // Throws vkray::Error naming `what` when the buffer holds more texels than one view may
+    // (maxTexelBufferElements).
     TexelView(const VulkanContext& ctx, const Buffer& buffer, vk::Format format, uint32_t texelBytes,
               const std::string& what);
     vk::BufferView handle() const { return *view_; }
@@ -67,22 +70,38 @@ private:
     vk::raii::BufferView view_{nullptr};
 };
 
-// Throws vkray::Error naming `what` when `texels` exceed the device's maxTexelBufferElements: the
-// limit on one array the kernels read (a texel view), checked before anything is allocated.
+// The most texels one array the kernels read may have on this device: VKRAY_TEXEL_VIEWS views of
+// the largest power of two of texels one view may hold (maxTexelBufferElements).
+uint64_t maxTexelArray(const VulkanContext& ctx);
+
+// Throws vkray::Error naming `what` when `texels` exceed maxTexelArray(ctx), checked before
+// anything is allocated.
 void checkTexelArrayFits(const VulkanContext& ctx, uint64_t texels, const std::string& what);
 
-// A read-only array of the kernels in device-local memory, with its texel view. Read only through
-// the view, so its size is bounded by maxTexelBufferElements texels (2 GiB of 16-byte texels on
-// lavapipe and most GPUs), not by maxStorageBufferRange (128 MiB on lavapipe).
+// An array the kernels read, by name (for errors) and length in texels.
+struct TexelArraySize {
+    std::string what;
+    uint64_t texels = 0;
+};
+
+// How a render's arrays are viewed (VKRAY_SPEC_TEXEL_VIEW_BITS): 0 when each fits one view, else
+// log2 of the texels of every view, the largest power of two maxTexelBufferElements allows. Throws as
+// checkTexelArrayFits does for an array too long for VKRAY_TEXEL_VIEWS such views.
+int texelViewBits(const VulkanContext& ctx, std::span<const TexelArraySize> arrays);
+
+// A read-only array of the kernels in device-local memory, as one texel view or, split, as several
+// views of 2^viewBits texels, each over a buffer of its own (one allocation may hold no more than
+// one view on some devices: 2 GiB on lavapipe). Read only through the views, so its size is bounded
+// by maxTexelArray(), not by maxStorageBufferRange (128 MiB on lavapipe).
 struct TexelArray {
-    Buffer buffer;
-    TexelView view;
+    std::vector<Buffer> buffers;
+    std::vector<TexelView> views;  // at least one
 };
 
 // Uploads `bytes` (a whole number of `texelBytes` texels; at least one texel is allocated so an empty
-// array still binds) and makes its view. Throws as checkTexelArrayFits does, or naming `what` when
-// the memory cannot be allocated.
+// array still binds) and makes its views (texelViewBits: 0 = one view). Throws as
+// checkTexelArrayFits does, or naming `what` when the memory cannot be allocated.
 TexelArray uploadTexelArray(const VulkanContext& ctx, const void* data, size_t bytes, vk::Format format,
-                            uint32_t texelBytes, const std::string& what);
+                            uint32_t texelBytes, const std::string& what, int viewBits = 0);
 
 }  // namespace vkray::gpu

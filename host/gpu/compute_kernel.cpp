@@ -5,20 +5,40 @@
 #include "core/error.h"
 
 namespace vkray::gpu {
+namespace {
+
+// The set's descriptors against the device's per-stage limits (texel buffers count as sampled
+// images), so that a device with fewer gets a sentence, not a failed pipeline-layout call.
+void checkDescriptorLimits(const VulkanContext& ctx, std::span<const ComputeKernel::Binding> bindings) {
+    uint32_t views = 0, resources = 0;
+    for (const ComputeKernel::Binding& b : bindings) {
+        resources += b.count;
+        if (b.type == vk::DescriptorType::eUniformTexelBuffer) views += b.count;
+    }
+    const vk::PhysicalDeviceLimits& limits = ctx.limits();
+    if (views > limits.maxPerStageDescriptorSampledImages || resources > limits.maxPerStageResources)
+        throw Error("the render kernels bind " + std::to_string(views) + " texel views (" + std::to_string(resources) +
+                    " resources in all); '" + ctx.info().name + "' allows " +
+                    std::to_string(limits.maxPerStageDescriptorSampledImages) + " (maxPerStageDescriptorSampledImages) and " +
+                    std::to_string(limits.maxPerStageResources) + " (maxPerStageResources) per shader stage");
+}
+
+}  // namespace
 
 ComputeKernel::ComputeKernel(const VulkanContext& ctx, std::span<const uint32_t> spirv,
-                             std::span<const vk::DescriptorType> bindingTypes, uint32_t pushConstantBytes,
+                             std::span<const Binding> bindingList, uint32_t pushConstantBytes,
                              const Specialization& spec)
-    : ctx_(ctx), pushConstantBytes_(pushConstantBytes), bindings_(bindingTypes.begin(), bindingTypes.end()) {
+    : ctx_(ctx), pushConstantBytes_(pushConstantBytes), bindings_(bindingList.begin(), bindingList.end()) {
     const auto& dev = ctx.device();
+    checkDescriptorLimits(ctx, bindings_);
     module_ = vk::raii::ShaderModule(dev, vk::ShaderModuleCreateInfo{.codeSize = spirv.size_bytes(),
                                                                      .pCode = spirv.data()});
 
     std::vector<vk::DescriptorSetLayoutBinding> bindings;
     for (uint32_t i = 0; i < bindings_.size(); ++i)
         bindings.push_back({.binding = i,
-                            .descriptorType = bindings_[i],
-                            .descriptorCount = 1,
+                            .descriptorType = bindings_[i].type,
+                            .descriptorCount = bindings_[i].count,
                             .stageFlags = vk::ShaderStageFlagBits::eCompute});
     setLayout_ = vk::raii::DescriptorSetLayout(
         dev, vk::DescriptorSetLayoutCreateInfo{.bindingCount = uint32_t(bindings.size()),
@@ -49,10 +69,10 @@ ComputeKernel::ComputeKernel(const VulkanContext& ctx, std::span<const uint32_t>
     pipeline_ = vk::raii::Pipeline(dev, nullptr, info);
 
     std::vector<vk::DescriptorPoolSize> poolSizes;
-    for (vk::DescriptorType type : bindings_) {
-        auto it = std::find_if(poolSizes.begin(), poolSizes.end(), [&](const auto& p) { return p.type == type; });
-        if (it == poolSizes.end()) poolSizes.push_back({.type = type, .descriptorCount = 1});
-        else ++it->descriptorCount;
+    for (const Binding& b : bindings_) {
+        auto it = std::find_if(poolSizes.begin(), poolSizes.end(), [&](const auto& p) { return p.type == b.type; });
+        if (it == poolSizes.end()) poolSizes.push_back({.type = b.type, .descriptorCount = b.count});
+        else it->descriptorCount += b.count;
     }
     pool_ = vk::raii::DescriptorPool(
         dev, vk::DescriptorPoolCreateInfo{.flags = vk::DescriptorPoolCreateFlagBits::eFreeDescriptorSet,
@@ -71,9 +91,13 @@ void ComputeKernel::bind(std::span<const Resource> resources) {
     std::vector<vk::DescriptorBufferInfo> infos(resources.size());
     std::vector<vk::WriteDescriptorSet> writes;
     for (uint32_t i = 0; i < bindings_.size(); ++i) {
-        vk::WriteDescriptorSet w{.dstSet = *set_, .dstBinding = i, .descriptorCount = 1, .descriptorType = bindings_[i]};
-        if (bindings_[i] == vk::DescriptorType::eUniformTexelBuffer) {
-            w.pTexelBufferView = &resources[i].view;
+        const Binding& b = bindings_[i];
+        vk::WriteDescriptorSet w{.dstSet = *set_, .dstBinding = i, .descriptorCount = b.count, .descriptorType = b.type};
+        if (b.type == vk::DescriptorType::eUniformTexelBuffer) {
+            if (resources[i].views.size() != b.count)
+                throw Error("internal: " + std::to_string(resources[i].views.size()) + " views for binding " +
+                            std::to_string(i) + " of " + std::to_string(b.count));
+            w.pTexelBufferView = resources[i].views.data();
         } else {
             infos[i] = vk::DescriptorBufferInfo{.buffer = resources[i].buffer, .offset = 0, .range = VK_WHOLE_SIZE};
             w.pBufferInfo = &infos[i];

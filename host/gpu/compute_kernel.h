@@ -23,16 +23,19 @@ struct Specialization {
 
 class ComputeKernel {
 public:
-    // Binding i of the set has type bindings[i] (eStorageBuffer or eUniformTexelBuffer).
-    ComputeKernel(const VulkanContext& ctx, std::span<const uint32_t> spirv,
-                  std::span<const vk::DescriptorType> bindings, uint32_t pushConstantBytes,
-                  const Specialization& spec);
+    // Binding i of the set: one storage buffer, or an array of `count` uniform texel buffers.
+    struct Binding {
+        vk::DescriptorType type;  // eStorageBuffer or eUniformTexelBuffer
+        uint32_t count = 1;
+    };
+    ComputeKernel(const VulkanContext& ctx, std::span<const uint32_t> spirv, std::span<const Binding> bindings,
+                  uint32_t pushConstantBytes, const Specialization& spec);
 
-    // What binding i is pointed at: the buffer (whole range) of a storage-buffer binding, the view
-    // of a texel-buffer binding.
+    // What binding i is pointed at: the buffer (whole range) of a storage-buffer binding, the
+    // `count` views of a texel-buffer binding.
     struct Resource {
         vk::Buffer buffer;
-        vk::BufferView view;
+        std::vector<vk::BufferView> views;
     };
     // Points every binding at resources[i]; one entry per binding.
     void bind(std::span<const Resource> resources);
@@ -43,7 +46,7 @@ public:
 private:
     const VulkanContext& ctx_;
     uint32_t pushConstantBytes_;
-    std::vector<vk::DescriptorType> bindings_;
+    std::vector<Binding> bindings_;
     vk::raii::ShaderModule module_{nullptr};
     vk::raii::DescriptorSetLayout setLayout_{nullptr};
     vk::raii::PipelineLayout layout_{nullptr};

@@ -25,13 +25,14 @@ namespace {
 
 constexpr uint32_t kTilePixels = VKRAY_TILE_SIZE * VKRAY_TILE_SIZE;
 
-// The descriptor types of the render kernels' bindings (shared/gpu_layout.h).
-constexpr auto kBindingTypes = [] {
-    std::array<vk::DescriptorType, VKRAY_BINDING_COUNT> types{};
+// The render kernels' bindings (shared/gpu_layout.h): storage buffers, then arrays of texel views.
+constexpr auto kBindings = [] {
+    std::array<ComputeKernel::Binding, VKRAY_BINDING_COUNT> bindings{};
     for (uint32_t i = 0; i < VKRAY_BINDING_COUNT; ++i)
-        types[i] = i < VKRAY_STORAGE_BINDING_COUNT ? vk::DescriptorType::eStorageBuffer
-                                                   : vk::DescriptorType::eUniformTexelBuffer;
-    return types;
+        bindings[i] = i < VKRAY_STORAGE_BINDING_COUNT
+                          ? ComputeKernel::Binding{vk::DescriptorType::eStorageBuffer, 1}
+                          : ComputeKernel::Binding{vk::DescriptorType::eUniformTexelBuffer, VKRAY_TEXEL_VIEWS};
+    return bindings;
 }();
 // Tiles per submission. On a CPU device (lavapipe) few: a tile takes a good fraction of a second,
 // progress is reported per submission, and read-back overlaps nothing anyway; 4 tiles = 16 MiB of
@@ -210,19 +211,27 @@ struct ResumeBuffers {
                vk::BufferUsageFlagBits::eStorageBuffer, MemoryUse::DeviceLocal, "resumable pixels' rays") {}
 };
 
+// A binding's VKRAY_TEXEL_VIEWS views: the array's, then its first again where it has fewer (the
+// kernel reads only those that hold the array; the rest must still be valid descriptors).
+std::vector<vk::BufferView> viewHandles(const TexelArray& array) {
+    std::vector<vk::BufferView> views(VKRAY_TEXEL_VIEWS, array.views.front().handle());
+    for (size_t v = 0; v < array.views.size(); ++v) views[v] = array.views[v].handle();
+    return views;
+}
+
 void bindBuffers(ComputeKernel& kernel, const SceneBuffers& scene, const AccelBuffers& accel,
                  const PixelOutput& pixels, const ResumeBuffers& resume) {
     std::array<ComputeKernel::Resource, VKRAY_BINDING_COUNT> r{};
     r[VKRAY_BINDING_PIXELS].buffer = pixels.target().handle();
     r[VKRAY_BINDING_RESUME].buffer = resume.records.handle();
     r[VKRAY_BINDING_RESUME_RAYS].buffer = resume.rays.handle();
-    r[VKRAY_BINDING_TRIANGLE_TEXELS].view = scene.triangles.view.handle();
-    r[VKRAY_BINDING_NODE_TEXELS].view = accel.nodes.view.handle();
-    r[VKRAY_BINDING_INDEX_TEXELS].view = accel.indices.view.handle();
-    r[VKRAY_BINDING_EXTRA_TEXELS].view = accel.extra.view.handle();
-    r[VKRAY_BINDING_NORMAL_TEXELS].view = scene.normals.view.handle();
-    r[VKRAY_BINDING_MATERIAL_TEXELS].view = scene.materials.view.handle();
-    r[VKRAY_BINDING_LIGHT_TEXELS].view = scene.lights.view.handle();
+    r[VKRAY_BINDING_TRIANGLE_TEXELS].views = viewHandles(scene.triangles);
+    r[VKRAY_BINDING_NODE_TEXELS].views = viewHandles(accel.nodes);
+    r[VKRAY_BINDING_INDEX_TEXELS].views = viewHandles(accel.indices);
+    r[VKRAY_BINDING_EXTRA_TEXELS].views = viewHandles(accel.extra);
+    r[VKRAY_BINDING_NORMAL_TEXELS].views = viewHandles(scene.normals);
+    r[VKRAY_BINDING_MATERIAL_TEXELS].views = viewHandles(scene.materials);
+    r[VKRAY_BINDING_LIGHT_TEXELS].views = viewHandles(scene.lights);
     kernel.bind(r);
 }
 
@@ -331,14 +340,15 @@ void throwIfCutShort(const VulkanContext& ctx, const Scene& scene, accel::Kernel
                 ", or another device; no image was written");
 }
 
-// With VKRAY_KERNEL_DIR set, render_<kernel>.spv (render_<kernel>_resumable.spv for the resumable
-// variant) from that folder (docs/architecture.md, "Shaders"): a kernel edit is then timed against
-// the built-in one without rebuilding vkray. Empty when unset.
-std::vector<uint32_t> kernelFromDir(accel::Kernel kernel, bool resumable) {
+// With VKRAY_KERNEL_DIR set, render_<kernel>[_resumable][_split].spv (the variant's suffixes, as
+// CMakeLists.txt names them) from that folder (docs/architecture.md, "Shaders"): a kernel edit is
+// then timed against the built-in one without rebuilding vkray. Empty when unset.
+std::vector<uint32_t> kernelFromDir(accel::Kernel kernel, KernelVariant variant) {
     const char* dir = std::getenv("VKRAY_KERNEL_DIR");
     if (!dir || !*dir) return {};
-    const std::filesystem::path file = std::filesystem::path(dir) / ("render_" + std::string(accel::kernelName(kernel)) +
-                                                                     (resumable ? "_resumable.spv" : ".spv"));
+    const std::string suffix = std::string(variant.resumable ? "_resumable" : "") + (variant.splitViews ? "_split" : "");
+    const std::filesystem::path file =
+        std::filesystem::path(dir) / ("render_" + std::string(accel::kernelName(kernel)) + suffix + ".spv");
     std::ifstream in(file, std::ios::binary | std::ios::ate);
     if (!in) throw Error("VKRAY_KERNEL_DIR: cannot open " + file.string());
     const std::streamsize size = in.tellg();
@@ -374,20 +384,20 @@ double prepareKernel(const Scene& scene, const RenderOptions& options, accel::Ke
 KernelCache::KernelCache(const VulkanContext& ctx) : ctx_(ctx) {}
 KernelCache::~KernelCache() = default;
 
-std::span<const uint32_t> KernelCache::spirv(accel::Kernel kernel, bool resumable) {
-    auto it = spirvFromFiles_.find({kernel, resumable});
-    if (it == spirvFromFiles_.end())
-        it = spirvFromFiles_.emplace(std::pair{kernel, resumable}, kernelFromDir(kernel, resumable)).first;
+std::span<const uint32_t> KernelCache::spirv(accel::Kernel kernel, KernelVariant variant) {
+    const std::pair key{kernel, variant.index()};
+    auto it = spirvFromFiles_.find(key);
+    if (it == spirvFromFiles_.end()) it = spirvFromFiles_.emplace(key, kernelFromDir(kernel, variant)).first;
     if (!it->second.empty()) return it->second;
-    const generated::RenderKernelSpirv& k = generated::kRenderKernels[kernelIndex(kernel)];
-    return resumable ? k.resumable : k.code;
+    return generated::kRenderKernels[kernelIndex(kernel)].variants[variant.index()];
 }
 
 ComputeKernel& KernelCache::kernel(accel::Kernel kernel, const ShaderFeatures& features) {
     const Specialization spec = features.specialization();
-    auto& slot = kernels_[{{kernel, features.resumable}, spec.values}];
+    const KernelVariant variant = features.variant();
+    auto& slot = kernels_[{{kernel, variant.index()}, spec.values}];
     if (!slot)
-        slot = std::make_unique<ComputeKernel>(ctx_, spirv(kernel, features.resumable), kBindingTypes,
+        slot = std::make_unique<ComputeKernel>(ctx_, spirv(kernel, variant), kBindings,
                                                sizeof(GpuFrameParams), spec);
     return *slot;
 }
@@ -410,14 +420,16 @@ Frame renderOnGpu(const VulkanContext& ctx, const Scene& scene, const RenderOpti
 
     auto start = Clock::now();
     const PackedScene packed = packScene(scene, accel.triangleOrder);
-    SceneBuffers sceneBuffers = uploadScene(ctx, packed);
-    AccelBuffers accelBuffers = uploadAccel(ctx, accel);
+    const int viewBits = texelViewBits(ctx, texelArraySizes(packed, accel));
+    SceneBuffers sceneBuffers = uploadScene(ctx, packed, viewBits);
+    AccelBuffers accelBuffers = uploadAccel(ctx, accel, viewBits);
     rep.accelBytes = accelBuffers.bytes;
     rep.bytesUploaded = sceneBuffers.bytes + accelBuffers.bytes;
     rep.uploadMs = msSince(start);
 
     start = Clock::now();
     rep.features = renderFeatures(scene, options, accel.maxLeafTriangles, accel.kdShortStack);
+    rep.features.texelViewBits = viewBits;
     std::optional<KernelCache> ownKernels;
     if (!kernels) kernels = &ownKernels.emplace(ctx);
     ComputeKernel& kernel = kernels->kernel(accel.kernel, rep.features);

@@ -61,15 +61,16 @@ public:
     KernelCache(const KernelCache&) = delete;
     KernelCache& operator=(const KernelCache&) = delete;
 
-    // The pipeline of `kernel` for `features`: its plain or resumable SPIR-V (features.resumable),
-    // specialised with features.specialization(). The SPIR-V is the built-in one, or with
-    // VKRAY_KERNEL_DIR set render_<kernel>[_resumable].spv from that folder, read once per cache.
+    // The pipeline of `kernel` for `features`: its SPIR-V variant (features.variant(): plain,
+    // resumable, split texel views or both), specialised with features.specialization(). The
+    // SPIR-V is the built-in one, or with VKRAY_KERNEL_DIR set render_<kernel>[_resumable][_split].spv
+    // from that folder, read once per cache.
     ComputeKernel& kernel(accel::Kernel kernel, const ShaderFeatures& features);
     size_t size() const { return kernels_.size(); }
 
 private:
-    using Variant = std::pair<accel::Kernel, bool>;  // the kernel, resumable
-    std::span<const uint32_t> spirv(accel::Kernel kernel, bool resumable);
+    using Variant = std::pair<accel::Kernel, int>;  // the kernel, KernelVariant::index()
+    std::span<const uint32_t> spirv(accel::Kernel kernel, KernelVariant variant);
 
     const VulkanContext& ctx_;
     std::map<Variant, std::vector<uint32_t>> spirvFromFiles_;

@@ -12,9 +12,23 @@ constexpr vk::Format kRgba32 = vk::Format::eR32G32B32A32Uint;
 
 template <class T>
 TexelArray uploadVector(const VulkanContext& ctx, const std::vector<T>& v, vk::Format format, uint32_t texelBytes,
-                        const std::string& what) {
-    return uploadTexelArray(ctx, v.data(), v.size() * sizeof(T), format, texelBytes, what);
+                        const std::string& what, int viewBits) {
+    return uploadTexelArray(ctx, v.data(), v.size() * sizeof(T), format, texelBytes, what, viewBits);
 }
+
+template <class T>
+TexelArraySize sizeOf(const std::vector<T>& v, uint32_t texelBytes, const std::string& what) {
+    return {what, uint64_t(v.size()) * sizeof(T) / texelBytes};
+}
+
+// The arrays' names in errors, one per binding.
+const char* const kTriangles = "triangles";
+const char* const kNormals = "vertex normals";
+const char* const kMaterials = "materials";
+const char* const kLights = "lights";
+const char* const kNodes = "acceleration-structure nodes";
+const char* const kIndices = "acceleration-structure triangle indices";
+const char* const kExtra = "acceleration-structure extra data";
 
 // An order must be a permutation of the scene's triangles: a builder bug must not become a
 // kernel reading past a buffer.
@@ -82,11 +96,11 @@ PackedScene packScene(const Scene& scene, const std::vector<uint32_t>& triangleO
     return p;
 }
 
-SceneBuffers uploadScene(const VulkanContext& ctx, const PackedScene& packed) {
-    SceneBuffers b{uploadVector(ctx, packed.triangles, kRgba32, 16, "triangles"),
-                   uploadVector(ctx, packed.normals, kRgba32, 16, "vertex normals"),
-                   uploadVector(ctx, packed.materials, kRgba32, 16, "materials"),
-                   uploadVector(ctx, packed.lights, kRgba32, 16, "lights"), 0};
+SceneBuffers uploadScene(const VulkanContext& ctx, const PackedScene& packed, int viewBits) {
+    SceneBuffers b{uploadVector(ctx, packed.triangles, kRgba32, 16, kTriangles, viewBits),
+                   uploadVector(ctx, packed.normals, kRgba32, 16, kNormals, viewBits),
+                   uploadVector(ctx, packed.materials, kRgba32, 16, kMaterials, viewBits),
+                   uploadVector(ctx, packed.lights, kRgba32, 16, kLights, viewBits), 0};
     b.bytes = packed.triangles.size() * sizeof(GpuTriangle) +
               packed.normals.size() * sizeof(GpuTriangleNormals) +
               packed.materials.size() * sizeof(GpuMaterial) + packed.lights.size() * sizeof(GpuLight);
@@ -94,17 +108,23 @@ SceneBuffers uploadScene(const VulkanContext& ctx, const PackedScene& packed) {
 }
 
 void checkSceneFits(const VulkanContext& ctx, const Scene& scene) {
-    checkTexelArrayFits(ctx, uint64_t(scene.triangles.size()) * VKRAY_TRIANGLE_TEXELS, "triangles");
-    checkTexelArrayFits(ctx, uint64_t(scene.normals.size()) * VKRAY_NORMAL_TEXELS, "vertex normals");
+    checkTexelArrayFits(ctx, uint64_t(scene.triangles.size()) * VKRAY_TRIANGLE_TEXELS, kTriangles);
+    checkTexelArrayFits(ctx, uint64_t(scene.normals.size()) * VKRAY_NORMAL_TEXELS, kNormals);
 }
 
-AccelBuffers uploadAccel(const VulkanContext& ctx, const accel::GpuAccelData& data) {
-    AccelBuffers b{uploadVector(ctx, data.nodes, uintTexelFormat(data.nodeTexelBytes), data.nodeTexelBytes,
-                                "acceleration-structure nodes"),
-                   uploadVector(ctx, data.indices, vk::Format::eR32Uint, 4, "acceleration-structure triangle indices"),
-                   uploadVector(ctx, data.extra, kRgba32, 16, "acceleration-structure extra data"), 0};
+AccelBuffers uploadAccel(const VulkanContext& ctx, const accel::GpuAccelData& data, int viewBits) {
+    AccelBuffers b{uploadVector(ctx, data.nodes, uintTexelFormat(data.nodeTexelBytes), data.nodeTexelBytes, kNodes, viewBits),
+                   uploadVector(ctx, data.indices, vk::Format::eR32Uint, 4, kIndices, viewBits),
+                   uploadVector(ctx, data.extra, kRgba32, 16, kExtra, viewBits), 0};
     b.bytes = data.bytes();
     return b;
+}
+
+std::vector<TexelArraySize> texelArraySizes(const PackedScene& packed, const accel::GpuAccelData& accel) {
+    return {sizeOf(packed.triangles, 16, kTriangles), sizeOf(packed.normals, 16, kNormals),
+            sizeOf(packed.materials, 16, kMaterials), sizeOf(packed.lights, 16, kLights),
+            sizeOf(accel.nodes, accel.nodeTexelBytes, kNodes), sizeOf(accel.indices, 4, kIndices),
+            sizeOf(accel.extra, 16, kExtra)};
 }
 
 }  // namespace vkray::gpu

@@ -29,7 +29,9 @@ struct SceneBuffers {
     uint64_t bytes = 0;  // uploaded, for --stats
 };
 
-SceneBuffers uploadScene(const VulkanContext& ctx, const PackedScene& packed);
+// With `viewBits` (texelViewBits of texelArraySizes) the arrays are split over views of 2^viewBits
+// texels; 0: one view each.
+SceneBuffers uploadScene(const VulkanContext& ctx, const PackedScene& packed, int viewBits = 0);
 
 // Whether the scene's own arrays fit the device's texel views, checked before anything is built or
 // packed: a scene too large fails in milliseconds, not after a long build.
@@ -41,6 +43,9 @@ struct AccelBuffers {
     uint64_t bytes = 0;
 };
 
-AccelBuffers uploadAccel(const VulkanContext& ctx, const accel::GpuAccelData& data);
+AccelBuffers uploadAccel(const VulkanContext& ctx, const accel::GpuAccelData& data, int viewBits = 0);
+
+// The lengths of every texel array a render of `packed` with `accel` binds, for texelViewBits.
+std::vector<TexelArraySize> texelArraySizes(const PackedScene& packed, const accel::GpuAccelData& accel);
 
 }  // namespace vkray::gpu

@@ -37,6 +37,7 @@ Specialization ShaderFeatures::specialization() const {
     s.set(VKRAY_SPEC_LEAF_SLOTS, singleSlotLeaves ? 1u : 4u);
     s.set(VKRAY_SPEC_PRIMARY_AOVS, primaryAovs);
     s.set(VKRAY_SPEC_KD_SHORT_STACK, uint32_t(kdShortStack));
+    s.set(VKRAY_SPEC_TEXEL_VIEW_BITS, uint32_t(texelViewBits));
     return s;
 }
 
@@ -48,7 +49,8 @@ std::vector<std::pair<std::string, bool>> ShaderFeatures::list() const {
             {"smooth normals", smoothNormals},
             {"traversal counters", countTraversal},
             {"primary-hit AOVs", primaryAovs},
-            {"one triangle per leaf-loop iteration", singleSlotLeaves}};
+            {"one triangle per leaf-loop iteration", singleSlotLeaves},
+            {"arrays split over several texel views", texelViewBits > 0}};
 }
 
 }  // namespace vkray::gpu

@@ -14,6 +14,13 @@
 
 namespace vkray::gpu {
 
+// Which of a kernel's compiled SPIR-V modules a render uses (CMakeLists.txt compiles four).
+struct KernelVariant {
+    bool resumable = false;   // VKRAY_RESUMABLE_KERNEL
+    bool splitViews = false;  // VKRAY_SPLIT_TEXEL_VIEWS
+    int index() const { return int(resumable) + 2 * int(splitViews); }  // generated::RenderKernelSpirv::variants
+};
+
 struct ShaderFeatures {
     int maxDepth = 1;
     bool reflection = false;         // a material reflects, or refracts (Fresnel reflection), and maxDepth > 1
@@ -32,6 +39,9 @@ struct ShaderFeatures {
     bool resumable = false;
     // kd-shortstack's stack entries (VKRAY_SPEC_KD_SHORT_STACK; the other kernels ignore it).
     int kdShortStack = VKRAY_KD_SHORT_STACK_SIZE;
+    // Texel arrays split over views of 2^texelViewBits texels (VKRAY_SPEC_TEXEL_VIEW_BITS; 0: every
+    // array in one view, the kernel's fetches compiled without the choice of view).
+    int texelViewBits = 0;
 
     // Which GpuPixel fields the kernel writes (render_main.glsl, storePixel): the primary-hit AOVs
     // and the counters when specialised to, and every field in the resumable variant, which reads
@@ -44,6 +54,7 @@ struct ShaderFeatures {
     // kd-shortstack's stack size as the structure's data asks (0: the default).
     void setKdShortStack(uint32_t entries) { kdShortStack = entries > 0 ? int(entries) : VKRAY_KD_SHORT_STACK_SIZE; }
     Specialization specialization() const;
+    KernelVariant variant() const { return {resumable, texelViewBits > 0}; }
     // (name, compiled in) for --stats, of the plain kernel (resumed tiles are reported apart).
     std::vector<std::pair<std::string, bool>> list() const;
 };

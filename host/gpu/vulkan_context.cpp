@@ -204,6 +204,8 @@ VulkanContext::VulkanContext(const ContextOptions& options)
 
     physical_ = std::move(devices[*chosen]);
     info_ = infos[*chosen];
+    if (options.maxTexelsPerView > 0)
+        info_.maxTexelBufferElements = std::min<uint64_t>(info_.maxTexelBufferElements, options.maxTexelsPerView);
     limits_ = physical_.getProperties().limits;
     queueFamily_ = *computeQueueFamily(physical_);
     timestampValidBits_ = physical_.getQueueFamilyProperties()[queueFamily_].timestampValidBits;

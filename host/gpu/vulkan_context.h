@@ -37,6 +37,9 @@ struct ContextOptions {
     // the tests always.
     bool validation = false;
     std::string device;  // "" = best (discrete > integrated > virtual > cpu), "N" = index, else substring
+    // Tests: behave as if one texel view held at most this many texels (0: the device's own
+    // maxTexelBufferElements), so that small scenes take the path of arrays split over views.
+    uint64_t maxTexelsPerView = 0;
 };
 
 bool validationRequestedByEnvironment();

@@ -22,16 +22,15 @@
 // Node `index`, through the nodes' texel view.
 GpuBvhSphereNode loadBvhNode(uint index) {
     const int k = int(uint(VKRAY_BVH_SPHERE_NODE_TEXELS) * index);
-    return GpuBvhSphereNode(floatTexel(nodeTexels, k), floatTexel(nodeTexels, k + 1), floatTexel(nodeTexels, k + 2),
-                            floatTexel(nodeTexels, k + 3), texelFetch(nodeTexels, k + 4));
+    return GpuBvhSphereNode(nodeFloatTexel(k), nodeFloatTexel(k + 1), nodeFloatTexel(k + 2), nodeFloatTexel(k + 3),
+                            nodeTexel(k + 4));
 }
 #else
 // Node `index`, through the nodes' texel view.
 GpuBvhNode loadBvhNode(uint index) {
     const int k = int(uint(VKRAY_BVH_NODE_TEXELS) * index);
-    return GpuBvhNode(floatTexel(nodeTexels, k), floatTexel(nodeTexels, k + 1), floatTexel(nodeTexels, k + 2),
-                      floatTexel(nodeTexels, k + 3), floatTexel(nodeTexels, k + 4), floatTexel(nodeTexels, k + 5),
-                      texelFetch(nodeTexels, k + 6));
+    return GpuBvhNode(nodeFloatTexel(k), nodeFloatTexel(k + 1), nodeFloatTexel(k + 2), nodeFloatTexel(k + 3),
+                      nodeFloatTexel(k + 4), nodeFloatTexel(k + 5), nodeTexel(k + 6));
 }
 #endif
 

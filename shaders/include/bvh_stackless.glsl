@@ -17,7 +17,7 @@
 #include "triangle.glsl"
 
 // Inner node `index`'s parent link: parent << 2 | its slot there (shared/bvh_layout.h).
-uint bvhParentLink(uint index) { return texelFetch(indexTexels, int(index)).x; }
+uint bvhParentLink(uint index) { return indexTexel(int(index)).x; }
 
 // Component i of v, by selects (a dynamic index made llvmpipe keep the vector in memory).
 float bvhPick(vec4 v, int i) { return i == 0 ? v.x : (i == 1 ? v.y : (i == 2 ? v.z : v.w)); }

@@ -16,12 +16,12 @@
 
 // Node i's parent link and box, through the extra data's texel view: two texels.
 KdNodeExtra kdExtraAt(uint i) {
-    const uvec4 a = texelFetch(extraTexels, int(2u * i)), b = texelFetch(extraTexels, int(2u * i + 1u));
+    const uvec4 a = extraTexel(int(2u * i)), b = extraTexel(int(2u * i + 1u));
     return KdNodeExtra(uintBitsToFloat(a.xyz), a.w, uintBitsToFloat(b.xyz), b.w);
 }
 
 // Node i's parent link alone: the first of its two texels.
-uint kdParentOf(uint i) { return texelFetch(extraTexels, int(2u * i)).w; }
+uint kdParentOf(uint i) { return extraTexel(int(2u * i)).w; }
 
 // One climbing step from `node`, an ancestor of the leaf just left: whether its box still holds part
 // of the segment past segMin (then the segment becomes that part and the walk descends from there);

@@ -37,14 +37,13 @@
 // The root box, from the KdTreeHeader in the first VKRAY_KD_HEADER_TEXELS texels of the nodes:
 // (lo.x, lo.y), (lo.z, nodeCount), (hi.x, hi.y), (hi.z, indexCount).
 void kdRootBox(out vec3 lo, out vec3 hi) {
-    const uvec2 a = texelFetch(nodeTexels, 0).xy, b = texelFetch(nodeTexels, 1).xy,
-                c = texelFetch(nodeTexels, 2).xy, d = texelFetch(nodeTexels, 3).xy;
+    const uvec2 a = nodeTexel(0).xy, b = nodeTexel(1).xy, c = nodeTexel(2).xy, d = nodeTexel(3).xy;
     lo = uintBitsToFloat(uvec3(a, b.x));
     hi = uintBitsToFloat(uvec3(c, d.x));
 }
 
 // Node i (KdNode: (word0, word1), see kd_layout.h).
-uvec2 kdNode(uint i) { return texelFetch(nodeTexels, int(i) + VKRAY_KD_HEADER_TEXELS).xy; }
+uvec2 kdNode(uint i) { return nodeTexel(int(i) + VKRAY_KD_HEADER_TEXELS).xy; }
 
 bool kdIsLeaf(uvec2 n) { return (n.y & 3u) == VKRAY_KD_LEAF_TAG; }
 uint kdAxis(uvec2 n) { return n.y & 3u; }
@@ -290,7 +289,7 @@ uint kdRestart(inout KdRestartPoint p, float passMax, uint passMaxAxis, inout fl
 }
 
 // A leaf lists its triangles in the index list: a triangle may lie in several leaves.
-uint slotTriangle(uint slot) { return texelFetch(indexTexels, int(slot)).x; }
+uint slotTriangle(uint slot) { return indexTexel(int(slot)).x; }
 
 // The step onto leaf `n` that a descent loop ended at: false when it ended elsewhere, at the step
 // cap or cut short by the driver (the pass then ends unfinished).

@@ -56,8 +56,8 @@ bool kdEntersAt(KdRay r, vec3 lo, vec3 hi, float segMin, uint minAxis, inout KdP
 uint kdRopeOf(KdRay r, uint leaf, uint exitAxis) {
     const bool up = (exitAxis == 0u ? r.dir.x : (exitAxis == 1u ? r.dir.y : r.dir.z)) > 0.0;
     const int base = int(VKRAY_KD_ROPE_TEXELS * leaf);
-    if (exitAxis == 0u) return texelFetch(extraTexels, base + (up ? 1 : 0)).w;
-    const uvec4 yz = texelFetch(extraTexels, base + 2);
+    if (exitAxis == 0u) return extraTexel(base + (up ? 1 : 0)).w;
+    const uvec4 yz = extraTexel(base + 2);
     return exitAxis == 1u ? (up ? yz.y : yz.x) : (up ? yz.w : yz.z);
 }
 
@@ -69,7 +69,7 @@ uint kdRopeOf(KdRay r, uint leaf, uint exitAxis) {
 bool kdEnterRope(KdRay r, uint rope, float passMax, uint passMaxAxis, inout float segMin, inout uint minAxis,
                  inout float segMax, inout uint maxAxis, inout KdPass pass) {
     const int at = int(VKRAY_KD_ROPE_TEXELS * rope);
-    const vec3 lo = uintBitsToFloat(texelFetch(extraTexels, at).xyz), hi = uintBitsToFloat(texelFetch(extraTexels, at + 1).xyz);
+    const vec3 lo = uintBitsToFloat(extraTexel(at).xyz), hi = uintBitsToFloat(extraTexel(at + 1).xyz);
     if (!kdEntersAt(r, lo, hi, segMax, maxAxis, pass)) return false;
     segMin = segMax;
     minAxis = maxAxis;

@@ -36,9 +36,11 @@ using uvec4 = glm::uvec4;
 // storage-buffer load at a per-invocation address is a loop over the SIMD lanes with a
 // bounds-checked branch per 32-bit word, while a texel fetch loads one 16-byte texel per lane and
 // transposes (docs/benchmarks.md, "Faster kernels on lavapipe" and "Node steps apart from leaves").
-// Being read only through views, an array is bounded by maxTexelBufferElements texels (128 Mi on
-// lavapipe and most GPUs: 2 GiB of 16-byte texels), not by maxStorageBufferRange (128 MiB on
-// lavapipe).
+// Being read only through views, an array is bounded by maxTexelBufferElements texels per view (128
+// Mi on lavapipe and most GPUs: 2 GiB of 16-byte texels), not by maxStorageBufferRange (128 MiB on
+// lavapipe), and each binding is an array of VKRAY_TEXEL_VIEWS views, each its own buffer, over
+// which a longer array is split (VKRAY_SPEC_TEXEL_VIEW_BITS): up to 16 GiB of 16-byte texels.
+#define VKRAY_TEXEL_VIEWS 8
 #define VKRAY_BINDING_TRIANGLE_TEXELS 3  // the triangles as RGBA32UI: texels 3k..3k+2 = GpuTriangle k
 // The acceleration structure, in the layout its own header defines (shared/bvh_layout.h,
 // shared/kd_layout.h); a view the structure does not use holds a one-texel dummy.
@@ -81,7 +83,11 @@ using uvec4 = glm::uvec4;
 #define VKRAY_SPEC_PRIMARY_AOVS 8
 // int: kd-shortstack's stack entries (kd_stack.glsl; --kd-short-stack, default VKRAY_KD_SHORT_STACK_SIZE).
 #define VKRAY_SPEC_KD_SHORT_STACK 9
-#define VKRAY_SPEC_COUNT 10
+// int: log2 of the texels of one view when texel arrays are split over several views of a binding
+// (VKRAY_TEXEL_VIEWS; read by the kernels' VKRAY_SPLIT_TEXEL_VIEWS variant, bindings.glsl); 0 when
+// every array fits one view (the usual variant).
+#define VKRAY_SPEC_TEXEL_VIEW_BITS 10
+#define VKRAY_SPEC_COUNT 11
 #define VKRAY_SINGLE_SLOT_LEAF_LIMIT 128
 
 // ---- GpuPixel.flags ------------------------------------------------------------------------------

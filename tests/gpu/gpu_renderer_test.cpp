@@ -202,9 +202,9 @@ TEST(GpuRenderer, FeaturesFollowTheScene) {
     EXPECT_FALSE(f.reflection);
 }
 
-TEST(GpuRenderer, DataBeyondMaxTexelBufferElementsIsAnErrorBeforeAllocating) {
+TEST(GpuRenderer, DataBeyondEveryViewOfABindingIsAnErrorBeforeAllocating) {
     const auto& ctx = test::gpuContext();
-    const size_t tooBig = (size_t(ctx.info().maxTexelBufferElements) + 1) * 16;
+    const size_t tooBig = (size_t(gpu::maxTexelArray(ctx)) + 1) * 16;
     try {
         // No data behind the pointer: the limit must be checked before anything is read or allocated.
         gpu::uploadTexelArray(ctx, nullptr, tooBig, vk::Format::eR32G32B32A32Uint, 16, "triangles");
