@@ -59,7 +59,7 @@ inline void populatePages(const void* begin, const void* end) {
 }
 
 namespace detail {
-// Set by resizeFirstTouched around the one resize whose elements it then constructs itself.
+// Set around the one resize whose elements the caller then constructs, or leaves to be written.
 inline thread_local bool gDeferValueInit = false;
 }  // namespace detail
 
@@ -88,6 +88,17 @@ struct FirstTouchAllocator : std::allocator<T> {
 template <class T>
 using BuildArray = std::vector<T, FirstTouchAllocator<T>>;
 
+namespace detail {
+// Grows v to n elements within its reserved storage without writing any (FirstTouchAllocator
+// skips the value-initialisation).
+template <class T>
+void resizeUnconstructed(BuildArray<T>& v, size_t n) {
+    gDeferValueInit = true;
+    v.resize(n);
+    gDeferValueInit = false;
+}
+}  // namespace detail
+
 // Resizes the empty vector v to n value-initialised elements.
 template <class T, class Alloc>
 void resizeFirstTouched(std::vector<T, Alloc>& v, size_t n) {
@@ -97,9 +108,7 @@ void resizeFirstTouched(std::vector<T, Alloc>& v, size_t n) {
     } else if constexpr (kDeferrable) {
         // Each worker value-initialises a run of elements, which also takes that run's page faults.
         v.reserve(n);
-        detail::gDeferValueInit = true;
-        v.resize(n);  // no element written
-        detail::gDeferValueInit = false;
+        detail::resizeUnconstructed(v, n);
         T* data = v.data();
         tbb::parallel_for(tbb::blocked_range<size_t>(0, n, std::max<size_t>(1, (size_t(1) << 18) / sizeof(T))),
                           [data](const tbb::blocked_range<size_t>& r) {
@@ -127,9 +136,7 @@ void resizeForOverwrite(BuildArray<T>& v, size_t n) {
     }
     v.reserve(n);
     populatePages(v.data(), v.data() + n);
-    detail::gDeferValueInit = true;
-    v.resize(n);  // no element written
-    detail::gDeferValueInit = false;
+    detail::resizeUnconstructed(v, n);
 }
 
 }  // namespace vkray

@@ -7,7 +7,6 @@
 #include <algorithm>
 #include <cstddef>
 #include <cstdint>
-#include <type_traits>
 #include <vector>
 
 #include <tbb/parallel_for.h>
@@ -52,14 +51,10 @@ void countingPass(const std::vector<T, A>& in, std::vector<T, A>& out, int shift
 }  // namespace radix_detail
 
 // Sorts `values` stably by bits [lowBit, lowBit + bits) of key(value), a uint64_t.
-template <class T, class A, class Key>
-void radixSortBits(std::vector<T, A>& values, int lowBit, int bits, const Key& key) {
-    std::vector<T, A> scratch;
-    if constexpr (std::is_same_v<A, FirstTouchAllocator<T>>) {
-        resizeForOverwrite(scratch, values.size());  // each pass writes every slot
-    } else {
-        resizeFirstTouched(scratch, values.size());
-    }
+template <class T, class Key>
+void radixSortBits(BuildArray<T>& values, int lowBit, int bits, const Key& key) {
+    BuildArray<T> scratch;
+    resizeForOverwrite(scratch, values.size());  // each pass writes every slot
     for (int done = 0; done < bits; done += radix_detail::kDigitBits) {
         radix_detail::countingPass(values, scratch, lowBit + done, key);
         values.swap(scratch);

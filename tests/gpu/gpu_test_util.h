@@ -24,14 +24,15 @@
 
 namespace vkray::test {
 
-// VKRAY_TEST_DEVICE picks the device (index or name substring); default: vkray's usual choice,
-// which is lavapipe on a machine without a GPU.
+// The test device's options: VKRAY_TEST_DEVICE picks it (index or name substring); default:
+// vkray's usual choice, which is lavapipe on a machine without a GPU. Validation always on.
+inline gpu::ContextOptions gpuContextOptions() {
+    const char* dev = std::getenv("VKRAY_TEST_DEVICE");
+    return gpu::ContextOptions{.validation = true, .device = dev ? dev : ""};
+}
+
 inline const gpu::VulkanContext& gpuContext() {
-    static std::unique_ptr<gpu::VulkanContext> ctx = [] {
-        const char* dev = std::getenv("VKRAY_TEST_DEVICE");
-        return std::make_unique<gpu::VulkanContext>(
-            gpu::ContextOptions{.validation = true, .device = dev ? dev : ""});
-    }();
+    static std::unique_ptr<gpu::VulkanContext> ctx = std::make_unique<gpu::VulkanContext>(gpuContextOptions());
     return *ctx;
 }
 

@@ -21,8 +21,9 @@ namespace {
 
 // A context like the test device, except that one view holds at most `texels` texels.
 gpu::VulkanContext contextWithViewsOf(uint64_t texels) {
-    const char* dev = std::getenv("VKRAY_TEST_DEVICE");
-    return gpu::VulkanContext(gpu::ContextOptions{.validation = true, .device = dev ? dev : "", .maxTexelsPerView = texels});
+    gpu::ContextOptions options = test::gpuContextOptions();
+    options.maxTexelsPerView = texels;
+    return gpu::VulkanContext(options);
 }
 
 uint64_t largestArray(const Scene& scene, const accel::GpuAccelData& data) {
@@ -81,8 +82,9 @@ TEST(TexelViews, ASplitArrayIsUploadedViewByView) {
     ASSERT_EQ(array.buffers.size(), 3u);
     EXPECT_EQ(array.buffers[0].size(), 64u * 16);
     EXPECT_EQ(array.buffers[2].size(), 22u * 16);
-    if (array.buffers[2].hostVisible())
+    if (array.buffers[2].hostVisible()) {
         EXPECT_EQ(static_cast<const uint32_t*>(array.buffers[2].mapped())[0], 4u * 128);
+    }
 }
 
 }  // namespace

@@ -217,23 +217,25 @@ NodeEvents rootEvents(const std::vector<Triangle>& tris, const std::vector<uint8
         for (size_t t = block * kBlock, end = std::min(tris.size(), t + kBlock); t < end; ++t)
             if (!degenerate[t]) f(uint32_t(t), boundsOf(tris[t]));
     };
+    // The union of boxes, min and max: exact in any order.
+    const auto grow = [](std::optional<Box>& box, const Box& b) {
+        box = box ? Box{glm::min(box->lo, b.lo), glm::max(box->hi, b.hi)} : b;
+    };
     std::vector<std::array<size_t, 3>> first(blocks + 1, std::array<size_t, 3>{});  // block b's first event per axis
     std::vector<std::optional<Box>> boxes(blocks);
     tbb::parallel_for(size_t(0), blocks, [&](size_t block) {
         std::array<size_t, 3>& count = first[block + 1];
-        std::optional<Box>& box = boxes[block];
         forEachTriangle(block, [&](uint32_t t, const Box& b) {
-            box = box ? Box{glm::min(box->lo, b.lo), glm::max(box->hi, b.hi)} : b;
+            grow(boxes[block], b);
             forEachEvent(t, b, [&](int k, const Event&) { ++count[k]; });
         });
     });
-    bool any = false;
+    std::optional<Box> all;
     for (size_t block = 0; block < blocks; ++block) {
         for (int k = 0; k < 3; ++k) first[block + 1][k] += first[block][k];
-        if (!boxes[block]) continue;
-        root = any ? Box{glm::min(root.lo, boxes[block]->lo), glm::max(root.hi, boxes[block]->hi)} : *boxes[block];
-        any = true;
+        if (boxes[block]) grow(all, *boxes[block]);
     }
+    if (all) root = *all;
     NodeEvents ev;
     for (int k = 0; k < 3; ++k) resizeForOverwrite(ev[k], first[blocks][k]);
     tbb::parallel_for(size_t(0), blocks, [&](size_t block) {
