@@ -36,19 +36,11 @@ const bool kKdRopes = true;
 const bool kKdRopes = false;
 #endif
 
-// Whether the ray is inside box [lo, hi] at segMin, a point of its closed box (the exit of a leaf that
-// the box's face holds): each near plane of the other axes is hit at or before segMin, so only an
-// exact tie, ordered after segMin by the pass's ranks, puts the ray outside. The near plane of
-// segMin's own axis is segMin's plane. Parallel slabs hold the ray (the leaf's slab does).
-bool kdNearSlabHolds(KdRay r, uint axis, float nearPlane, float segMin, uint minAxis, inout KdPass pass) {
-    return axis == minAxis || r.parallel[axis] || kdCompare(pass, kdPlaneHit(r, axis, nearPlane), axis, segMin, minAxis) <= 0;
-}
-bool kdEntersAt(KdRay r, vec3 lo, vec3 hi, float segMin, uint minAxis, inout KdPass pass) {
-    const vec3 nearPlane = mix(hi, lo, greaterThan(r.dir, vec3(0.0)));
-    // Unrolled: no loop iterations.
-    return kdNearSlabHolds(r, 0u, nearPlane.x, segMin, minAxis, pass) &&
-           kdNearSlabHolds(r, 1u, nearPlane.y, segMin, minAxis, pass) &&
-           kdNearSlabHolds(r, 2u, nearPlane.z, segMin, minAxis, pass);
+// kd-ropes: whether the rope's node holds the ray at the exit of the leaf whose segment is [segMin,
+// segMax], in this pass's order of tied planes, with no plane hit (ropeHoldsExit in
+// kd_traversal.cpp, which gives the argument).
+bool kdRopeHoldsExit(float segMin, uint minAxis, float segMax, uint maxAxis, float passMin) {
+    return segMin != segMax || (minAxis == maxAxis && segMin > passMin);
 }
 
 // kd-ropes: the rope of the face by which the ray leaves leaf `leaf` along `exitAxis` (< 3: the
@@ -63,14 +55,14 @@ uint kdRopeOf(KdRay r, uint leaf, uint exitAxis) {
 
 // kd-ropes: goes on at node `rope` past the leaf whose exit the segment ends at, the segment from
 // the exit to the pass's end clipped to that node's box (a descent from there crosses only the
-// node's own splits). False, and the segment untouched, when in this pass's order of tied planes
-// the ray is not yet inside that node (it left the leaf exactly through an edge or corner): the
-// walk then restarts as kd-restart does. KdRestartTracer::walkPass is the CPU twin.
-bool kdEnterRope(KdRay r, uint rope, float passMax, uint passMaxAxis, inout float segMin, inout uint minAxis,
-                 inout float segMax, inout uint maxAxis, inout KdPass pass) {
+// node's own splits). False, and the segment untouched, when the ray may not be inside that node yet
+// (kdRopeHoldsExit: it left the leaf through an edge or corner in no length): the walk then restarts
+// as kd-restart does. KdRestartTracer::walkPass is the CPU twin.
+bool kdEnterRope(KdRay r, uint rope, float passMin, float passMax, uint passMaxAxis, inout float segMin,
+                 inout uint minAxis, inout float segMax, inout uint maxAxis, inout KdPass pass) {
     const int at = int(VKRAY_KD_ROPE_TEXELS * rope);
+    if (!kdRopeHoldsExit(segMin, minAxis, segMax, maxAxis, passMin)) return false;
     const vec3 lo = uintBitsToFloat(extraTexel(at).xyz), hi = uintBitsToFloat(extraTexel(at + 1).xyz);
-    if (!kdEntersAt(r, lo, hi, segMax, maxAxis, pass)) return false;
     segMin = segMax;
     minAxis = maxAxis;
     segMax = passMax;
@@ -81,7 +73,7 @@ bool kdEnterRope(KdRay r, uint rope, float passMax, uint passMaxAxis, inout floa
 
 bool kdWalkPass(KdRay r, WatertightRay w, const bool anyHit, float segMin, uint minAxis, float segMax,
                 uint maxAxis, inout KdPass pass, inout int steps, inout Hit best) {
-    const float globalMax = segMax;
+    const float globalMin = segMin, globalMax = segMax;
     const uint globalMaxAxis = maxAxis;
     uint node = 0u;
     KdRestartPoint restart = kdRootRestart();
@@ -108,7 +100,7 @@ bool kdWalkPass(KdRay r, WatertightRay w, const bool anyHit, float segMin, uint 
             // the pushed-down node with push-down).
             const uint rope = kKdRopes ? kdRopeOf(r, node, maxAxis) : VKRAY_KD_NO_ROPE;
             passDone = kKdRopes && rope == VKRAY_KD_NO_ROPE;
-            if (kKdRopes && !passDone && kdEnterRope(r, rope, globalMax, globalMaxAxis, segMin, minAxis, segMax, maxAxis, pass))
+            if (kKdRopes && !passDone && kdEnterRope(r, rope, globalMin, globalMax, globalMaxAxis, segMin, minAxis, segMax, maxAxis, pass))
                 node = rope;
             else if (!passDone)
                 node = kdRestart(restart, globalMax, globalMaxAxis, segMin, minAxis, segMax, maxAxis);

@@ -338,11 +338,34 @@ private:
     const KdTree& tree_;
 };
 
-// Ropes go on from a leaf where a restart from the root would arrive: the same hits as kd-restart,
-// and along the whole ray kd-restart's leaves in the same order, with in between only leaves that
+// kd-restart's leaves along the whole ray in kd-restart's order, with in between only leaves that
 // hold no triangle (ropes lead onto empty leaves that kd-restart passes by their parents' flags) or
 // that the ray crosses in no length (a leaf thinner than the rounding of t, which kd-restart's
-// descent steps over); no restart, and fewer node steps than kd-restart and kd-stack in all.
+// descent steps over); counts those in `extra`.
+void expectLeavesOfRestart(const KdTree& tree, const KdTracer& ropes, const KdTracer& restart, const geometry::Ray& ray,
+                           size_t& extra) {
+    geometry::TraversalCounters unused;
+    LeafLog mine(tree), theirs(tree);
+    ropes.walk(ray, {0.0, kInf}, mine, unused);
+    restart.walk(ray, {0.0, kInf}, theirs, unused);
+    size_t j = 0;
+    double lastExit = 0.0;
+    for (const auto& [leaf, exit] : mine.leaves) {
+        if (j < theirs.leaves.size() && theirs.leaves[j].first == leaf) {
+            ASSERT_EQ(theirs.leaves[j].second, exit) << "leaf " << leaf;
+            ++j;
+        } else {
+            ASSERT_TRUE(tree.nodes[leaf].triangleCount() == 0 || exit == lastExit) << "leaf " << leaf;
+            ++extra;
+        }
+        lastExit = exit;
+    }
+    ASSERT_EQ(j, theirs.leaves.size()) << "a leaf of kd-restart's walk was not reached";
+}
+
+// Ropes go on from a leaf where a restart from the root would arrive: the same hits as kd-restart
+// and its leaves (expectLeavesOfRestart); no restart, and fewer node steps than kd-restart and
+// kd-stack in all.
 TEST(KdRopes, SameLeavesAsRestartInFewerSteps) {
     const Fixture f(test::meshScene(), kd::Traversal::Ropes);
     const auto vertices = geometry::triangleVertices(f.scene);
@@ -353,28 +376,15 @@ TEST(KdRopes, SameLeavesAsRestartInFewerSteps) {
     size_t extra = 0;
     for (int k = 0; k < 2000; ++k) {
         const geometry::Ray ray{test::randomPointIn(rng, f.tree.header.lo, f.tree.header.hi, 1.0), test::randomDirection(rng)};
-        geometry::TraversalCounters a, b, unused;
+        geometry::TraversalCounters a, b;
         const geometry::Hit got = f.kd->closest(ray, kInf, &a), want = restart->closest(ray, kInf, &b);
         stack->closest(ray, kInf, &stacked);
         ASSERT_EQ(got.triangle, want.triangle) << "ray " << k;
         ASSERT_EQ(got.t, want.t) << "ray " << k;
         ASSERT_EQ(a.restarts, 0u) << "ray " << k;
-        LeafLog mine(f.tree), theirs(f.tree);
-        f.kd->walk(ray, {0.0, kInf}, mine, unused);
-        restart->walk(ray, {0.0, kInf}, theirs, unused);
-        size_t j = 0;
-        double lastExit = 0.0;
-        for (const auto& [leaf, exit] : mine.leaves) {
-            if (j < theirs.leaves.size() && theirs.leaves[j].first == leaf) {
-                ASSERT_EQ(theirs.leaves[j].second, exit) << "ray " << k << " leaf " << leaf;
-                ++j;
-            } else {
-                ASSERT_TRUE(f.tree.nodes[leaf].triangleCount() == 0 || exit == lastExit) << "ray " << k << " leaf " << leaf;
-                ++extra;
-            }
-            lastExit = exit;
-        }
-        ASSERT_EQ(j, theirs.leaves.size()) << "ray " << k << ": a leaf of kd-restart's walk was not reached";
+        SCOPED_TRACE("ray " + std::to_string(k));
+        expectLeavesOfRestart(f.tree, *f.kd, *restart, ray, extra);
+        if (HasFatalFailure()) return;
         roped.nodes += a.nodes;
         rooted.nodes += b.nodes;
     }
@@ -382,6 +392,37 @@ TEST(KdRopes, SameLeavesAsRestartInFewerSteps) {
                 (unsigned long long)roped.nodes, (unsigned long long)rooted.nodes, (unsigned long long)stacked.nodes, extra);
     EXPECT_LT(roped.nodes, rooted.nodes);
     EXPECT_LT(roped.nodes, stacked.nodes);
+}
+
+// Rays through the exact corners of leaves (as in RaysThroughLeafCornersVisitEachLeafOnce: two or
+// three split planes crossed at the same t), where a leaf may be left through an edge or corner in
+// no length and the rope's node is entered without a test of its near faces only when that cannot
+// be wrong (ropeHoldsExit): still kd-restart's hits and leaves.
+TEST(KdRopes, SameLeavesAsRestartThroughLeafCorners) {
+    const Fixture f(test::randomSoup(21, 2000), kd::Traversal::Ropes);
+    const auto restart = makeKdTracer(kd::Traversal::Restart, f.tree, geometry::triangleVertices(f.scene));
+    std::mt19937 rng(5);
+    size_t rays = 0, extra = 0;
+    geometry::TraversalCounters roped;
+    for (uint32_t i = 0; i < f.tree.nodes.size(); ++i) {
+        if (!f.tree.nodes[i].isLeaf()) continue;
+        const gpu::KdNodeExtra& box = f.tree.extra[i];
+        const glm::dvec3 corner(rng() % 2 ? box.lo.x : box.hi.x, rng() % 2 ? box.lo.y : box.hi.y,
+                                rng() % 2 ? box.lo.z : box.hi.z);
+        const glm::dvec3 d(rng() % 2 ? 1.0 : -1.0, rng() % 2 ? 1.0 : -1.0, rng() % 2 ? 1.0 : -1.0);
+        const geometry::Ray ray{corner - 3.0 * d, d};
+        const geometry::Hit got = f.kd->closest(ray, kInf, &roped), want = restart->closest(ray, kInf);
+        ASSERT_EQ(got.triangle, want.triangle) << "leaf " << i;
+        ASSERT_EQ(got.t, want.t) << "leaf " << i;
+        SCOPED_TRACE("corner of leaf " + std::to_string(i));
+        expectLeavesOfRestart(f.tree, *f.kd, *restart, ray, extra);
+        if (HasFatalFailure()) return;
+        ++rays;
+    }
+    ASSERT_EQ(roped.capped, 0u);
+    EXPECT_GT(roped.restarts, 0u);  // some leave a leaf through its edge in no length: the restart is taken
+    std::printf("%zu rays through leaf corners: %llu restarts, %zu leaves beyond kd-restart's\n", rays,
+                (unsigned long long)roped.restarts, extra);
 }
 
 // Every rope of every leaf names the smallest node beyond its face: a node whose box starts at the
