@@ -1,4 +1,5 @@
-// Large arrays of a build, first touched by all workers of the calling oneTBB arena.
+// Large arrays of a build, and copies into fresh memory, first touched by all workers of the
+// calling oneTBB arena.
 //
 // A fresh multi-megabyte std::vector gets its pages from the kernel on first write; value-
 // initialising it in resize() takes every page fault on one thread, and on the development VM a
@@ -23,6 +24,7 @@
 #include <algorithm>
 #include <cstddef>
 #include <cstdint>
+#include <cstring>
 #include <memory>
 #include <type_traits>
 #include <utility>
@@ -56,6 +58,34 @@ inline void populatePages(const void* begin, const void* end) {
     (void)begin;
     (void)end;
 #endif
+}
+
+// Copies n bytes into fresh memory (a mapped Vulkan buffer, say) on all workers of the calling
+// oneTBB arena, in runs of 4 MiB: the destination's page faults spread over them, as populatePages
+// spreads a build array's. Below two runs, a plain memcpy.
+inline void parallelCopy(void* dst, const void* src, size_t n) {
+    constexpr size_t kChunk = size_t(1) << 22;
+    if (n < 2 * kChunk) {
+        std::memcpy(dst, src, n);
+        return;
+    }
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, (n + kChunk - 1) / kChunk), [&](const tbb::blocked_range<size_t>& r) {
+        for (size_t c = r.begin(); c < r.end(); ++c) {
+            const size_t at = c * kChunk;
+            std::memcpy(static_cast<char*>(dst) + at, static_cast<const char*>(src) + at, std::min(n, at + kChunk) - at);
+        }
+    });
+}
+
+// A std::vector of n elements that workers then write slot by slot (a GPU upload's arrays): its
+// pages populated in parallel first, so the zeroing of resize() and the workers' writes take no
+// page faults on one thread.
+template <class T>
+void sizeForParallelWrite(std::vector<T>& v, size_t n) {
+    v.clear();
+    v.reserve(n);
+    populatePages(v.data(), v.data() + n);
+    v.resize(n);
 }
 
 namespace detail {

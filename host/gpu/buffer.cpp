@@ -5,6 +5,7 @@
 #include <cstring>
 
 #include "core/error.h"
+#include "core/parallel_alloc.h"
 #include "shared/gpu_layout.h"
 
 namespace vkray::gpu {
@@ -124,7 +125,7 @@ void uploadThroughStaging(const VulkanContext& ctx, const Buffer& target, const 
     const Buffer staging(ctx, chunk, vk::BufferUsageFlagBits::eTransferSrc, MemoryUse::Upload, what + " (staging)");
     for (size_t offset = 0; offset < bytes; offset += chunk) {
         const size_t n = std::min(chunk, bytes - offset);
-        std::memcpy(staging.mapped(), static_cast<const char*>(data) + offset, n);
+        parallelCopy(staging.mapped(), static_cast<const char*>(data) + offset, n);
         OneShotCommands commands(ctx);
         commands.begin().copyBuffer(staging.handle(), target.handle(),
                                     vk::BufferCopy{.srcOffset = 0, .dstOffset = offset, .size = n});
@@ -158,7 +159,7 @@ TexelArray uploadTexelArray(const VulkanContext& ctx, const void* data, size_t b
                                                     BU::eUniformTexelBuffer | BU::eTransferDst, MemoryUse::DeviceLocal, part);
         const void* src = static_cast<const char*>(data) + first;
         if (n > 0) {
-            if (target.hostVisible()) std::memcpy(target.mapped(), src, n);
+            if (target.hostVisible()) parallelCopy(target.mapped(), src, n);
             else uploadThroughStaging(ctx, target, src, n, part);
         }
         array.views.emplace_back(ctx, target, format, texelBytes, part);

@@ -1,6 +1,10 @@
 #include "gpu/scene_buffers.h"
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
 #include "core/error.h"
+#include "core/parallel_alloc.h"
 #include "geometry/ray_triangle.h"
 
 namespace vkray::gpu {
@@ -61,24 +65,31 @@ PackedScene packScene(const Scene& scene, const std::vector<uint32_t>& triangleO
     if (!triangleOrder.empty()) checkPermutation(triangleOrder, count);
     const auto sceneIndex = [&](size_t slot) { return triangleOrder.empty() ? slot : triangleOrder[slot]; };
     PackedScene p;
-    p.triangles.reserve(count);
-    for (size_t slot = 0; slot < count; ++slot) {
-        const size_t i = sceneIndex(slot);
-        const Triangle& t = scene.triangles[i];
-        // A zero-area triangle is never hit (docs/shading.md), but collinear float vertices can
-        // still give the kernels' float edge functions a non-zero det. Decided once here, exactly,
-        // by the CPU's test (the kd builder leaves the same triangles out): such a triangle becomes
-        // the point p0, whose edge functions are exactly 0 in any arithmetic.
-        const bool degenerate = geometry::isDegenerate({glm::dvec3(t.p0), glm::dvec3(t.p1), glm::dvec3(t.p2)});
-        p.triangles.push_back({.p0 = t.p0, .material = t.material, .p1 = degenerate ? t.p0 : t.p1,
-                               .original = uint32_t(i), .p2 = degenerate ? t.p0 : t.p2, .pad0 = 0});
-    }
-    if (!scene.normals.empty()) {
-        p.normals.reserve(count);
-        for (size_t slot = 0; slot < count; ++slot) {
-            const TriangleNormals& n = scene.normals.at(sceneIndex(slot));
-            p.normals.push_back({withW(n.n0, 0.0f), withW(n.n1, 0.0f), withW(n.n2, 0.0f)});
+    // Slot by slot on all workers, into arrays whose pages they populate first: a scene of tens of
+    // millions of triangles packs gigabytes.
+    sizeForParallelWrite(p.triangles, count);
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, count, 4096), [&](const tbb::blocked_range<size_t>& r) {
+        for (size_t slot = r.begin(); slot < r.end(); ++slot) {
+            const size_t i = sceneIndex(slot);
+            const Triangle& t = scene.triangles[i];
+            // A zero-area triangle is never hit (docs/shading.md), but collinear float vertices can
+            // still give the kernels' float edge functions a non-zero det. Decided once here, exactly,
+            // by the CPU's test (the kd builder leaves the same triangles out): such a triangle
+            // becomes the point p0, whose edge functions are exactly 0 in any arithmetic.
+            const bool degenerate = geometry::isDegenerate({glm::dvec3(t.p0), glm::dvec3(t.p1), glm::dvec3(t.p2)});
+            p.triangles[slot] = {.p0 = t.p0, .material = t.material, .p1 = degenerate ? t.p0 : t.p1,
+                                 .original = uint32_t(i), .p2 = degenerate ? t.p0 : t.p2, .pad0 = 0};
         }
+    });
+    if (!scene.normals.empty()) {
+        if (scene.normals.size() != count) throw Error("internal: the scene has normals for some triangles only");
+        sizeForParallelWrite(p.normals, count);
+        tbb::parallel_for(tbb::blocked_range<size_t>(0, count, 4096), [&](const tbb::blocked_range<size_t>& r) {
+            for (size_t slot = r.begin(); slot < r.end(); ++slot) {
+                const TriangleNormals& n = scene.normals[sceneIndex(slot)];
+                p.normals[slot] = {withW(n.n0, 0.0f), withW(n.n1, 0.0f), withW(n.n2, 0.0f)};
+            }
+        });
     }
     for (const Material& m : scene.materials)
         p.materials.push_back({.ambient = m.ambient,
