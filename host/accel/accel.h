@@ -118,8 +118,7 @@ std::vector<std::byte> asBytes(const std::vector<T, A>& v) {
     const auto* p = reinterpret_cast<const std::byte*>(v.data());
     const size_t n = v.size() * sizeof(T);
     std::vector<std::byte> bytes;
-    bytes.reserve(n);
-    populatePages(bytes.data(), bytes.data() + n);
+    reservePopulated(bytes, n);
     bytes.assign(p, p + n);
     return bytes;
 }

@@ -77,15 +77,13 @@ inline void parallelCopy(void* dst, const void* src, size_t n) {
     });
 }
 
-// A std::vector of n elements that workers then write slot by slot (a GPU upload's arrays): its
-// pages populated in parallel first, so the zeroing of resize() and the workers' writes take no
-// page faults on one thread.
-template <class T>
-void sizeForParallelWrite(std::vector<T>& v, size_t n) {
-    v.clear();
+// Reserves storage for n elements in the empty vector v and has the kernel populate its pages in
+// parallel (populatePages); no element is constructed: the caller's resize or assign writes them
+// without page faults on one thread.
+template <class T, class A>
+void reservePopulated(std::vector<T, A>& v, size_t n) {
     v.reserve(n);
-    populatePages(v.data(), v.data() + n);
-    v.resize(n);
+    populatePages(v.data(), v.data() + n);  // storage only: no element lives there yet
 }
 
 namespace detail {
@@ -145,8 +143,7 @@ void resizeFirstTouched(std::vector<T, Alloc>& v, size_t n) {
                               for (size_t i = r.begin(); i < r.end(); ++i) ::new (static_cast<void*>(data + i)) T();
                           });
     } else {
-        v.reserve(n);
-        populatePages(v.data(), v.data() + n);  // storage only: no element lives there yet
+        reservePopulated(v, n);
         v.resize(n);
     }
 }
@@ -164,8 +161,7 @@ void resizeForOverwrite(BuildArray<T>& v, size_t n) {
         v.resize(n);
         return;
     }
-    v.reserve(n);
-    populatePages(v.data(), v.data() + n);
+    reservePopulated(v, n);
     detail::resizeUnconstructed(v, n);
 }
 

@@ -1,5 +1,7 @@
 #include "gpu/scene_buffers.h"
 
+#include <array>
+
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
@@ -14,15 +16,24 @@ vec4 withW(const glm::vec3& v, float w) { return vec4(v, w); }
 
 constexpr vk::Format kRgba32 = vk::Format::eR32G32B32A32Uint;
 
-template <class T>
-TexelArray uploadVector(const VulkanContext& ctx, const std::vector<T>& v, vk::Format format, uint32_t texelBytes,
-                        const std::string& what, int viewBits) {
-    return uploadTexelArray(ctx, v.data(), v.size() * sizeof(T), format, texelBytes, what, viewBits);
-}
+// One texel array of a render: its bytes and how the kernels read them. The one place that says
+// which format and texel size each binding has, for both its upload and texelArraySizes.
+struct ArrayBytes {
+    const void* data;
+    size_t bytes;
+    vk::Format format;
+    uint32_t texelBytes;
+    const char* what;  // the array's name in errors
+
+    TexelArray upload(const VulkanContext& ctx, int viewBits) const {
+        return uploadTexelArray(ctx, data, bytes, format, texelBytes, what, viewBits);
+    }
+    TexelArraySize size() const { return {what, uint64_t(bytes / texelBytes)}; }
+};
 
 template <class T>
-TexelArraySize sizeOf(const std::vector<T>& v, uint32_t texelBytes, const std::string& what) {
-    return {what, uint64_t(v.size()) * sizeof(T) / texelBytes};
+ArrayBytes arrayOf(const std::vector<T>& v, vk::Format format, uint32_t texelBytes, const char* what) {
+    return {v.data(), v.size() * sizeof(T), format, texelBytes, what};
 }
 
 // The arrays' names in errors, one per binding.
@@ -58,6 +69,16 @@ vk::Format uintTexelFormat(uint32_t bytes) {
     }
 }
 
+// The bindings' arrays, in SceneBuffers' and AccelBuffers' order.
+std::array<ArrayBytes, 4> sceneArrays(const PackedScene& p) {
+    return {arrayOf(p.triangles, kRgba32, 16, kTriangles), arrayOf(p.normals, kRgba32, 16, kNormals),
+            arrayOf(p.materials, kRgba32, 16, kMaterials), arrayOf(p.lights, kRgba32, 16, kLights)};
+}
+std::array<ArrayBytes, 3> accelArrays(const accel::GpuAccelData& d) {
+    return {arrayOf(d.nodes, uintTexelFormat(d.nodeTexelBytes), d.nodeTexelBytes, kNodes),
+            arrayOf(d.indices, vk::Format::eR32Uint, 4, kIndices), arrayOf(d.extra, kRgba32, 16, kExtra)};
+}
+
 }  // namespace
 
 PackedScene packScene(const Scene& scene, const std::vector<uint32_t>& triangleOrder) {
@@ -67,7 +88,7 @@ PackedScene packScene(const Scene& scene, const std::vector<uint32_t>& triangleO
     PackedScene p;
     // Slot by slot on all workers, into arrays whose pages they populate first: a scene of tens of
     // millions of triangles packs gigabytes.
-    sizeForParallelWrite(p.triangles, count);
+    resizeFirstTouched(p.triangles, count);
     tbb::parallel_for(tbb::blocked_range<size_t>(0, count, 4096), [&](const tbb::blocked_range<size_t>& r) {
         for (size_t slot = r.begin(); slot < r.end(); ++slot) {
             const size_t i = sceneIndex(slot);
@@ -83,7 +104,7 @@ PackedScene packScene(const Scene& scene, const std::vector<uint32_t>& triangleO
     });
     if (!scene.normals.empty()) {
         if (scene.normals.size() != count) throw Error("internal: the scene has normals for some triangles only");
-        sizeForParallelWrite(p.normals, count);
+        resizeFirstTouched(p.normals, count);
         tbb::parallel_for(tbb::blocked_range<size_t>(0, count, 4096), [&](const tbb::blocked_range<size_t>& r) {
             for (size_t slot = r.begin(); slot < r.end(); ++slot) {
                 const TriangleNormals& n = scene.normals[sceneIndex(slot)];
@@ -108,13 +129,10 @@ PackedScene packScene(const Scene& scene, const std::vector<uint32_t>& triangleO
 }
 
 SceneBuffers uploadScene(const VulkanContext& ctx, const PackedScene& packed, int viewBits) {
-    SceneBuffers b{uploadVector(ctx, packed.triangles, kRgba32, 16, kTriangles, viewBits),
-                   uploadVector(ctx, packed.normals, kRgba32, 16, kNormals, viewBits),
-                   uploadVector(ctx, packed.materials, kRgba32, 16, kMaterials, viewBits),
-                   uploadVector(ctx, packed.lights, kRgba32, 16, kLights, viewBits), 0};
-    b.bytes = packed.triangles.size() * sizeof(GpuTriangle) +
-              packed.normals.size() * sizeof(GpuTriangleNormals) +
-              packed.materials.size() * sizeof(GpuMaterial) + packed.lights.size() * sizeof(GpuLight);
+    const auto a = sceneArrays(packed);
+    SceneBuffers b{a[0].upload(ctx, viewBits), a[1].upload(ctx, viewBits), a[2].upload(ctx, viewBits),
+                   a[3].upload(ctx, viewBits), 0};
+    for (const ArrayBytes& array : a) b.bytes += array.bytes;
     return b;
 }
 
@@ -124,18 +142,17 @@ void checkSceneFits(const VulkanContext& ctx, const Scene& scene) {
 }
 
 AccelBuffers uploadAccel(const VulkanContext& ctx, const accel::GpuAccelData& data, int viewBits) {
-    AccelBuffers b{uploadVector(ctx, data.nodes, uintTexelFormat(data.nodeTexelBytes), data.nodeTexelBytes, kNodes, viewBits),
-                   uploadVector(ctx, data.indices, vk::Format::eR32Uint, 4, kIndices, viewBits),
-                   uploadVector(ctx, data.extra, kRgba32, 16, kExtra, viewBits), 0};
+    const auto a = accelArrays(data);
+    AccelBuffers b{a[0].upload(ctx, viewBits), a[1].upload(ctx, viewBits), a[2].upload(ctx, viewBits), 0};
     b.bytes = data.bytes();
     return b;
 }
 
 std::vector<TexelArraySize> texelArraySizes(const PackedScene& packed, const accel::GpuAccelData& accel) {
-    return {sizeOf(packed.triangles, 16, kTriangles), sizeOf(packed.normals, 16, kNormals),
-            sizeOf(packed.materials, 16, kMaterials), sizeOf(packed.lights, 16, kLights),
-            sizeOf(accel.nodes, accel.nodeTexelBytes, kNodes), sizeOf(accel.indices, 4, kIndices),
-            sizeOf(accel.extra, 16, kExtra)};
+    std::vector<TexelArraySize> sizes;
+    for (const ArrayBytes& a : sceneArrays(packed)) sizes.push_back(a.size());
+    for (const ArrayBytes& a : accelArrays(accel)) sizes.push_back(a.size());
+    return sizes;
 }
 
 }  // namespace vkray::gpu
