@@ -1,9 +1,12 @@
 // The accelerator registry: every `--accel` name (README.md, "Accelerators") resolves to the family
 // and traversal it names, with its preset and the tuning options checked; an unknown name is an
 // error that lists the known ones; and every accelerator built over the same scene answers like
-// brute force through the common BuiltAccel interface.
+// brute force through the common BuiltAccel interface. And asBytes, which every structure's GPU
+// arrays pass through, copies arrays of any size exactly.
 #include <algorithm>
 #include <cmath>
+#include <cstring>
+#include <numeric>
 #include <random>
 #include <string>
 
@@ -159,6 +162,17 @@ INSTANTIATE_TEST_SUITE_P(Names, EveryAccel, ::testing::ValuesIn(accelNames()),
                              std::replace(n.begin(), n.end(), '-', '_');
                              return n;
                          });
+
+// Beyond kFirstTouchBytes asBytes populates its copy's pages in parallel before copying: the bytes
+// must still be the array's, to the last one (an odd length, not a whole number of pages).
+TEST(AsBytes, CopiesLargeArraysExactly) {
+    std::vector<uint32_t> words(3 * (size_t(1) << 20) + 5);  // 12 MiB and 20 bytes
+    std::iota(words.begin(), words.end(), 7u);
+    const std::vector<std::byte> bytes = asBytes(words);
+    ASSERT_EQ(bytes.size(), words.size() * sizeof(uint32_t));
+    EXPECT_EQ(std::memcmp(bytes.data(), words.data(), bytes.size()), 0);
+    EXPECT_TRUE(asBytes(std::vector<uint32_t>{}).empty());
+}
 
 }  // namespace
 }  // namespace vkray::accel

@@ -3,6 +3,7 @@
 // several materials and lights through split arrays, pixel for pixel as through one view each.
 #include <algorithm>
 #include <bit>
+#include <cstring>
 #include <filesystem>
 #include <vector>
 
@@ -85,6 +86,19 @@ TEST(TexelViews, ASplitArrayIsUploadedViewByView) {
     if (array.buffers[2].hostVisible()) {
         EXPECT_EQ(static_cast<const uint32_t*>(array.buffers[2].mapped())[0], 4u * 128);
     }
+}
+
+// An array of several 4 MiB runs and a tail is copied into its buffer by all workers (parallelCopy):
+// every word must arrive, the last run's included.
+TEST(TexelViews, ALargeArrayIsCopiedWhole) {
+    const auto& ctx = test::gpuContext();
+    std::vector<uint32_t> words(4 * ((size_t(5) << 18) + 3));  // 5 Mi + 3 texels of 16 bytes: 20 MiB and 48 bytes
+    for (size_t i = 0; i < words.size(); ++i) words[i] = uint32_t(i * 2654435761u);
+    const gpu::TexelArray array = gpu::uploadTexelArray(ctx, words.data(), words.size() * 4,
+                                                        vk::Format::eR32G32B32A32Uint, 16, "test words");
+    ASSERT_EQ(array.buffers.size(), 1u);
+    if (!array.buffers[0].hostVisible()) GTEST_SKIP() << "device-local memory the host cannot read back";
+    EXPECT_EQ(std::memcmp(array.buffers[0].mapped(), words.data(), words.size() * 4), 0);
 }
 
 }  // namespace
