@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
-# A/B of vkray builds on a GPU machine, from a bundle of bench/results/gpu/make-bundle.sh holding the
+# A/B of vkray builds on a GPU machine, from a bundle of bench/results/nvidia-h200/make-bundle.sh holding the
 # new build as `vkray` and the others beside it:
-#   bash bench/results/gpu/device-ab.sh BUNDLE ROUNDS BINARY...
+#   bash bench/results/nvidia-h200/device-ab.sh BUNDLE ROUNDS BINARY...
 # Each round runs every binary once (ABC ABC ...): `vkray bench` on the bunny close-up at 1024x768 and
 # the 1M sphere grid at 1920x1080, Embree on all cores in the same run. Then the stress tests with
 # their failures in full, and the GPU tests with validation on, of the new build.

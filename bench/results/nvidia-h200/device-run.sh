@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
 # The GPU figures of docs/benchmarks.md ("On a data-centre GPU"), run on a machine with an NVIDIA GPU
-# from a bundle made on the build machine by bench/results/gpu/make-bundle.sh (the vkray binary, its
+# from a bundle made on the build machine by bench/results/nvidia-h200/make-bundle.sh (the vkray binary, its
 # test binaries and the shared libraries they need, with the Khronos validation layer):
-#   bash bench/results/gpu/device-run.sh BUNDLE OUTDIR
+#   bash bench/results/nvidia-h200/device-run.sh BUNDLE OUTDIR
 # 1. `vkray devices`; 2. the GPU and stress test binaries on the GPU with validation on (every kernel
 # against GPU brute force and the CPU reference); 3. the primary-ray protocol at 1024x768 on the three
 # scanned meshes and at 1920x1080 on the 1M sphere grid, Embree on all cores in the same run; 4. the

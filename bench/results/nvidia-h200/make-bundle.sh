@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
-# Packs what bench/results/gpu/device-run.sh needs on a GPU machine that has the NVIDIA driver but none
+# Packs what bench/results/nvidia-h200/device-run.sh needs on a GPU machine that has the NVIDIA driver but none
 # of vkray's Debian packages: the vkray binary, the GPU and stress test binaries, every shared library
 # they load that is not glibc's, and the Khronos validation layer.
-#   bash bench/results/gpu/make-bundle.sh BUILD_DIR BUNDLE [OTHER_VKRAY...]
+#   bash bench/results/nvidia-h200/make-bundle.sh BUILD_DIR BUNDLE [OTHER_VKRAY...]
 # OTHER_VKRAY: further vkray binaries (other builds, for A/B runs), copied in under their file names.
 set -eu
 build=$1; bundle=$2; shift 2
