@@ -9,6 +9,7 @@
 #include "accelerator.glsl"
 #include "bindings.glsl"
 #include "constants.glsl"
+#include "min_max.glsl"
 #include "shared/bvh_layout.h"
 #include "trace_status.glsl"
 
@@ -72,8 +73,8 @@ void slab4(vec4 lo, vec4 hi, float origin, float inv, bool flatAxis, float flatE
            out vec4 outside) {
     const vec4 dl = lo - origin, dh = hi - origin;
     const vec4 t0 = dl * inv, t1 = dh * inv;
-    tNear = min(t0, t1);
-    tFar = max(t0, t1) + flatExit;  // a flat axis bounds no exit (inside) or none matters (outside)
+    tNear = minOf(t0, t1);
+    tFar = maxOf(t0, t1) + flatExit;  // a flat axis bounds no exit (inside) or none matters (outside)
     outside = flatAxis ? dl * dh : vec4(0.0);
 }
 
@@ -91,9 +92,9 @@ bvec4 hitsChildren(GpuBvhSphereNode n, BoxRay r, float tLimit, out vec4 tEnter) 
     const vec4 dist2 = lx * lx + ly * ly + lz * lz;
     const vec4 radius = n.radius * kRoundingSlack + 1.0e-6 * (abs(ox) + abs(oy) + abs(oz));
     const vec4 h2 = radius * radius - dist2;
-    const vec4 half_ = sqrt(max(h2, vec4(0.0)) * r.invDirLength2);
-    tEnter = max(tc - half_, vec4(0.0));
-    const vec4 tExit = min(tc + half_, vec4(tLimit)) * kRoundingSlack;
+    const vec4 half_ = sqrt(maxOf(h2, vec4(0.0)) * r.invDirLength2);
+    tEnter = maxOf(tc - half_, vec4(0.0));
+    const vec4 tExit = minOf(tc + half_, vec4(tLimit)) * kRoundingSlack;
     return bvec4(uvec4(lessThanEqual(tEnter, tExit)) * uvec4(greaterThanEqual(h2, vec4(0.0))) *
                  uvec4(notEqual(n.child, uvec4(VKRAY_BVH_NO_CHILD))));
 }
@@ -104,10 +105,10 @@ bvec4 hitsChildren(GpuBvhNode n, BoxRay r, float tLimit, out vec4 tEnter) {
     slab4(n.loX, n.hiX, r.origin.x, r.inv.x, r.flat_.x, r.flatExit.x, nearX, farX, outX);
     slab4(n.loY, n.hiY, r.origin.y, r.inv.y, r.flat_.y, r.flatExit.y, nearY, farY, outY);
     slab4(n.loZ, n.hiZ, r.origin.z, r.inv.z, r.flat_.z, r.flatExit.z, nearZ, farZ, outZ);
-    tEnter = max(max(nearX, nearY), max(nearZ, vec4(0.0)));
+    tEnter = maxOf(maxOf(nearX, nearY), maxOf(nearZ, vec4(0.0)));
     // The far distance widened for float rounding, so a box never rejects a ray that touches it.
-    const vec4 tExit = min(min(farX, farY), min(farZ, vec4(tLimit))) * kRoundingSlack;
-    const vec4 outside = max(max(outX, outY), outZ);
+    const vec4 tExit = minOf(minOf(farX, farY), minOf(farZ, vec4(tLimit))) * kRoundingSlack;
+    const vec4 outside = maxOf(maxOf(outX, outY), outZ);
     return bvec4(uvec4(lessThanEqual(tEnter, tExit)) * uvec4(lessThanEqual(outside, vec4(0.0))) *
                  uvec4(notEqual(n.child, uvec4(VKRAY_BVH_NO_CHILD))));
 }

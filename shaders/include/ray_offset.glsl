@@ -19,14 +19,16 @@
 #ifndef VKRAY_RAY_OFFSET_GLSL
 #define VKRAY_RAY_OFFSET_GLSL
 
+#include "min_max.glsl"
+
 const float kOffsetPerPosition = 1.0 / 4194304.0;  // 4 u = 2^-22
 const float kOffsetPerExtent = 1.0 / 1048576.0;    // 16 u = 2^-20
 
 // How far to push a ray starting at P on a triangle with edge vectors e1, e2 (see above). Zero only
 // for a triangle collapsed to the point 0, which is never hit.
 float offsetDistance(vec3 p, vec3 e1, vec3 e2) {
-    const vec3 a = abs(p), e = max(abs(e1), abs(e2));
-    return kOffsetPerPosition * max(a.x, max(a.y, a.z)) + kOffsetPerExtent * max(e.x, max(e.y, e.z));
+    const vec3 a = abs(p), e = maxOf(abs(e1), abs(e2));
+    return kOffsetPerPosition * maxOf(a.x, maxOf(a.y, a.z)) + kOffsetPerExtent * maxOf(e.x, maxOf(e.y, e.z));
 }
 
 // P pushed along the unit vector n (Nf for reflection and shadow rays, -Nf for refraction).

@@ -7,6 +7,7 @@
 
 #include "bindings.glsl"
 #include "division.glsl"
+#include "min_max.glsl"
 
 struct Hit {
     float t;
@@ -101,7 +102,7 @@ bool hitTriangle(WatertightRay r, GpuTriangle tri, out float t, out vec2 uv) {
     // a ray starting on or a rounding away from a triangle's plane may otherwise "hit" it at a t of
     // pure rounding. Measured on scenes/stress/closed-cube-inside.scene: shadow rays from points on
     // a concave edge, pushed off one face and so still in the plane of the other, darkened the edge.
-    return tHit > kTNoise * max(abs(za), max(abs(zb), abs(zc)));
+    return tHit > kTNoise * maxOf(abs(za), maxOf(abs(zb), abs(zc)));
 }
 
 // Whether a hit at t on a triangle of identity `original` beats `best` in the closest-hit order that
