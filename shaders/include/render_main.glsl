@@ -111,7 +111,7 @@ void secondaryRays(PendingRay ray, SurfacePoint s, GpuMaterial m, out PendingRay
 // Within a group, llvmpipe runs invocations 8 at a time in SIMD lanes (256-bit vectors), in the
 // order of gl_LocalInvocationIndex, and a vector walks the union of its lanes' paths. So each run
 // of 8 invocations takes a 4x2 block of pixels rather than a row of 8: rays closer together, fewer
-// nodes their union visits (kernel time 0.96-0.97x on camera rays, 0.95x on a full render:
+// nodes their union visits (kernel time 0.95-0.97x on camera rays, 0.93-0.98x on full renders:
 // docs/benchmarks.md, "Lanes on 4x2 blocks"). A 32-wide subgroup still covers 8x4 pixels.
 #if VKRAY_WORKGROUP_X != 8 || VKRAY_WORKGROUP_Y != 8
 #error "pixelInTile assumes 8x8 workgroups"
