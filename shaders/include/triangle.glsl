@@ -6,7 +6,6 @@
 #define VKRAY_TRIANGLE_GLSL
 
 #include "bindings.glsl"
-#include "division.glsl"
 #include "min_max.glsl"
 
 struct Hit {
@@ -47,8 +46,7 @@ WatertightRay makeWatertightRay(vec3 origin, vec3 dir) {
     WatertightRay r;
     r.origin = origin;
     r.k = ivec3(kx, ky, kz);
-    // IEEE-rounded (division.glsl): a device's approximate shear moves grazing rays across edges.
-    r.shear = vec3(quotient(dir[kx], dir[kz]), quotient(dir[ky], dir[kz]), quotient(1.0, dir[kz]));
+    r.shear = vec3(dir[kx] / dir[kz], dir[ky] / dir[kz], 1.0 / dir[kz]);
     return r;
 }
 
@@ -93,7 +91,7 @@ bool hitTriangle(WatertightRay r, GpuTriangle tri, out float t, out vec2 uv) {
     precise const float T = U * za + V * zb + W * zc;
     // t = T / det > 0 needs T of det's sign (det may be negative: a back face).
     if (det > 0.0 ? T <= 0.0 : T >= 0.0) return false;
-    const float inv = quotient(1.0, det);
+    const float inv = 1.0 / det;
     precise const float tHit = T * inv;
     t = tHit;
     uv = vec2(V * inv, W * inv);
