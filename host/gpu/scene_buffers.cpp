@@ -88,7 +88,10 @@ PackedScene packScene(const Scene& scene, const std::vector<uint32_t>& triangleO
     PackedScene p;
     // Slot by slot on all workers, into arrays whose pages they populate first: a scene of tens of
     // millions of triangles packs gigabytes.
+    const bool smooth = !scene.normals.empty();
+    if (smooth && scene.normals.size() != count) throw Error("internal: the scene has normals for some triangles only");
     resizeFirstTouched(p.triangles, count);
+    if (smooth) resizeFirstTouched(p.normals, count);
     tbb::parallel_for(tbb::blocked_range<size_t>(0, count, 4096), [&](const tbb::blocked_range<size_t>& r) {
         for (size_t slot = r.begin(); slot < r.end(); ++slot) {
             const size_t i = sceneIndex(slot);
@@ -100,18 +103,12 @@ PackedScene packScene(const Scene& scene, const std::vector<uint32_t>& triangleO
             const bool degenerate = geometry::isDegenerate({glm::dvec3(t.p0), glm::dvec3(t.p1), glm::dvec3(t.p2)});
             p.triangles[slot] = {.p0 = t.p0, .material = t.material, .p1 = degenerate ? t.p0 : t.p1,
                                  .original = uint32_t(i), .p2 = degenerate ? t.p0 : t.p2, .pad0 = 0};
-        }
-    });
-    if (!scene.normals.empty()) {
-        if (scene.normals.size() != count) throw Error("internal: the scene has normals for some triangles only");
-        resizeFirstTouched(p.normals, count);
-        tbb::parallel_for(tbb::blocked_range<size_t>(0, count, 4096), [&](const tbb::blocked_range<size_t>& r) {
-            for (size_t slot = r.begin(); slot < r.end(); ++slot) {
-                const TriangleNormals& n = scene.normals[sceneIndex(slot)];
+            if (smooth) {
+                const TriangleNormals& n = scene.normals[i];
                 p.normals[slot] = {withW(n.n0, 0.0f), withW(n.n1, 0.0f), withW(n.n2, 0.0f)};
             }
-        });
-    }
+        }
+    });
     for (const Material& m : scene.materials)
         p.materials.push_back({.ambient = m.ambient,
                                .shininess = m.shininess,
