@@ -19,8 +19,12 @@
 namespace vkray {
 namespace {
 
-// Pairs (a, b) over 2^-20 .. 2^20 in magnitude, both signs, random significands; and the shapes the
-// kernels divide: 1 / b (the shear's and the triangle test's) and pixel offsets over half a width.
+// Pairs (a, b) over 2^-20 .. 2^20 in magnitude, both signs, random significands; the shapes the
+// kernels divide: 1 / b (the shear's and the triangle test's) and pixel offsets over half a width;
+// and quotients within rounding of the midpoint between two floats, which random pairs almost never
+// give: 1 / (2^k (1 - j 2^-24)) = 2^-k (1 + j 2^-24 + j^2 2^-48 + ...) lies j^2 2^-48 above a
+// midpoint for odd j (1 / (4 - 2^-22), j = 1, is a triangle test's 1 / det in
+// scenes/stress/coplanar.scene).
 std::vector<glm::vec4> testPairs() {
     std::mt19937 rng(20261126);
     std::uniform_real_distribution<float> significand(1.0f, 2.0f);
@@ -30,6 +34,12 @@ std::vector<glm::vec4> testPairs() {
     for (int i = 0; i < 60000; ++i) pairs.emplace_back(number(), number(), 0.0f, 0.0f);
     for (int i = 0; i < 4000; ++i) pairs.emplace_back(1.0f, number(), 0.0f, 0.0f);
     for (int x = 0; x < 1536; ++x) pairs.emplace_back(float(x) + 0.5f - 767.0f, 767.0f, 0.0f, 0.0f);
+    for (int k = -20; k <= 20; ++k)
+        for (int j = 1; j < 64; j += 2) {
+            const float b = std::ldexp(1.0f - float(j) * 0x1p-24f, k);
+            pairs.emplace_back(1.0f, b, 0.0f, 0.0f);
+            pairs.emplace_back(-1.0f, b, 0.0f, 0.0f);
+        }
     return pairs;
 }
 
