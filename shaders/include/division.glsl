@@ -42,6 +42,10 @@ void splitFloat(float x, out float hi, out float lo) {
 const float kDivisionMin = 1.0 / 1152921504606846976.0;  // 2^-60
 const float kDivisionMax = 1152921504606846976.0;        // 2^60
 
+// x moved by `ulps` floats of its own sign's direction (+1: away from zero): x's bits stepped. For
+// x finite and nonzero, within the guard below.
+float movedByUlps(float x, int ulps) { return uintBitsToFloat(uint(int(floatBitsToUint(x)) + ulps)); }
+
 // a - x b, exact for x within a few ulp of a / b; (bh, bl) is b's split.
 float exactResidual(float a, float b, float bh, float bl, float x) {
     float xh, xl;
@@ -60,7 +64,7 @@ float roundedQuotient(float a, float b, float q) {
     const float r1 = exactResidual(a, b, bh, bl, q1);
     // The float next to q1 on the side of a / b (r1 / b > 0: above q1).
     const bool above = (r1 > 0.0) == (b > 0.0);
-    const float next = uintBitsToFloat(uint(int(floatBitsToUint(q1)) + ((q1 > 0.0) == above ? 1 : -1)));
+    const float next = movedByUlps(q1, (q1 > 0.0) == above ? 1 : -1);
     const float rounded = abs(exactResidual(a, b, bh, bl, next)) < abs(r1) ? next : q1;
     const vec4 m = abs(vec4(a, b, q, q1));
     const bool normal = all(greaterThan(m, vec4(kDivisionMin))) && all(lessThan(m, vec4(kDivisionMax)));

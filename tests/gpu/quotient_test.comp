@@ -10,12 +10,10 @@ layout(local_size_x = 64) in;
 layout(std430, set = 0, binding = 0) buffer Pairs { vec4 v[]; };
 layout(push_constant) uniform Count { uint n; } count;
 
-float movedBy(float x, int ulps) { return uintBitsToFloat(uint(int(floatBitsToUint(x)) + ulps)); }
-
 void main() {
     const uint i = gl_GlobalInvocationID.x;
     if (i >= count.n) return;
     const float a = v[i].x, b = v[i].y, q = a / b;
-    v[i] = vec4(quotient(a, b), roundedQuotient(a, b, movedBy(q, -2)), roundedQuotient(a, b, movedBy(q, 1)),
-                roundedQuotient(a, b, movedBy(q, 2)));
+    v[i] = vec4(quotient(a, b), roundedQuotient(a, b, movedByUlps(q, -2)), roundedQuotient(a, b, movedByUlps(q, 1)),
+                roundedQuotient(a, b, movedByUlps(q, 2)));
 }
