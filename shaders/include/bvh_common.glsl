@@ -30,24 +30,24 @@ GpuBvhSphereNode loadBvhNode(uint index) {
 // Node `index`, through the nodes' texel view.
 GpuBvhNode loadBvhNode(uint index) {
     const int k = int(uint(VKRAY_BVH_NODE_TEXELS) * index);
-    return GpuBvhNode(nodeFloatTexel(k), nodeFloatTexel(k + 1), nodeFloatTexel(k + 2), nodeFloatTexel(k + 3),
-                      nodeFloatTexel(k + 4), nodeFloatTexel(k + 5), nodeTexel(k + 6));
+    const uvec4 grid = nodeTexel(k);
+    return GpuBvhNode(uintBitsToFloat(grid.xyz), grid.w, nodeTexel(k + 1), nodeTexel(k + 2), nodeTexel(k + 3));
 }
 #endif
 
 // Below this magnitude a direction component counts as zero: its inverse would overflow.
 const float kFlatDirection = 1.0e-30;
 
-// Per-ray constants of the node tests. Slab test: a direction component of +-0 gets inverse 0
-// (never inf, so no 0 * inf = NaN can reach min/max) and a flag: the ray then stays in the plane
-// x_a = origin_a, which is inside the slab for every t or for none. Each kernel keeps only what its
-// test reads.
+// Per-ray constants of the node tests. Box test: a direction component under kFlatDirection gets
+// the inverse 1e30 instead of 1 / d (inf, or 1e30 and more): a slab it lies inside then spans
+// [-huge, +huge] and one it lies outside starts or ends beyond any hit, and where the two meet (a
+// ray in a box face's plane) the margin of the box test, which grows with the distances, keeps
+// the box (see hitsChildren). Each kernel keeps only what its test reads.
 struct BoxRay {
     vec3 origin;
     vec3 inv;
-    bvec3 flat_;
-    vec3 flatExit;  // +inf on a flat axis, 0 otherwise: added to that axis' exit distances
-    vec3 dir;       // sphere test
+    bvec3 down;  // inv < 0: the upper planes are the near ones
+    vec3 dir;    // sphere test
     float invDirLength2;
 };
 
@@ -56,26 +56,38 @@ BoxRay makeBoxRay(vec3 origin, vec3 dir) {
     r.origin = origin;
     r.dir = dir;
     r.invDirLength2 = 1.0 / dot(dir, dir);
-    r.flat_ = lessThan(abs(dir), vec3(kFlatDirection));
-    r.inv = mix(1.0 / dir, vec3(0.0), r.flat_);
-    r.flatExit = mix(vec3(0.0), vec3(kInfinity), r.flat_);
+    r.inv = mix(1.0 / dir, vec3(1.0e30), lessThan(abs(dir), vec3(kFlatDirection)));
+    r.down = lessThan(r.inv, vec3(0.0));
     return r;
 }
 
-// One axis of the slab test for the four children: the parameter interval of each slab, and for a
-// flat axis (inverse 0, so the interval is +-0 at both ends) the product (lo - o)(hi - o), which
-// is positive exactly when the origin lies outside the slab (the signs of a float difference and
-// product are exact; one that underflows to 0 counts as inside, which only costs a visit), 0 on
-// the other axes. The flat case is selects on values the slab test computes anyway: llvmpipe runs
-// every `if` body for all lanes, and an `if` here that compared the origin with both planes again
-// cost 7% of a camera-ray render (docs/benchmarks.md, "A third round").
-void slab4(vec4 lo, vec4 hi, float origin, float inv, bool flatAxis, float flatExit, out vec4 tNear, out vec4 tFar,
-           out vec4 outside) {
-    const vec4 dl = lo - origin, dh = hi - origin;
-    const vec4 t0 = dl * inv, t1 = dh * inv;
-    tNear = minOf(t0, t1);
-    tFar = maxOf(t0, t1) + flatExit;  // a flat axis bounds no exit (inside) or none matters (outside)
-    outside = flatAxis ? dl * dh : vec4(0.0);
+// Relative margin of a box test's distances: the float errors below are a few ulps (2^-24 each) of
+// the terms' magnitudes, and a GPU's 1 / d may be 2.5 ulp off; 1e-6 is 16 ulps.
+const float kBoxSlack = 1.0e-6;
+
+// One axis of the box test for the four children, in the node's grid (Ylitie, Karras and Laine
+// 2017, section 4): plane c + q 2^e is met at t = q a + b with a = 2^e inv and b = (c - o) inv,
+// one multiply-add a plane instead of decoding it and then (plane - o) inv. The near and far
+// planes of each slab are picked by the ray's sign (their bytes). The errors: a is exact (a power
+// of two times inv); b is two roundings off; the multiply-add (one rounding, or two where the
+// device does not fuse it) adds one more, of a result no larger than q |a| + |b|: in all a few
+// ulps of q |a| + |b|, with inv's own error. Each distance is moved out by kBoxSlack of
+// q |a| + |b| (plus 1e-30 for what underflows), folded into a and b since q >= 0, so the interval
+// [tNear, tFar] holds the exact one and no box is rejected that the ray meets. A distance that
+// overflows is an infinity of the right sign; an inf - inf (NaN) drops out of the chains of minOf /
+// maxOf that combine the axes (each returns its second operand for a NaN first one, and the chains
+// end in 0 and tLimit), which only drops that axis' bound: the box is kept.
+// `exponent`: the axis' exponent byte in bits 0-7 (higher bits ignored).
+void gridSlab4(uint lowerBytes, uint upperBytes, float corner, uint exponent, float origin, float inv, bool down,
+               out vec4 tNear, out vec4 tFar) {
+    const float a = uintBitsToFloat((exponent & 255u) << 23) * inv;
+    const float b = (corner - origin) * inv;
+    const float slackA = kBoxSlack * abs(a), slackB = kBoxSlack * abs(b) + 1.0e-30;
+    const uvec4 shifts = uvec4(0u, 8u, 16u, 24u);
+    const vec4 qNear = vec4((uvec4(down ? upperBytes : lowerBytes) >> shifts) & 255u);
+    const vec4 qFar = vec4((uvec4(down ? lowerBytes : upperBytes) >> shifts) & 255u);
+    tNear = qNear * (a - slackA) + (b - slackB);
+    tFar = qFar * (a + slackA) + (b + slackB);
 }
 
 #ifdef VKRAY_BVH_SPHERES
@@ -99,18 +111,16 @@ bvec4 hitsChildren(GpuBvhSphereNode n, BoxRay r, float tLimit, out vec4 tEnter) 
                  uvec4(notEqual(n.child, uvec4(VKRAY_BVH_NO_CHILD))));
 }
 #else
-// Which of the node's children the ray meets for t in [0, tLimit]; tEnter = where it enters each.
+// Which of the node's children the ray meets for t in [0, tLimit]; tEnter = where it enters each
+// (at most: each distance is a bound, gridSlab4).
 bvec4 hitsChildren(GpuBvhNode n, BoxRay r, float tLimit, out vec4 tEnter) {
-    vec4 nearX, farX, nearY, farY, nearZ, farZ, outX, outY, outZ;
-    slab4(n.loX, n.hiX, r.origin.x, r.inv.x, r.flat_.x, r.flatExit.x, nearX, farX, outX);
-    slab4(n.loY, n.hiY, r.origin.y, r.inv.y, r.flat_.y, r.flatExit.y, nearY, farY, outY);
-    slab4(n.loZ, n.hiZ, r.origin.z, r.inv.z, r.flat_.z, r.flatExit.z, nearZ, farZ, outZ);
+    vec4 nearX, farX, nearY, farY, nearZ, farZ;
+    gridSlab4(n.planesXY.x, n.planesXY.y, n.corner.x, n.exponents, r.origin.x, r.inv.x, r.down.x, nearX, farX);
+    gridSlab4(n.planesXY.z, n.planesXY.w, n.corner.y, n.exponents >> 8u, r.origin.y, r.inv.y, r.down.y, nearY, farY);
+    gridSlab4(n.planesZ.x, n.planesZ.y, n.corner.z, n.exponents >> 16u, r.origin.z, r.inv.z, r.down.z, nearZ, farZ);
     tEnter = maxOf(maxOf(nearX, nearY), maxOf(nearZ, vec4(0.0)));
-    // The far distance widened for float rounding, so a box never rejects a ray that touches it.
-    const vec4 tExit = minOf(minOf(farX, farY), minOf(farZ, vec4(tLimit))) * kRoundingSlack;
-    const vec4 outside = maxOf(maxOf(outX, outY), outZ);
-    return bvec4(uvec4(lessThanEqual(tEnter, tExit)) * uvec4(lessThanEqual(outside, vec4(0.0))) *
-                 uvec4(notEqual(n.child, uvec4(VKRAY_BVH_NO_CHILD))));
+    const vec4 tExit = minOf(minOf(farX, farY), minOf(farZ, vec4(tLimit)));
+    return bvec4(uvec4(lessThanEqual(tEnter, tExit)) * uvec4(notEqual(n.child, uvec4(VKRAY_BVH_NO_CHILD))));
 }
 #endif
 

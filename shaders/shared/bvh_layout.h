@@ -5,10 +5,16 @@
 // Layout: a 4-wide BVH collapsed from the binary tree (accel/bvh/flatten.cpp, gpuNodes), its nodes
 // depth-first from the root (node 0). A node holds the boxes of up to four children, coordinates
 // grouped by axis so the kernel tests all four with vector operations, and their references (Wald,
-// Benthin and Boulos, "Getting Rid of Packets", RT 2008; Ylitie, Karras and Laine, "Efficient
-// Incoherent Ray Traversal on GPUs Through Compressed Wide BVHs", HPG 2017, without the
-// compression). One node read decides which children a ray enters, and a ray takes about half the
-// steps of the binary tree: on llvmpipe every step pays for all branches of the loop body.
+// Benthin and Boulos, "Getting Rid of Packets", RT 2008). One node read decides which children a
+// ray enters, and a ray takes about half the steps of the binary tree: on llvmpipe every step pays
+// for all branches of the loop body.
+//
+// The child boxes are compressed as Ylitie, Karras and Laine do ("Efficient Incoherent Ray
+// Traversal on GPUs Through Compressed Wide BVHs", HPG 2017, section 3.1): per axis the node has a
+// corner c (its box's minimum, a float) and a power-of-two step 2^e, and each child's planes are
+// bytes q, the plane c + q 2^e, rounded outwards by the host (accel/bvh/quantize.h), so a child's
+// byte box always holds its real box. Four texels a node instead of seven; the kernel tests the
+// planes in the node's own grid (include/bvh_common.glsl).
 //
 // A reference is an inner node's index, or a leaf: the leaf bit, the triangle count - 1 and the
 // leaf's first slot in the triangle buffer, which the host fills in leaf order
@@ -52,7 +58,7 @@
 #define VKRAY_BVH_NO_PARENT 0xFFFFFFFFu
 #define VKRAY_BVH_MAX_LINKED_NODES (1u << 30)
 // Texels of VKRAY_BINDING_NODE_TEXELS (RGBA32UI) per node.
-#define VKRAY_BVH_NODE_TEXELS 7
+#define VKRAY_BVH_NODE_TEXELS 4
 #define VKRAY_BVH_SPHERE_NODE_TEXELS 5
 
 #ifdef __cplusplus
@@ -62,12 +68,16 @@ namespace vkray::gpu {
 #define VKRAY_BVH_STRUCT(name) struct name
 #endif
 
-VKRAY_BVH_STRUCT(GpuBvhNode) {  // 112 bytes: seven 16-byte slots
-    vec4 loX, hiX;  // children 0-3: box min and max x
-    vec4 loY, hiY;
-    vec4 loZ, hiZ;
-    uvec4 child;    // children 0-3: references, VKRAY_BVH_NO_CHILD where unused
+// A child box's planes on axis a: corner[a] + q 2^(e_a - 127), q the byte of child k (bits 8k..8k+7)
+// in that axis' word of lower or upper planes, e_a byte a of `exponents` (1..254).
+VKRAY_BVH_STRUCT(GpuBvhNode) {  // 64 bytes: four 16-byte slots
+    vec3 corner;     // the grid's corner
+    uint exponents;  // bytes 0-2: x, y, z
+    uvec4 planesXY;  // children 0-3: lower x, upper x, lower y, upper y planes, a byte each
+    uvec4 planesZ;   // lower z, upper z, 0, 0
+    uvec4 child;     // children 0-3: references, VKRAY_BVH_NO_CHILD where unused
 };
+#define VKRAY_BVH_EXPONENT_BIAS 127
 
 // bvh-sphere (sphere containers, after Mahmuda 2017's box/sphere experiment): the same tree shape
 // and references, each child bounded by a sphere instead of a box. The host rounds every radius
@@ -81,9 +91,9 @@ VKRAY_BVH_STRUCT(GpuBvhSphereNode) {  // 80 bytes: five 16-byte slots
 #ifdef __cplusplus
 static_assert(sizeof(GpuBvhSphereNode) == 16 * VKRAY_BVH_SPHERE_NODE_TEXELS && offsetof(GpuBvhSphereNode, radius) == 48 &&
               offsetof(GpuBvhSphereNode, child) == 64);
-static_assert(sizeof(GpuBvhNode) == 16 * VKRAY_BVH_NODE_TEXELS && offsetof(GpuBvhNode, hiX) == 16 &&
-              offsetof(GpuBvhNode, loY) == 32 && offsetof(GpuBvhNode, loZ) == 64 &&
-              offsetof(GpuBvhNode, child) == 96);
+static_assert(sizeof(GpuBvhNode) == 16 * VKRAY_BVH_NODE_TEXELS && offsetof(GpuBvhNode, exponents) == 12 &&
+              offsetof(GpuBvhNode, planesXY) == 16 &&
+              offsetof(GpuBvhNode, planesZ) == 32 && offsetof(GpuBvhNode, child) == 48);
 static_assert(VKRAY_BVH_MAX_LEAF_SIZE - 1 <= VKRAY_BVH_COUNT_MASK, "leaf counts must fit their bits");
 static_assert((VKRAY_BVH_MAX_TRIANGLES + VKRAY_BVH_MAX_LEAF_SIZE) <= VKRAY_BVH_FIRST_MASK,
               "no leaf reference may equal VKRAY_BVH_NO_CHILD");

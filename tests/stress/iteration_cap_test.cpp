@@ -10,6 +10,7 @@
 
 #include "../gpu/gpu_test_util.h"
 #include "accel/accel.h"
+#include "accel/bvh/quantize.h"
 #include "gpu/gpu_renderer.h"
 #include "shared/bvh_layout.h"
 #include "shared/kd_layout.h"
@@ -38,9 +39,10 @@ accel::GpuAccelData cyclicBvh(accel::Kernel kernel) {
     data.kernel = kernel;
     // One node whose first child is a leaf (triangle slot 0) and whose second is itself: the leaf is
     // tested, the node popped again, forever.
-    gpu::GpuBvhNode node{.loX = gpu::vec4(kLo.x), .hiX = gpu::vec4(kHi.x), .loY = gpu::vec4(kLo.y),
-                         .hiY = gpu::vec4(kHi.y), .loZ = gpu::vec4(kLo.z), .hiZ = gpu::vec4(kHi.z),
-                         .child = gpu::uvec4(VKRAY_BVH_LEAF_BIT, 0u, VKRAY_BVH_NO_CHILD, VKRAY_BVH_NO_CHILD)};
+    const bvh::Aabb box{kLo, kHi};
+    const bvh::Aabb boxes[] = {box, box};
+    const gpu::GpuBvhNode node = bvh::quantizedNode(
+        boxes, gpu::uvec4(VKRAY_BVH_LEAF_BIT, 0u, VKRAY_BVH_NO_CHILD, VKRAY_BVH_NO_CHILD));
     const std::vector<gpu::GpuBvhNode> nodes = {node};
     data.nodes = accel::asBytes(nodes);
     if (kernel == accel::Kernel::BvhSphere) {  // the same two children as spheres holding the box

@@ -1,9 +1,12 @@
 #include "accel/bvh/flatten.h"
 
 #include <algorithm>
+#include <span>
 #include <string>
+#include <type_traits>
 #include <vector>
 
+#include "accel/bvh/quantize.h"
 #include "core/error.h"
 #include "core/fork_join.h"
 #include "core/parallel_alloc.h"
@@ -94,29 +97,26 @@ float halfArea(const FlatBvh& flat, uint32_t i) {
     return d.x * d.y + d.y * d.z + d.z * d.x;
 }
 
-// Child slot k of a wide node: the bounds of flat node i (its box, or its sphere).
-void setBounds(gpu::GpuBvhNode& node, int k, const FlatBvh& flat, uint32_t i) {
-    const FlatNode& box = flat.nodes[i];
-    node.loX[k] = box.lo.x;
-    node.loY[k] = box.lo.y;
-    node.loZ[k] = box.lo.z;
-    node.hiX[k] = box.hi.x;
-    node.hiY[k] = box.hi.y;
-    node.hiZ[k] = box.hi.z;
-}
-void setBounds(gpu::GpuBvhSphereNode& node, int k, const FlatBvh& flat, uint32_t i) {
-    const Sphere& sphere = flat.spheres[i];
-    node.centreX[k] = sphere.centre.x;
-    node.centreY[k] = sphere.centre.y;
-    node.centreZ[k] = sphere.centre.z;
-    node.radius[k] = sphere.radius;
-}
-
+// The wide node whose children are flat nodes kids[0..n) with references `child`: their boxes
+// quantised (GpuBvhNode), or their spheres (GpuBvhSphereNode).
 template <class Node>
-Node emptyNode() {
-    Node node{};
-    node.child = gpu::uvec4(VKRAY_BVH_NO_CHILD);
-    return node;
+Node wideNode(const FlatBvh& flat, const uint32_t* kids, int n, const gpu::uvec4& child) {
+    if constexpr (std::is_same_v<Node, gpu::GpuBvhNode>) {
+        Aabb boxes[VKRAY_BVH_WIDTH];
+        for (int k = 0; k < n; ++k) boxes[k] = Aabb{flat.nodes[kids[k]].lo, flat.nodes[kids[k]].hi};
+        return quantizedNode(std::span<const Aabb>(boxes, size_t(n)), child);
+    } else {
+        Node node{};
+        for (int k = 0; k < n; ++k) {
+            const Sphere& sphere = flat.spheres[kids[k]];
+            node.centreX[k] = sphere.centre.x;
+            node.centreY[k] = sphere.centre.y;
+            node.centreZ[k] = sphere.centre.z;
+            node.radius[k] = sphere.radius;
+        }
+        node.child = child;
+        return node;
+    }
 }
 
 // Collapses the binary flat tree into VKRAY_BVH_WIDTH-wide nodes (GpuBvhNode or, for sphere
@@ -132,13 +132,12 @@ public:
         out_.emplace_back();
         uint32_t kids[VKRAY_BVH_WIDTH];
         const int n = gather(i, kids);
-        Node node = emptyNode<Node>();
+        gpu::uvec4 child(VKRAY_BVH_NO_CHILD);
         for (int k = 0; k < n; ++k) {
             const FlatNode& kid = flat_.nodes[kids[k]];
-            setBounds(node, k, flat_, kids[k]);
-            node.child[k] = kid.count > 0 ? leafRef(kid) : write(kids[k]);
+            child[k] = kid.count > 0 ? leafRef(kid) : write(kids[k]);
         }
-        out_[self] = node;
+        out_[self] = wideNode<Node>(flat_, kids, n, child);
         return self;
     }
 
@@ -191,10 +190,9 @@ std::vector<Node> wideNodes(const FlatBvh& flat) {
         throw Error("the BVH holds " + std::to_string(flat.triangleOrder.size()) +
                     " triangles; its GPU layout addresses at most " + std::to_string(VKRAY_BVH_MAX_TRIANGLES));
     if (flat.nodes[0].count > 0) {  // the root is a leaf: one node with one child
-        Node node = emptyNode<Node>();
-        setBounds(node, 0, flat, 0);
-        node.child[0] = leafRef(flat.nodes[0]);
-        out.push_back(node);
+        const uint32_t root = 0;
+        out.push_back(wideNode<Node>(flat, &root, 1, gpu::uvec4(leafRef(flat.nodes[0]), VKRAY_BVH_NO_CHILD,
+                                                                VKRAY_BVH_NO_CHILD, VKRAY_BVH_NO_CHILD)));
         return out;
     }
     out.reserve(flat.nodes.size() / 4 + 1);

@@ -16,6 +16,7 @@
 #include "accel/bvh/flatten.h"
 #include "accel/bvh/leaf_collapse.h"
 #include "accel/bvh/primitives.h"
+#include "accel/bvh/quantize.h"
 #include "bvh_test_meshes.h"
 
 namespace vkray::bvh {
@@ -116,17 +117,19 @@ TEST(BvhStructure, SmallScenes) {
 }
 
 // The GPU layout holds the same tree: from node 0 every triangle slot is reached exactly once, in
-// leaf order; every child box holds the boxes of its own children and the leaves' triangles;
-// inner nodes are numbered depth-first; unused slots come last.
+// leaf order; every child's quantised box holds the triangles below it; inner nodes are numbered
+// depth-first; unused slots come last.
 void checkGpuNodes(const FlatBvh& flat, const Scene& scene) {
     const std::vector<gpu::GpuBvhNode> nodes = gpuNodes(flat);
     ASSERT_FALSE(nodes.empty());
     EXPECT_EQ(gpuNodeCount(flat), nodes.size());
     uint32_t nextSlot = 0, nextInner = 1;
-    const auto boxOfChild = [](const gpu::GpuBvhNode& g, int k) {
-        return Aabb{{g.loX[k], g.loY[k], g.loZ[k]}, {g.hiX[k], g.hiY[k], g.hiZ[k]}};
+    const auto holds = [](const GridBox& box, const Aabb& inner) {
+        return glm::all(glm::lessThanEqual(box.lo, glm::dvec3(inner.lo))) &&
+               glm::all(glm::greaterThanEqual(box.hi, glm::dvec3(inner.hi)));
     };
-    std::function<void(uint32_t, const Aabb*)> walk = [&](uint32_t index, const Aabb* parentBox) {
+    std::vector<GridBox> path;  // the boxes of the children walked into, root first
+    std::function<void(uint32_t)> walk = [&](uint32_t index) {
         const gpu::GpuBvhNode& g = nodes.at(index);
         bool unused = false;
         for (int k = 0; k < VKRAY_BVH_WIDTH; ++k) {
@@ -136,24 +139,23 @@ void checkGpuNodes(const FlatBvh& flat, const Scene& scene) {
                 continue;
             }
             EXPECT_FALSE(unused) << "a used slot after an unused one";
-            const Aabb box = boxOfChild(g, k);
-            if (parentBox) {
-                EXPECT_TRUE(parentBox->contains(box));
-            }
+            path.push_back(gridBox(g, k));
             if (ref & VKRAY_BVH_LEAF_BIT) {
                 const uint32_t first = ref & VKRAY_BVH_FIRST_MASK;
                 const uint32_t count = ((ref >> VKRAY_BVH_COUNT_SHIFT) & VKRAY_BVH_COUNT_MASK) + 1;
                 EXPECT_EQ(first, nextSlot) << "leaves must cover the triangle slots in order";
                 for (uint32_t s = first; s < first + count; ++s)
-                    EXPECT_TRUE(box.contains(boxOf(scene.triangles[flat.triangleOrder.at(s)])));
+                    for (const GridBox& box : path)
+                        EXPECT_TRUE(holds(box, boxOf(scene.triangles[flat.triangleOrder.at(s)])));
                 nextSlot = first + count;
             } else {
                 EXPECT_EQ(ref, nextInner++) << "inner nodes in depth-first order";
-                walk(ref, &box);
+                walk(ref);
             }
+            path.pop_back();
         }
     };
-    walk(0, nullptr);
+    walk(0);
     EXPECT_EQ(nextSlot, flat.triangleOrder.size());
     EXPECT_EQ(nextInner, nodes.size());
 }
