@@ -42,7 +42,10 @@ const float kFlatDirection = 1.0e-30;
 // the inverse 1e30 instead of 1 / d (inf, or 1e30 and more): a slab it lies inside then spans
 // [-huge, +huge] and one it lies outside starts or ends beyond any hit, and where the two meet (a
 // ray in a box face's plane) the margin of the box test, which grows with the distances, keeps
-// the box (see hitsChildren). Each kernel keeps only what its test reads.
+// the box (see gridSlab4) whenever the node is wider on that axis than 1e-24 of the hit distance.
+// Narrower is a node of children all flat in the ray's own plane, whose triangles the ray cannot
+// hit (a ray in a triangle's plane misses it, triangle.glsl), or of coordinates below 1e-17 of the
+// hit distance, where a float extent can be that small. Each kernel keeps only what its test reads.
 struct BoxRay {
     vec3 origin;
     vec3 inv;
