@@ -11,7 +11,7 @@
 //
 // The child boxes are compressed as Ylitie, Karras and Laine do ("Efficient Incoherent Ray
 // Traversal on GPUs Through Compressed Wide BVHs", HPG 2017, section 3.1): per axis the node has a
-// corner c (its box's minimum, a float) and a power-of-two step 2^e, and each child's planes are
+// corner c (a float at or below its box's minimum) and a power-of-two step 2^e, and each child's planes are
 // bytes q, the plane c + q 2^e, rounded outwards by the host (accel/bvh/quantize.h), so a child's
 // byte box always holds its real box. Four texels a node instead of seven; the kernel tests the
 // planes in the node's own grid (include/bvh_common.glsl).

@@ -1,8 +1,8 @@
 // The wide node's child boxes as bytes in a grid of the node's own (shared/bvh_layout.h,
 // GpuBvhNode; Ylitie, Karras and Laine, "Efficient Incoherent Ray Traversal on GPUs Through
-// Compressed Wide BVHs", HPG 2017, section 3.1): per axis a float corner, the minimum of the
-// children's boxes, and the smallest power-of-two step whose 255 steps reach their maximum; each
-// plane rounded outwards to the grid, so a byte box always holds the child's box.
+// Compressed Wide BVHs", HPG 2017, section 3.1): per axis a float corner at or below the children's
+// minimum (aligned with a flat child where that helps) and a power-of-two step whose 255 steps reach
+// their maximum; each plane rounded outwards to the grid, so a byte box always holds the child's box.
 #pragma once
 
 #include <span>
@@ -20,6 +20,11 @@ gpu::GpuBvhNode quantizedNode(std::span<const Aabb> boxes, const gpu::uvec4& chi
 // Child k's box as the kernel's planes, in double, where every such plane is exact.
 struct GridBox {
     glm::dvec3 lo, hi;
+
+    bool contains(const Aabb& b) const {
+        return glm::all(glm::lessThanEqual(lo, glm::dvec3(b.lo))) &&
+               glm::all(glm::greaterThanEqual(hi, glm::dvec3(b.hi)));
+    }
 };
 GridBox gridBox(const gpu::GpuBvhNode& node, int k);
 

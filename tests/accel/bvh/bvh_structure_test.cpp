@@ -124,10 +124,6 @@ void checkGpuNodes(const FlatBvh& flat, const Scene& scene) {
     ASSERT_FALSE(nodes.empty());
     EXPECT_EQ(gpuNodeCount(flat), nodes.size());
     uint32_t nextSlot = 0, nextInner = 1;
-    const auto holds = [](const GridBox& box, const Aabb& inner) {
-        return glm::all(glm::lessThanEqual(box.lo, glm::dvec3(inner.lo))) &&
-               glm::all(glm::greaterThanEqual(box.hi, glm::dvec3(inner.hi)));
-    };
     std::vector<GridBox> path;  // the boxes of the children walked into, root first
     std::function<void(uint32_t)> walk = [&](uint32_t index) {
         const gpu::GpuBvhNode& g = nodes.at(index);
@@ -146,7 +142,7 @@ void checkGpuNodes(const FlatBvh& flat, const Scene& scene) {
                 EXPECT_EQ(first, nextSlot) << "leaves must cover the triangle slots in order";
                 for (uint32_t s = first; s < first + count; ++s)
                     for (const GridBox& box : path)
-                        EXPECT_TRUE(holds(box, boxOf(scene.triangles[flat.triangleOrder.at(s)])));
+                        EXPECT_TRUE(box.contains(boxOf(scene.triangles[flat.triangleOrder.at(s)])));
                 nextSlot = first + count;
             } else {
                 EXPECT_EQ(ref, nextInner++) << "inner nodes in depth-first order";

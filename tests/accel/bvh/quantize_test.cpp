@@ -16,11 +16,6 @@
 namespace vkray::bvh {
 namespace {
 
-bool holds(const GridBox& g, const Aabb& b) {
-    return glm::all(glm::lessThanEqual(g.lo, glm::dvec3(b.lo))) &&
-           glm::all(glm::greaterThanEqual(g.hi, glm::dvec3(b.hi)));
-}
-
 // Checks every child of the node made of `boxes`: held, and loose by at most one step (and the
 // corner's rounding, at most one float ulp of the node's largest magnitude, on the lower side).
 void checkNode(const std::vector<Aabb>& boxes) {
@@ -33,7 +28,7 @@ void checkNode(const std::vector<Aabb>& boxes) {
     const uint32_t exponents = node.exponents;
     for (size_t k = 0; k < boxes.size(); ++k) {
         const GridBox g = gridBox(node, int(k));
-        ASSERT_TRUE(holds(g, boxes[k])) << "child " << k;
+        ASSERT_TRUE(g.contains(boxes[k])) << "child " << k;
         for (int a = 0; a < 3; ++a) {
             const double step = std::ldexp(1.0, int((exponents >> (8 * a)) & 255u) - VKRAY_BVH_EXPONENT_BIAS);
             const double magnitude = std::max(std::abs(double(all.lo[a])), std::abs(double(all.hi[a])));
