@@ -49,8 +49,10 @@ ImageError imageError(const Frame& frame, const Image& image, const Frame& refer
     if (s.rmse > 0.0) e.psnr = s.psnr;
     e.maxError = s.maxError;
     size_t differ = 0;
-    for (size_t i = 0; i < frame.primId.size(); ++i) differ += frame.primId[i] != reference.primId[i];
-    e.primaryMismatch = frame.primId.empty() ? 0.0 : double(differ) / double(frame.primId.size());
+    const bool both = frame.hasAovs() && reference.hasAovs() && !frame.primId.empty();
+    if (both)
+        for (size_t i = 0; i < frame.primId.size(); ++i) differ += frame.primId[i] != reference.primId[i];
+    e.primaryMismatch = both ? double(differ) / double(frame.primId.size()) : 0.0;
     return e;
 }
 

@@ -49,7 +49,7 @@ Frame renderReference(const Scene& scene, const RenderOptions& options, const ge
     const cpu::WhittedIntegrator integrator(scene, tracer, options.maxDepth);
 
     Frame frame;
-    frame.resize(options.pixels());
+    frame.resize(options.pixels(), options.primaryAovs);
     std::mutex progressMutex;
     int rowsDone = 0;
 
@@ -65,7 +65,7 @@ Frame renderReference(const Scene& scene, const RenderOptions& options, const ge
                     radiance += integrator.sample({camera.eye, primaryDirection(camera, x, y, pixelSampleOffset(s))}).radiance;
                 const size_t k = frame.index(i, j);
                 frame.color[k] = glm::vec3(radiance / double(options.spp));
-                if (px.primary.found()) {
+                if (options.primaryAovs && px.primary.found()) {
                     frame.depth[k] = float(px.primary.t);  // the camera direction is unit length
                     frame.primId[k] = px.primary.triangle;
                     frame.normal[k] = glm::vec3(px.normal);

@@ -99,7 +99,8 @@ GpuFrameParams frameParams(const Scene& scene, const RenderOptions& options) {
 // `features` writes.
 void readTile(const GpuPixel* src, const Tile& tile, const ShaderFeatures& features, Frame& frame,
               GpuRenderReport& rep) {
-    const bool aovs = features.writesPrimaryAovs(), counters = features.writesCounters();
+    // Only a frame that keeps the AOVs gets them (the resumable variant writes them for itself).
+    const bool aovs = frame.hasAovs(), counters = features.writesCounters();
     for (uint32_t y = 0; y < tile.height; ++y)
         for (uint32_t x = 0; x < tile.width; ++x) {
             const GpuPixel& px = src[y * VKRAY_TILE_SIZE + x];
@@ -444,7 +445,7 @@ Frame renderOnGpu(const VulkanContext& ctx, const Scene& scene, const RenderOpti
     bindBuffers(kernel, sceneBuffers, accelBuffers, pixels, noResume);
 
     Frame frame;
-    frame.resize(window);
+    frame.resize(window, options.primaryAovs);
     if (options.countTraversal) rep.nodesPerPixel.assign(frame.color.size(), 0u);
     start = Clock::now();
     rep.tiles = uint32_t(tiles.size());
@@ -457,7 +458,7 @@ Frame renderOnGpu(const VulkanContext& ctx, const Scene& scene, const RenderOpti
         GpuFrameParams params = baseParams;
         setSample(params, s);
         Frame& out = s == 0 ? frame : pass;
-        if (s == 1) pass.resize(window);
+        if (s == 1) pass.resize(window, false);  // colour only: the AOVs are sample 0's
         const TileProgress passProgress = !progress ? TileProgress() : [&](uint32_t done, uint32_t total) {
             progress(uint32_t(s) * total + done, uint32_t(options.spp) * total);
         };

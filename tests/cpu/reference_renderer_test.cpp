@@ -84,6 +84,20 @@ TEST(ReferenceRenderer, MissIsBlackWithEmptyAovs) {
     }
 }
 
+// Without primaryAovs the frame holds the colour alone, the same colour.
+TEST(ReferenceRenderer, WithoutPrimaryAovsOnlyTheColour) {
+    Material m = blackMaterial();
+    m.ambient = {0.3f, 0.6f, 0.9f};
+    const Scene s = floorScene(m);
+    RenderOptions without = fiveByFive();
+    without.primaryAovs = false;
+    const Frame f = renderReference(s, fiveByFive()), g = renderReference(s, without);
+    EXPECT_TRUE(f.hasAovs());
+    EXPECT_FALSE(g.hasAovs());
+    EXPECT_TRUE(g.depth.empty() && g.primId.empty() && g.normal.empty());
+    EXPECT_EQ(f.color, g.color);
+}
+
 // Directional light 45 degrees off the normal, diffuse only: kd * C * cos(45).
 TEST(ReferenceRenderer, DirectionalDiffuseIsLambert) {
     Material m = blackMaterial();
