@@ -2,6 +2,8 @@
 #include "image/tone.h"
 
 #include <algorithm>
+#include <bit>
+#include <cstdint>
 #include <cmath>
 #include <cstdio>
 #include <limits>
@@ -36,14 +38,39 @@ LevelEncoder::LevelEncoder(const Encoding& encoding)
     if (!std::isfinite(encoding.exposure) || std::fabs(encoding.exposure) > kMaxExposureStops)
         throw Error("exposure " + std::to_string(encoding.exposure) + " is not a number of stops within +-" +
                     std::to_string(int(kMaxExposureStops)));
+    // Positive doubles order as their bit patterns: bisect on those, between 0 (level 0) and 1.
+    const auto bits = [](double v) { return std::bit_cast<uint64_t>(v); };
+    threshold_[0] = 0.0;
+    for (unsigned k = 1; k < 256; ++k) {
+        if (k > 1 && levelOf(threshold_[k - 1]) >= k) {  // two levels at once: never seen, but exact
+            threshold_[k] = threshold_[k - 1];
+            continue;
+        }
+        uint64_t lo = k == 1 ? 0 : bits(threshold_[k - 1]), hi = bits(1.0);  // levelOf(lo) < k <= levelOf(hi)
+        while (hi - lo > 1) {
+            const uint64_t mid = lo + (hi - lo) / 2;
+            (levelOf(std::bit_cast<double>(mid)) >= k ? hi : lo) = mid;
+        }
+        threshold_[k] = std::bit_cast<double>(hi);
+    }
+    threshold_[256] = std::numeric_limits<double>::infinity();
+    unsigned level = 0;
+    for (size_t b = 0; b < kBuckets; ++b) {
+        const double v = double(b) / double(kBuckets);
+        while (v >= threshold_[level + 1]) ++level;
+        bucket_[b] = uint8_t(level);
+    }
 }
 
-unsigned char LevelEncoder::operator()(float c) const {
-    double v = double(c) * scale_;
-    if (!(v > 0.0)) return 0;  // also NaN, which fails every comparison
+unsigned LevelEncoder::levelOf(double v) const {
+    return unsigned(std::lround(255.0 * (srgb_ ? srgbEncode(v) : v)));
+}
+
+unsigned char LevelEncoder::direct(float c) const {
+    const double v = double(c) * scale_;
+    if (!(v > 0.0)) return 0;
     if (v >= 1.0) return 255;
-    if (srgb_) v = srgbEncode(v);
-    return static_cast<unsigned char>(std::lround(255.0 * v));
+    return static_cast<unsigned char>(levelOf(v));
 }
 
 Image normalizedForViewing(const Image& image) {
