@@ -29,12 +29,12 @@ public:
     unsigned char direct(float c) const;
 
 private:
-    // A pow a value made writing 8-bit images slow (a third of a 640x480 PNG's time). Instead the
-    // level is looked up: threshold_[k] is the least v that rounds to level k or more, found by
-    // bisection over the doubles with the formula itself, so for a v the formula takes levels in
-    // order, the lookup gives the formula's level exactly (tone_test.cpp checks every threshold's
-    // neighbours); bucket_[b] is the level of v = b / kBuckets, from which at most a step or two
-    // reaches v's (sRGB's steepest slope, 12.92 x 255 levels a unit, is under one level a bucket).
+    // A pow per channel value was a third of the time of writing a 640x480 PNG. Instead the level
+    // is looked up: threshold_[k] is the least v whose level is k or more, found by bisection over
+    // the doubles with the formula itself; as the formula's levels rise with v, the lookup gives
+    // its level exactly (tone_test.cpp checks the floats around every level boundary). bucket_[b]
+    // is the level of v = b / kBuckets, from which a step or two reaches v's: sRGB's steepest
+    // slope, 12.92 x 255 levels a unit, is under one level a bucket.
     static constexpr size_t kBuckets = 4096;
     unsigned levelOf(double v) const;  // the formula, for v in (0, 1)
     bool srgb_;
