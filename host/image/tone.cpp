@@ -38,15 +38,11 @@ LevelEncoder::LevelEncoder(const Encoding& encoding)
     if (!std::isfinite(encoding.exposure) || std::fabs(encoding.exposure) > kMaxExposureStops)
         throw Error("exposure " + std::to_string(encoding.exposure) + " is not a number of stops within +-" +
                     std::to_string(int(kMaxExposureStops)));
-    // Positive doubles order as their bit patterns: bisect on those, between 0 (level 0) and 1.
-    const auto bits = [](double v) { return std::bit_cast<uint64_t>(v); };
+    // Positive doubles order as their bit patterns: bisect on those, between +0 (level 0) and 1
+    // (level 255), for the least double of level k or more.
     threshold_[0] = 0.0;
     for (unsigned k = 1; k < 256; ++k) {
-        if (k > 1 && levelOf(threshold_[k - 1]) >= k) {  // two levels at once: never seen, but exact
-            threshold_[k] = threshold_[k - 1];
-            continue;
-        }
-        uint64_t lo = k == 1 ? 0 : bits(threshold_[k - 1]), hi = bits(1.0);  // levelOf(lo) < k <= levelOf(hi)
+        uint64_t lo = 0, hi = std::bit_cast<uint64_t>(1.0);  // levelOf(lo) < k <= levelOf(hi)
         while (hi - lo > 1) {
             const uint64_t mid = lo + (hi - lo) / 2;
             (levelOf(std::bit_cast<double>(mid)) >= k ? hi : lo) = mid;

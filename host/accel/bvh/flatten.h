@@ -13,8 +13,8 @@ namespace vkray::bvh {
 FlatBvh flatten(const BinaryTree& tree, const CollapsedTree& collapsed);
 
 // The GPU layout (shared/bvh_layout.h): the binary tree collapsed into VKRAY_BVH_WIDTH-wide nodes,
-// depth-first, each with its children's boxes (quantised: accel/bvh/quantize.h) and references. Throws vkray::Error for more
-// triangles than leaf references can address (VKRAY_BVH_MAX_TRIANGLES).
+// depth-first, each with its children's boxes (quantised: accel/bvh/quantize.h) and references.
+// Throws vkray::Error for more triangles than leaf references can address (VKRAY_BVH_MAX_TRIANGLES).
 std::vector<gpu::GpuBvhNode> gpuNodes(const FlatBvh& flat);
 // The same wide nodes with their children's spheres (bvh-sphere; the tree must have spheres).
 std::vector<gpu::GpuBvhSphereNode> gpuSphereNodes(const FlatBvh& flat);

@@ -130,13 +130,16 @@ gpu::GpuBvhNode quantizedNode(std::span<const Aabb> boxes, const gpu::uvec4& chi
     return node;
 }
 
+double gridStep(const gpu::GpuBvhNode& node, int a) {
+    return std::ldexp(1.0, int((node.exponents >> (8 * a)) & 255u) - VKRAY_BVH_EXPONENT_BIAS);
+}
+
 GridBox gridBox(const gpu::GpuBvhNode& node, int k) {
-    const uint32_t exponents = node.exponents;
     const uint32_t planes[6] = {node.planesXY.x, node.planesXY.y, node.planesXY.z,
                                 node.planesXY.w, node.planesZ.x,  node.planesZ.y};
     GridBox box;
     for (int a = 0; a < 3; ++a) {
-        const double step = std::ldexp(1.0, int((exponents >> (8 * a)) & 255u) - VKRAY_BVH_EXPONENT_BIAS);
+        const double step = gridStep(node, a);
         box.lo[a] = double(node.corner[a]) + double((planes[2 * a] >> (8 * k)) & 255u) * step;
         box.hi[a] = double(node.corner[a]) + double((planes[2 * a + 1] >> (8 * k)) & 255u) * step;
     }

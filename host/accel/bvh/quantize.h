@@ -27,5 +27,7 @@ struct GridBox {
     }
 };
 GridBox gridBox(const gpu::GpuBvhNode& node, int k);
+// The grid's step on axis a: 2^(e_a - VKRAY_BVH_EXPONENT_BIAS).
+double gridStep(const gpu::GpuBvhNode& node, int a);
 
 }  // namespace vkray::bvh

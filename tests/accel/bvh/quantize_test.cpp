@@ -25,12 +25,11 @@ void checkNode(const std::vector<Aabb>& boxes) {
     EXPECT_EQ(node.child, child);
     Aabb all;
     for (const Aabb& b : boxes) all.grow(b);
-    const uint32_t exponents = node.exponents;
     for (size_t k = 0; k < boxes.size(); ++k) {
         const GridBox g = gridBox(node, int(k));
         ASSERT_TRUE(g.contains(boxes[k])) << "child " << k;
         for (int a = 0; a < 3; ++a) {
-            const double step = std::ldexp(1.0, int((exponents >> (8 * a)) & 255u) - VKRAY_BVH_EXPONENT_BIAS);
+            const double step = gridStep(node, a);
             const double magnitude = std::max(std::abs(double(all.lo[a])), std::abs(double(all.hi[a])));
             const double cornerSlack = std::ldexp(1.0, std::ilogb(std::max(magnitude, 1e-30)) - 23);
             // The plane one step inside is inside the box (both sides exact: planes are multiples of
