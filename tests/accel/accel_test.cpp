@@ -98,6 +98,10 @@ TEST(AccelSpec, EveryTuningOptionIsRangeCheckedAndNamed) {
     expectError("kd-stack", "--aac-delta", 8, "applies to bvh, bvh-fast, bvh-hq, bvh-stackless, bvh-sphere only");
     // Treelet restructuring prices boxes.
     expectError("bvh-sphere", "--bvh-treelet-passes", 2, "applies to bvh, bvh-fast, bvh-hq, bvh-sah, bvh-stackless only");
+    expectError("bvh-sphere", "--bvh-reinsert-iterations", 2, "applies to bvh, bvh-fast, bvh-hq, bvh-sah, bvh-stackless only");
+    expectError("bvh", "--bvh-reinsert-iterations", 1001, "must be 0..1000");
+    expectError("bvh", "--bvh-reinsert-batch", 0, "must be in [0.001, 1]");
+    expectError("bvh", "--bvh-reinsert-batch", 1.5, "must be in [0.001, 1]");
     expectError("brute", "--kd-empty-bonus", 0.5, "applies to");
     for (const TuningOption& o : tuningOptions()) EXPECT_EQ(o.flag.substr(0, 2), "--") << o.flag;
 }
@@ -107,6 +111,10 @@ TEST(AccelSpec, StructureKeysTellWhichBuildsAreShared) {
     EXPECT_EQ(structureKey(resolveAccel("bvh")),
               structureKey(resolveAccel("bvh-hq", {{"--bvh-treelet-passes", 2}, {"--bvh-treelet-min", 8}})));
     EXPECT_NE(structureKey(resolveAccel("bvh")), structureKey(resolveAccel("bvh", {{"--bvh-treelet-passes", 3}})));
+    const AccelSpec reinserted = resolveAccel("bvh", {{"--bvh-reinsert-iterations", 10}});
+    EXPECT_NE(structureKey(resolveAccel("bvh")), structureKey(reinserted));
+    EXPECT_NE(structureKey(reinserted),
+              structureKey(resolveAccel("bvh", {{"--bvh-reinsert-iterations", 10}, {"--bvh-reinsert-batch", 0.5}})));
     EXPECT_NE(structureKey(resolveAccel("bvh")), structureKey(resolveAccel("bvh-fast")));
     EXPECT_NE(structureKey(resolveAccel("bvh-sah")), structureKey(resolveAccel("bvh-fast")));
     EXPECT_EQ(structureKey(resolveAccel("kd-stack")), structureKey(resolveAccel("kd-backtrack")));

@@ -175,6 +175,7 @@ vkray_expect_error(kd_short_stack_range "--kd-short-stack must be 1..56 \\(got 0
 vkray_expect_error(kd_short_stack_kd_stack "--kd-short-stack applies to kd-shortstack only \\(--accel kd-stack\\)" render ${CLI_DATA}/one_triangle.scene --accel kd-stack --kd-short-stack 2 -o ${CLI_OUT}/x.png)
 vkray_expect_error(aac_delta_absurd "--aac-delta must be 1..1024" render ${CLI_DATA}/one_triangle.scene --aac-delta 1000000 -o ${CLI_OUT}/x.png)
 vkray_expect_error(treelet_passes "--bvh-treelet-passes must be 0..16" render ${CLI_DATA}/one_triangle.scene --bvh-treelet-passes 17 -o ${CLI_OUT}/x.png)
+vkray_expect_error(reinsert_batch "--bvh-reinsert-batch must be in \\[0.001, 1\\]" render ${CLI_DATA}/one_triangle.scene --bvh-reinsert-batch 2 -o ${CLI_OUT}/x.png)
 vkray_expect_error(treelet_min_kd "--bvh-treelet-min applies to bvh, bvh-fast, bvh-hq, bvh-sah, bvh-stackless only \\(--accel kd-stack\\)" render ${CLI_DATA}/one_triangle.scene --accel kd-stack --bvh-treelet-min 4 -o ${CLI_OUT}/x.png)
 
 # Hardened input: every case is one "error: " line naming the cause (and file:line where

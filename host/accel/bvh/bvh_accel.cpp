@@ -8,6 +8,7 @@
 #include "accel/bvh/flatten.h"
 #include "accel/bvh/leaf_collapse.h"
 #include "accel/bvh/primitives.h"
+#include "accel/bvh/reinsert.h"
 #include "accel/bvh/sah_builder.h"
 #include "accel/bvh/treelet.h"
 #include "core/error.h"
@@ -31,7 +32,7 @@ class BvhAccel final : public accel::BuiltAccel {
 public:
     BvhAccel(const Config& config, bool stackless, BuildResult result, int threads)
         : config_(config), stackless_(stackless), flat_(std::move(result.flat)), phases_(std::move(result.phases)),
-          totalMs_(result.totalMs), threads_(threads) {}
+          totalMs_(result.totalMs), reinserted_(result.reinsertIterations), threads_(threads) {}
 
     std::unique_ptr<geometry::Tracer> makeTracer(const Scene& scene) const override {
         return std::make_unique<BvhTracer>(flat_, scene.triangles, stackless_);
@@ -64,6 +65,11 @@ public:
         } else {
             s.push_back({"sah_bins", double(config_.sahBins), "per axis"});
         }
+        if (config_.reinsertIterations > 0) {
+            s.push_back({"reinsert_iterations", double(reinserted_),
+                         "run, of at most " + std::to_string(config_.reinsertIterations) + "; Bittner et al. 2013"});
+            s.push_back({"reinsert_batch", config_.reinsertBatch, "of the inner nodes an iteration"});
+        }
         if (config_.treeletPasses > 0) {
             s.push_back({"treelet_passes", double(config_.treeletPasses), "Karras and Aila 2013"});
             s.push_back({"treelet_min", double(config_.treeletMinPrimitives), "triangles"});
@@ -91,6 +97,7 @@ private:
     FlatBvh flat_;
     std::vector<std::pair<std::string, double>> phases_;
     double totalMs_;
+    int reinserted_;
     int threads_;
 };
 
@@ -101,30 +108,37 @@ std::string Config::describe() const {
                                         ? "AAC delta=" + shortNumber(delta) + " epsilon=" + shortNumber(epsilon) +
                                               (container == Container::Sphere ? ", sphere containers" : "")
                                         : "binned SAH, " + std::to_string(sahBins) + " bins";
+    const std::string reinsertion = reinsertIterations > 0 ? "; reinsertion, at most " + std::to_string(reinsertIterations) +
+                                                                " iterations of " + shortNumber(reinsertBatch) + " of the nodes"
+                                                          : "";
     const std::string treelets = treeletPasses > 0 ? "; " + std::to_string(treeletPasses) +
                                                          " treelet passes from " + std::to_string(treeletMinPrimitives) + " triangles"
                                                    : "";
-    return builderText + treelets + "; " + sahUnit(*this);
+    return builderText + reinsertion + treelets + "; " + sahUnit(*this);
 }
 
 BuildResult buildFlatBvh(std::span<const Triangle> triangles, const Config& config, int threads,
                          BuildProgress progress) {
     const Clock::time_point start = Clock::now();
     PhaseLog log(std::move(progress));
+    int reinserted = 0;
     tbb::task_arena arena(threads > 0 ? threads : tbb::task_arena::automatic);
     FlatBvh flat = arena.execute([&] {
         const bool spheres = config.container == Config::Container::Sphere;
         const PrimitiveSet prims = log.run("primitives", 0.05, [&] { return primitivesOf(triangles, spheres); });
         // AAC records the leaf collapse while it clusters, unless restructuring changes the tree after.
-        const bool collapseInBuild = config.builder == Config::Builder::Aac && config.treeletPasses == 0;
+        const bool restructured = config.treeletPasses > 0 || config.reinsertIterations > 0;
+        const bool collapseInBuild = config.builder == Config::Builder::Aac && !restructured;
         CollapsedTree collapsed;
         BinaryTree tree = collapseInBuild ? buildAac(prims, config, log, &collapsed) : buildTree(prims, config, log);
+        if (config.reinsertIterations > 0)
+            reinserted = log.run("reinsert", 0.8, [&] { return reinsertNodes(tree, config); });
         if (config.treeletPasses > 0) log.run("treelets", 0.88, [&] { restructureTreelets(tree, config); });
         if (!collapseInBuild) collapsed = log.run("collapse", 0.92, [&] { return collapseLeaves(tree, config); });
         return log.run("flatten", 1.0, [&] { return flatten(tree, collapsed); });
     });
     log.finish();
-    return BuildResult{std::move(flat), log.phases(), msSince(start)};
+    return BuildResult{std::move(flat), log.phases(), msSince(start), reinserted};
 }
 
 }  // namespace vkray::bvh
@@ -140,8 +154,8 @@ std::unique_ptr<BuiltAccel> buildBvhAccel(const Scene& scene, const bvh::Config&
                                           const BuildOptions& options) {
     if (config.builder == bvh::Config::Builder::Aac) bvh::validateAacConfig(config);
     if (config.container == bvh::Config::Container::Sphere &&
-        (config.builder != bvh::Config::Builder::Aac || config.treeletPasses > 0 || stackless))
-        throw Error("sphere containers are built by AAC and walked with a stack: no binned SAH, treelets or stackless walk");
+        (config.builder != bvh::Config::Builder::Aac || config.treeletPasses > 0 || config.reinsertIterations > 0 || stackless))
+        throw Error("sphere containers are built by AAC and walked with a stack: no binned SAH, treelets, reinsertion or stackless walk");
     bvh::BuildResult result = bvh::buildFlatBvh(scene.triangles, config, options.threads, options.progress);
     return std::make_unique<bvh::BvhAccel>(config, stackless, std::move(result), options.threads);
 }

@@ -31,6 +31,7 @@ struct BuildResult {
     FlatBvh flat;
     std::vector<std::pair<std::string, double>> phases;  // (name, ms) in order
     double totalMs = 0.0;
+    int reinsertIterations = 0;  // iterations the reinsertion ran (it may stop before Config's bound)
 };
 
 // Builds, collapses and flattens on a oneTBB arena of `threads` workers (0 = all cores).

@@ -27,8 +27,15 @@ struct NamedConfig {
     Config config;
 };
 
+Config reinserted(Config c) {
+    c.reinsertIterations = 20;
+    return c;
+}
+
 std::vector<NamedConfig> testConfigs() {
-    return {{"aac_fast", Config::aacFast()},
+    return {{"aac_hq_reinserted", reinserted(Config::aacHq())},
+            {"aac_hq_reinserted_treelets", reinserted(Config::aacHqRestructured())},
+            {"aac_fast", Config::aacFast()},
             {"aac_hq", Config::aacHq()},
             {"aac_hq_treelets", Config::aacHqRestructured()},
             {"binned_sah", Config::binnedSah()},
@@ -169,7 +176,8 @@ TEST(BvhStructure, GpuLayoutHoldsTheSameTree) {
 TEST(BvhStructure, SameTreeForAnyThreadCount) {
     const Scene big = test::randomSoup(21, 150000, 0.02f);
     for (const NamedConfig& c : testConfigs()) {
-        if (c.name == "aac_delta1_eps0") continue;  // slow on purpose; covered above
+        // Slow on purpose, or serial after the build (the reinsertion is tested without treelets).
+        if (c.name == "aac_delta1_eps0" || c.name == "aac_hq_reinserted_treelets") continue;
         SCOPED_TRACE(c.name);
         const BuildResult one = buildFlatBvh(big.triangles, c.config, 1);
         for (int threads : {2, 4}) {

@@ -29,6 +29,11 @@ struct Presets {
     bool stackless = false;
 };
 
+Config reinserted(Config c) {
+    c.reinsertIterations = 20;
+    return c;
+}
+
 Config spheres(Config c) {
     c.container = Config::Container::Sphere;
     return c;
@@ -39,6 +44,8 @@ std::vector<Presets> presets() {
             {"bvh-fast", Config::aacFast()},
             {"bvh-hq", Config::aacHq()},
             {"bvh-sah", Config::binnedSah()},
+            {"bvh reinserted", reinserted(Config::aacHqRestructured())},
+            {"bvh-fast reinserted stackless", reinserted(Config::aacFast()), true},
             {"bvh-stackless", Config::aacHqRestructured(), true},
             {"bvh-fast stackless", Config::aacFast(), true},
             {"bvh-sphere", Config::aacHqSpheres()},

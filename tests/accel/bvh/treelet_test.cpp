@@ -16,6 +16,7 @@
 #include "accel/bvh/leaf_collapse.h"
 #include "accel/bvh/primitives.h"
 #include "accel/bvh/treelet.h"
+#include "binary_tree_check.h"
 #include "bvh_test_meshes.h"
 
 namespace vkray::bvh {
@@ -28,26 +29,7 @@ BinaryTree aacTree(const PrimitiveSet& prims, const Config& config) {
 
 double sahCost(const BinaryTree& tree, const Config& config) { return collapseLeaves(tree, config).sahCost; }
 
-// Every node but the root has exactly one parent, every primitive is in exactly one leaf and every
-// inner box is exactly the union of its children's.
-void checkBinaryTree(const BinaryTree& tree, const PrimitiveSet& prims) {
-    ASSERT_EQ(tree.nodes.size(), 2 * prims.size() - 1);
-    std::vector<int> parents(tree.nodes.size(), 0), seen(prims.size(), 0);
-    for (const BinaryNode& node : tree.nodes) {
-        if (node.isPrimitive()) {
-            ASSERT_LT(node.child[0], prims.size());
-            ++seen[node.child[0]];
-            continue;
-        }
-        ++parents[node.child[0]];
-        ++parents[node.child[1]];
-        const Aabb merged = Aabb::merged(tree.nodes[node.child[0]].box, tree.nodes[node.child[1]].box);
-        EXPECT_EQ(node.box.lo, merged.lo);
-        EXPECT_EQ(node.box.hi, merged.hi);
-    }
-    for (size_t id = 0; id < parents.size(); ++id) ASSERT_EQ(parents[id], id == tree.root ? 0 : 1) << "node " << id;
-    for (size_t p = 0; p < seen.size(); ++p) ASSERT_EQ(seen[p], 1) << "primitive " << p;
-}
+using test::checkBinaryTree;
 
 TEST(Treelets, KeepTheTreeValidAndNeverRaiseItsCost) {
     for (const test::NamedMesh& mesh : test::testMeshes()) {
