@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 
 #include "core/error.h"
 #include "core/format.h"
@@ -122,6 +123,40 @@ Error notApplicable(const TuningOption& o, const AccelSpec& spec) {
     return Error(std::string(o.flag) + " applies to " + joined(names) + " only (--accel " + spec.name + ")");
 }
 
+std::string knownTuningKeys() {
+    std::vector<std::string> keys;
+    for (const TuningOption& o : kTuning) keys.push_back(std::string(o.flag.substr(2)));
+    return joined(keys);
+}
+
+// `given` and the tuning written into the name after its first ':' ("bvh:aac-delta=8:...").
+Tuning withNamedTuning(std::string_view text, const Tuning& given) {
+    Tuning tuning = given;
+    const auto fail = [&](const std::string& why) { return Error("--accel " + std::string(text) + ": " + why); };
+    for (size_t at = text.find(':'); at != std::string_view::npos;) {
+        const size_t end = text.find(':', at + 1);
+        const std::string_view item = text.substr(at + 1, end == std::string_view::npos ? end : end - at - 1);
+        at = end;
+        const size_t eq = item.find('=');
+        std::string_view key = item.substr(0, eq);
+        if (key.starts_with("--")) key.remove_prefix(2);
+        if (eq == std::string_view::npos || key.empty())
+            throw fail("expected OPTION=VALUE after ':', got '" + std::string(item) + "'");
+        const std::string flag = "--" + std::string(key);
+        if (std::none_of(std::begin(kTuning), std::end(kTuning), [&](const TuningOption& o) { return o.flag == flag; }))
+            throw fail("unknown tuning option '" + flag.substr(2) + "' (known: " + knownTuningKeys() + ")");
+        const std::string value(item.substr(eq + 1));
+        char* parsedEnd = nullptr;
+        const double v = value.empty() ? NAN : std::strtod(value.c_str(), &parsedEnd);
+        if (value.empty() || parsedEnd != value.c_str() + value.size())
+            throw fail("'" + std::string(item) + "': the value is not a number");
+        std::optional<double>& slot = tuning[flag];
+        if (slot) throw fail(flag + " is given twice");
+        slot = v;
+    }
+    return tuning;
+}
+
 }  // namespace
 
 const std::vector<std::string>& accelNames() {
@@ -135,13 +170,16 @@ const std::vector<std::string>& accelNames() {
 
 std::span<const TuningOption> tuningOptions() { return kTuning; }
 
-AccelSpec resolveAccel(std::string_view name, const Tuning& tuning) {
+AccelSpec resolveAccel(std::string_view text, const Tuning& given) {
+    const std::string_view name = text.substr(0, text.find(':'));
     const auto entry = std::find_if(std::begin(kAccels), std::end(kAccels),
                                     [&](const AccelEntry& e) { return e.name == name; });
     if (entry == std::end(kAccels))
-        throw Error("--accel " + std::string(name) + ": unknown accelerator '" + std::string(name) +
+        throw Error("--accel " + std::string(text) + ": unknown accelerator '" + std::string(name) +
                     "' (known: " + joined(accelNames()) + ")");
     AccelSpec spec = specOf(*entry);
+    spec.name = std::string(text);
+    const Tuning tuning = withNamedTuning(text, given);
 
     for (const auto& [flag, value] : tuning) {
         if (!value) continue;

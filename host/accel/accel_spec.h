@@ -60,9 +60,12 @@ std::span<const TuningOption> tuningOptions();
 // Tuning values by flag ("--aac-delta" -> 8); a flag that is absent or empty keeps the preset.
 using Tuning = std::map<std::string, std::optional<double>, std::less<>>;
 
-// The spec for a name with the tuning applied. Throws vkray::Error naming the option for an unknown
-// name (listing the known ones), a value out of range, or an option that does not apply to the
-// accelerator (say --kd-max-depth with bvh).
+// The spec for a name with the tuning applied. The name may carry tuning of its own, so that one
+// list compares a preset with variants of it: "bvh:bvh-reinsert-iterations=20:bvh-reinsert-batch=0.1"
+// is bvh with those two options (each a tuning flag without its dashes, '=', a number); the spec
+// keeps the whole text as its name. Throws vkray::Error naming the option for an unknown name
+// (listing the known ones), an unknown or malformed option in the name, an option given twice, a
+// value out of range, or an option that does not apply to the accelerator (say --kd-max-depth with bvh).
 AccelSpec resolveAccel(std::string_view name, const Tuning& tuning = {});
 
 // What two specs share when they build the same structure (bvh and bvh-hq; the three kd

@@ -156,7 +156,8 @@ void registerBenchCommand(CLI::App& app, int& exitCode, int argc, const char* co
     auto* scenes = cmd->add_option("scenes", args->scenes, "Scene files (required unless --merge)");
     cmd->add_option("--accel", args->accels,
                     "Comma-separated accelerators (default bvh,bvh-fast,bvh-hq,bvh-stackless,kd-stack,kd-shortstack,kd-restart,kd-pushdown,kd-ropes,"
-                    "kd-backtrack)");
+                    "kd-backtrack); each may carry tuning, NAME:OPTION=VALUE[:OPTION=VALUE...], "
+                    "e.g. bvh:bvh-reinsert-iterations=20 (the options of `vkray render`, without their dashes)");
     cmd->add_option("--device", args->device, "Vulkan device: index or name substring (see `vkray devices`)");
     cmd->add_option("--size", args->size, "Image size WIDTHxHEIGHT (default: each scene's 'size')");
     addViewOption(*cmd, args->view);

@@ -483,7 +483,10 @@ void registerRenderCommand(CLI::App& app, int& exitCode) {
         ->default_str("0");
     std::string accelList;
     for (const std::string& n : accel::accelNames()) accelList += (accelList.empty() ? "" : ", ") + n;
-    cmd->add_option("--accel", args->accel, "Acceleration structure: " + accelList)->default_str(args->accel);
+    cmd->add_option("--accel", args->accel,
+                    "Acceleration structure: " + accelList +
+                        "; tuning may follow the name, NAME:OPTION=VALUE[:...] (the options below without their dashes)")
+        ->default_str(args->accel);
     for (const accel::TuningOption& o : accel::tuningOptions())
         cmd->add_option(std::string(o.flag), args->tuning[std::string(o.flag)], std::string(o.help))
             ->type_name(o.integer ? "INT" : "FLOAT");

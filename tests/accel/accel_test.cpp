@@ -106,6 +106,41 @@ TEST(AccelSpec, EveryTuningOptionIsRangeCheckedAndNamed) {
     for (const TuningOption& o : tuningOptions()) EXPECT_EQ(o.flag.substr(0, 2), "--") << o.flag;
 }
 
+// Tuning written after the name: the same spec as the flags, the whole text as the name, and every
+// malformed, unknown, repeated or inapplicable option refused with the text in the message.
+TEST(AccelSpec, TuningAfterTheName) {
+    const AccelSpec named = resolveAccel("bvh:bvh-reinsert-iterations=20:--bvh-reinsert-batch=0.1");
+    const AccelSpec flagged = resolveAccel("bvh", {{"--bvh-reinsert-iterations", 20}, {"--bvh-reinsert-batch", 0.1}});
+    EXPECT_EQ(named.name, "bvh:bvh-reinsert-iterations=20:--bvh-reinsert-batch=0.1");
+    EXPECT_EQ(named.bvh.reinsertIterations, 20);
+    EXPECT_DOUBLE_EQ(named.bvh.reinsertBatch, 0.1);
+    EXPECT_EQ(structureKey(named), structureKey(flagged));
+    EXPECT_NE(structureKey(named), structureKey(resolveAccel("bvh")));
+    EXPECT_EQ(resolveAccel("kd-stack:kd-max-depth=12").kd.maxDepth, 12);
+    // Combined with the flags: each option once, wherever it is written.
+    EXPECT_EQ(resolveAccel("bvh-hq:aac-delta=9", {{"--aac-epsilon", 0.25}}).bvh.delta, 9);
+    const auto expectError = [](const std::string& text, const Tuning& tuning, const std::string& words) {
+        try {
+            resolveAccel(text, tuning);
+            ADD_FAILURE() << text << ": expected an error";
+        } catch (const Error& e) {
+            const std::string what = e.what();
+            EXPECT_NE(what.find(words), std::string::npos) << what;
+        }
+    };
+    expectError("bvh:", {}, "expected OPTION=VALUE after ':'");
+    expectError("bvh:aac-delta", {}, "expected OPTION=VALUE after ':', got 'aac-delta'");
+    expectError("bvh:=3", {}, "expected OPTION=VALUE");
+    expectError("bvh:octree-depth=3", {}, "unknown tuning option 'octree-depth' (known: aac-delta,");
+    expectError("bvh:aac-delta=8x", {}, "'aac-delta=8x': the value is not a number");
+    expectError("bvh:aac-delta=", {}, "the value is not a number");
+    expectError("bvh:aac-delta=8:aac-delta=9", {}, "--aac-delta is given twice");
+    expectError("bvh:aac-delta=8", {{"--aac-delta", 9}}, "--aac-delta is given twice");
+    expectError("bvh:aac-delta=2000", {}, "--aac-delta must be 1..1024");
+    expectError("kd-stack:aac-delta=8", {}, "applies to bvh, bvh-fast, bvh-hq, bvh-stackless, bvh-sphere only (--accel kd-stack:aac-delta=8)");
+    expectError("octree:aac-delta=8", {}, "unknown accelerator 'octree'");
+}
+
 TEST(AccelSpec, StructureKeysTellWhichBuildsAreShared) {
     EXPECT_NE(structureKey(resolveAccel("bvh")), structureKey(resolveAccel("bvh-hq")));
     EXPECT_EQ(structureKey(resolveAccel("bvh")),

@@ -16,6 +16,7 @@ function(vkray_bench_error name pattern)
 endfunction()
 vkray_bench_error(missing_scene "nope\\.scene: no such scene file" ${BENCH_OUT}/nope.scene --out ${BENCH_OUT}/x)
 vkray_bench_error(unknown_accel "octree" ${BENCH_SCENE} --accel bvh,octree --out ${BENCH_OUT}/x)
+vkray_bench_error(bad_accel_tuning "--accel bvh:aac-delta=x: 'aac-delta=x': the value is not a number" ${BENCH_SCENE} --accel bvh,bvh:aac-delta=x --out ${BENCH_OUT}/x)
 vkray_bench_error(empty_accel_item "--accel bvh,,kd-stack: empty item" ${BENCH_SCENE} --accel bvh,,kd-stack --out ${BENCH_OUT}/x)
 vkray_bench_error(repeat_zero "--repeat 0" ${BENCH_SCENE} --repeat 0 --out ${BENCH_OUT}/x)
 vkray_bench_error(bad_delta "--deltas 4,x" ${BENCH_SCENE} --deltas 4,x --out ${BENCH_OUT}/x)
@@ -34,3 +35,9 @@ add_test(NAME bench.cli.quiet
          COMMAND bash -c "out=$(\"$0\" bench \"$1\" --size 16x12 --repeat 1 --threads 1 --accel bvh --deltas none --maxdepths none --quiet --out \"$2\") && test -z \"$out\" && test -s \"$2/bench.json\""
                  $<TARGET_FILE:vkray> ${CMAKE_SOURCE_DIR}/tests/cli/data/one_triangle.scene ${BENCH_OUT}/quiet)
 set_tests_properties(bench.cli.quiet PROPERTIES TIMEOUT 300 ENVIRONMENT "VKRAY_VALIDATION=1")
+# A preset and a tuned variant of it in one run: both measured, each under the name as written, the
+# variant's build with its own options (its reinsertion phase in the report).
+add_test(NAME bench.cli.tuned_variant
+         COMMAND bash -c "\"$0\" bench \"$1\" --size 32x24 --repeat 1 --threads 1 --accel bvh,bvh:bvh-reinsert-iterations=2 --deltas none --maxdepths none --quiet --out \"$2\" && python3 -c \"import json, sys; a = json.load(open(sys.argv[1]))['scenes'][0]['accelerators']; n = [x['accel'] for x in a]; assert n == ['bvh', 'bvh:bvh-reinsert-iterations=2'], n; s = [set(x['build_stats']) for x in a]; assert 'reinsert_ms' in s[1] and 'reinsert_ms' not in s[0], s\" \"$2/bench.json\""
+                 $<TARGET_FILE:vkray> ${BENCH_SCENE} ${BENCH_OUT}/tuned)
+set_tests_properties(bench.cli.tuned_variant PROPERTIES TIMEOUT 300 ENVIRONMENT "VKRAY_VALIDATION=1")
