@@ -133,6 +133,10 @@ AccelResult accelResult(const Json& j, const std::string& w, const Pictures& pic
     const Json& primary = at(j, "per_primary_ray", w);
     a.primaryNodesPerRay = num(primary, "nodes", path(w, "per_primary_ray"));
     a.primaryTrianglesPerRay = num(primary, "triangles", path(w, "per_primary_ray"));
+    if (primary.contains("lockstep_nodes")) {  // reports from before they were measured lack them
+        a.primaryLockstepNodesPerRay = num(primary, "lockstep_nodes", path(w, "per_primary_ray"));
+        a.simdLanes = get<uint32_t>(primary, "simd_lanes", path(w, "per_primary_ray"));
+    }
     a.cappedRays = get<uint64_t>(j, "capped_rays", w);
     a.error = imageError(j, w);
     const Json names = j.contains("images") ? j["images"] : Json::object();

@@ -66,6 +66,14 @@ struct AccelResult {
     double nodesPerRay = 0.0, leavesPerRay = 0.0, trianglesPerRay = 0.0, restartsPerRay = 0.0;
     // The same for camera rays alone (from the primary-only statistics render).
     double primaryNodesPerRay = 0.0, primaryTrianglesPerRay = 0.0;
+    // Camera rays' node steps a ray as the device's subgroups run them in lock-step (gpu/lockstep.h),
+    // and the subgroup size; 0 in a report from before they were measured.
+    double primaryLockstepNodesPerRay = 0.0;
+    uint32_t simdLanes = 0;
+    std::optional<double> primarySimdEfficiency() const {
+        if (primaryLockstepNodesPerRay <= 0.0) return std::nullopt;
+        return primaryNodesPerRay / primaryLockstepNodesPerRay;
+    }
     // The camera-ray rate (the "primary" ray kind).
     std::optional<double> primaryMrays() const {
         for (const RayKindFigures& k : rayKinds)

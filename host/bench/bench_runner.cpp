@@ -355,6 +355,8 @@ private:
         const GpuRun p = this->render(dark, counting, data);
         a.primaryNodesPerRay = double(p.report.nodesVisited) / double(std::max<uint64_t>(pixels, 1));
         a.primaryTrianglesPerRay = double(p.report.trianglesTested) / double(std::max<uint64_t>(pixels, 1));
+        a.primaryLockstepNodesPerRay = double(p.report.lockstepNodes) / double(std::max<uint64_t>(pixels, 1));
+        a.simdLanes = p.report.lockstepLanes;
         return a;
     }
 

@@ -87,7 +87,10 @@ Json accelResult(const AccelResult& a, const ImageNames& names) {
                          {"leaves", number(a.leavesPerRay)},
                          {"triangles", number(a.trianglesPerRay)},
                          {"restarts", number(a.restartsPerRay)}}},
-            {"per_primary_ray", {{"nodes", number(a.primaryNodesPerRay)}, {"triangles", number(a.primaryTrianglesPerRay)}}},
+            {"per_primary_ray", {{"nodes", number(a.primaryNodesPerRay)},
+                                 {"triangles", number(a.primaryTrianglesPerRay)},
+                                 {"lockstep_nodes", number(a.primaryLockstepNodesPerRay)},
+                                 {"simd_lanes", a.simdLanes}}},
             {"capped_rays", a.cappedRays},
             {"error", imageError(a.error)},
             {"images", names.of(a.accel)}};

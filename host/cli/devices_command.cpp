@@ -22,15 +22,16 @@ void registerDevicesCommand(CLI::App& app, int& exitCode) {
                                {"max_storage_buffer_range", d.maxStorageBufferRange},
                                {"device_local_bytes", d.deviceLocalBytes},
                                {"timestamp_period_ns", d.timestampPeriodNs},
+                               {"subgroup_size", d.subgroupSize},
                                {"compute", d.hasCompute}});
             std::printf("%s\n", out.dump(2).c_str());
         } else {
             if (devices.empty()) std::printf("no Vulkan devices\n");
             for (const auto& d : devices)
-                std::printf("%u: %s\n   type %s, driver %s, Vulkan %s, maxStorageBufferRange %llu MiB%s\n",
+                std::printf("%u: %s\n   type %s, driver %s, Vulkan %s, maxStorageBufferRange %llu MiB, subgroups of %u%s\n",
                             d.index, d.name.c_str(), d.type.c_str(), d.driver.c_str(),
                             d.apiVersion.c_str(),
-                            (unsigned long long)(d.maxStorageBufferRange >> 20),
+                            (unsigned long long)(d.maxStorageBufferRange >> 20), d.subgroupSize,
                             d.hasCompute ? "" : ", no compute queue");
         }
         exitCode = 0;

@@ -82,7 +82,8 @@ nlohmann::json gpuJson(const gpu::GpuRenderReport& g) {
                                      {"dispatches", g.resumeDispatches}}}};
     if (g.features.countTraversal)
         j["traversal"] = {{"nodes", g.nodesVisited}, {"leaves", g.leavesVisited},
-                          {"triangles", g.trianglesTested}, {"restarts", g.restarts}};
+                          {"triangles", g.trianglesTested}, {"restarts", g.restarts},
+                          {"lockstep", {{"lanes", g.lockstepLanes}, {"nodes", g.lockstepNodes}}}};
     return j;
 }
 
@@ -105,6 +106,10 @@ void printGpuStats(const gpu::GpuRenderReport& g) {
         std::printf("traversal:   per ray %.2f nodes, %.2f leaves, %.2f triangle tests, %.3f restarts\n",
                     double(g.nodesVisited) / all, double(g.leavesVisited) / all, double(g.trianglesTested) / all,
                     double(g.restarts) / all);
+        if (g.lockstepNodes > 0)
+            std::printf("simd:        %.2f node steps a ray in lock-step over subgroups of %u, SIMD efficiency %.1f%%\n",
+                        double(g.lockstepNodes) / all, g.lockstepLanes,
+                        100.0 * double(g.nodesVisited) / double(g.lockstepNodes));
     }
     std::printf("timing:      upload %.1f ms, pipeline %.1f ms, gpu %.1f ms (timestamps), dispatch+readback %.1f ms\n",
                 g.uploadMs, g.pipelineMs, g.gpuMs, g.renderMs);

@@ -14,6 +14,7 @@
 #include "core/timing.h"
 #include "gpu/buffer.h"
 #include "gpu/compute_kernel.h"
+#include "gpu/lockstep.h"
 #include "gpu/pixel_output.h"
 #include "gpu/scene_buffers.h"
 #include "render_kernels.h"  // generated at build time from shaders/render_*.comp
@@ -123,6 +124,9 @@ void readTile(const GpuPixel* src, const Tile& tile, const ShaderFeatures& featu
             }
             rep.pixelsCutShort += (px.flags & VKRAY_PIXEL_CUT_SHORT) != 0;
         }
+    if (counters)
+        rep.lockstepNodes += lockstepNodes(tile.width, tile.height, rep.lockstepLanes,
+                                           [&](uint32_t x, uint32_t y) { return src[y * VKRAY_TILE_SIZE + x].nodes; });
 }
 
 // The position of a kernel's SPIR-V in the generated registry, -1 when it has none. An index rather
@@ -447,6 +451,7 @@ Frame renderOnGpu(const VulkanContext& ctx, const Scene& scene, const RenderOpti
     Frame frame;
     frame.resize(window, options.primaryAovs);
     if (options.countTraversal) rep.nodesPerPixel.assign(frame.color.size(), 0u);
+    rep.lockstepLanes = std::max(1u, ctx.info().subgroupSize);
     start = Clock::now();
     rep.tiles = uint32_t(tiles.size());
     rep.gpuMs = ctx.timestampValidBits() > 0 ? 0.0 : -1.0;

@@ -42,6 +42,11 @@ struct GpuRenderReport {
     bool resumedFromStart = false;  // every tile resumable at once (brute force beyond one budget)
     // Traversal work over all rays; filled only with RenderOptions::countTraversal.
     uint64_t nodesVisited = 0, leavesVisited = 0, trianglesTested = 0, restarts = 0;
+    // The node steps the device's subgroups run in lock-step (lockstep.h): nodesVisited over this is
+    // the SIMD efficiency. A lower bound where a pixel traces several rays (its lanes need not be
+    // at the same ray); filled only with RenderOptions::countTraversal.
+    uint64_t lockstepNodes = 0;
+    uint32_t lockstepLanes = 0;  // the subgroup size it assumes
     // Nodes visited by all rays of each pixel, top row first (a traversal-cost heatmap); filled
     // only with RenderOptions::countTraversal.
     std::vector<uint32_t> nodesPerPixel;

@@ -56,9 +56,11 @@ std::optional<uint32_t> computeQueueFamily(const vk::raii::PhysicalDevice& pd) {
 DeviceInfo describe(const vk::raii::PhysicalDevice& pd, uint32_t index) {
     DeviceInfo d;
     d.index = index;
-    auto chain = pd.getProperties2<vk::PhysicalDeviceProperties2, vk::PhysicalDeviceDriverProperties>();
+    auto chain = pd.getProperties2<vk::PhysicalDeviceProperties2, vk::PhysicalDeviceDriverProperties,
+                                   vk::PhysicalDeviceSubgroupProperties>();
     const auto& props = chain.get<vk::PhysicalDeviceProperties2>().properties;
     const auto& drv = chain.get<vk::PhysicalDeviceDriverProperties>();
+    d.subgroupSize = chain.get<vk::PhysicalDeviceSubgroupProperties>().subgroupSize;
     d.name = props.deviceName.data();
     d.type = typeName(props.deviceType);
     d.driver = std::string(drv.driverName.data());

@@ -26,6 +26,9 @@ struct DeviceInfo {
     uint64_t deviceLocalBytes = 0;
     float timestampPeriodNs = 0.0f;
     bool hasCompute = false;
+    // Invocations that run together (VkPhysicalDeviceSubgroupProperties::subgroupSize): 8 on
+    // llvmpipe with 256-bit vectors, 32 on NVIDIA, 32 or 64 on AMD.
+    uint32_t subgroupSize = 0;
     // llvmpipe (lavapipe): all loops of an invocation end once they ran 65535 iterations together
     // (Mesa's LP_MAX_TGSI_LOOP_ITERATIONS); render_main.glsl, "Resumable pixels".
     bool loopBudget = false;

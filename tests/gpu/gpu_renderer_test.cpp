@@ -10,6 +10,7 @@
 #include "support/window_check.h"
 #include "gpu/buffer.h"
 #include "gpu/gpu_renderer.h"
+#include "gpu/lockstep.h"
 #include "gpu_test_util.h"
 
 namespace vkray {
@@ -180,6 +181,23 @@ TEST(GpuRenderer, WithoutPrimaryAovsTheImageAndCountsAreTheSame) {
         EXPECT_EQ(a.nodesVisited, b.nodesVisited);
         EXPECT_EQ(a.trianglesTested, b.trianglesTested);
     }
+}
+
+// The lock-step count of a one-tile render is the per-pixel counts' (gpu/lockstep.h) with the
+// device's subgroup size, and at least the steps themselves.
+TEST(GpuRenderer, LockstepNodesFromThePixelCounts) {
+    const Scene s = litSquare();
+    const RenderOptions options{.width = 40, .height = 30, .maxDepth = 1, .countTraversal = true};
+    gpu::GpuRenderReport rep;
+    test::renderGpu(s, options, &rep, "bvh");
+    ASSERT_EQ(rep.nodesPerPixel.size(), size_t(40 * 30));
+    EXPECT_EQ(rep.lockstepLanes, test::gpuContext().info().subgroupSize);
+    EXPECT_GE(rep.lockstepLanes, 1u);
+    const uint64_t expected =
+        gpu::lockstepNodes(40, 30, rep.lockstepLanes, [&](uint32_t x, uint32_t y) { return rep.nodesPerPixel[y * 40 + x]; });
+    EXPECT_EQ(rep.lockstepNodes, expected);
+    EXPECT_GE(rep.lockstepNodes, rep.nodesVisited);
+    EXPECT_GT(rep.nodesVisited, 0u);
 }
 
 TEST(GpuRenderer, FeaturesFollowTheScene) {
