@@ -2,10 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdlib>
 
 #include "core/error.h"
 #include "core/format.h"
+#include "scene/text_input.h"
 
 namespace vkray::accel {
 namespace {
@@ -145,10 +145,8 @@ Tuning withNamedTuning(std::string_view text, const Tuning& given) {
         const std::string flag = "--" + std::string(key);
         if (std::none_of(std::begin(kTuning), std::end(kTuning), [&](const TuningOption& o) { return o.flag == flag; }))
             throw fail("unknown tuning option '" + flag.substr(2) + "' (known: " + knownTuningKeys() + ")");
-        const std::string value(item.substr(eq + 1));
-        char* parsedEnd = nullptr;
-        const double v = value.empty() ? NAN : std::strtod(value.c_str(), &parsedEnd);
-        if (value.empty() || parsedEnd != value.c_str() + value.size())
+        double v = 0.0;  // the scene files' number rule: whole token, locale-independent, finite
+        if (parseReal(item.substr(eq + 1), v) != NumberStatus::Ok)
             throw fail("'" + std::string(item) + "': the value is not a number");
         std::optional<double>& slot = tuning[flag];
         if (slot) throw fail(flag + " is given twice");
