@@ -93,17 +93,23 @@ Hit bvhTrace(vec3 origin, vec3 dir, float tmax, const bool anyHit) {
                     gLoopCutShort = true;
                     return best;
                 }
-                // The entered children after the first, farthest first: the nearest pops next.
-#define VKRAY_BVH_PUSH(when, child, enter)             \
-    if (when) {                                        \
-        stackRef[top] = child;                         \
-        if (!anyHit) stackEnter[top] = enter;          \
-        ++top;                                         \
-    }
-                VKRAY_BVH_PUSH(hits > 3, kids.w, key.w)
-                VKRAY_BVH_PUSH(hits > 2, kids.z, key.z)
-                VKRAY_BVH_PUSH(hits > 1, kids.y, key.y)
-#undef VKRAY_BVH_PUSH
+                // The entered children after the first, farthest first, so the nearest pops next:
+                // a loop of hits - 1 passes, not three pushes under `if`s. llvmpipe runs an `if`
+                // body for all lanes, and its masked store into a local array reads and writes
+                // back every lane's entry whether or not the lane pushes; a loop stops when no
+                // lane has an entry left (docs/benchmarks.md, "Pushes in a loop").
+                uvec4 pushRef = kids.yzwx;
+                vec4 pushEnter = key.yzwx;
+                int slot = top + hits - 2;
+                for (int i = 1; countPass() && i < hits; ++i) {
+                    stackRef[slot] = pushRef.x;
+                    if (!anyHit) stackEnter[slot] = pushEnter.x;
+                    --slot;
+                    pushRef = pushRef.yzwx;
+                    pushEnter = pushEnter.yzwx;
+                }
+                top += max(hits - 1, 0);
+                iteration += max(hits - 1, 0);  // the pushes' passes count against the cap too
                 ref = kids.x;
                 haveRef = hits > 0;
             }

@@ -80,6 +80,14 @@ bool budgetLeft() {
     subgroupMemoryBarrierShared();
     return sLoopIterations[gl_SubgroupID] <= VKRAY_RESUMABLE_LOOP_BUDGET;
 }
+// The same count for a pass that may not be refused: a loop that finishes a step already begun (the
+// BVH walk's pushes, at most VKRAY_BVH_WIDTH passes). The few passes it takes after the budget is
+// spent fit in the margin between the budget and llvmpipe's own count.
+bool countPass() {
+    budgetLeft();
+    return true;
+}
+
 uint gCappedRays = 0;
 uint gShadowRays = 0;
 uint gNodesVisited = 0;
