@@ -1,9 +1,14 @@
 // Render kernel with the `bvh-sphere` accelerator: AAC with sphere containers (Mahmuda 2017's
-// box/sphere experiment), the near-child-first stack walk of `bvh` with a sphere test per child.
+// box/sphere experiment): the walks of `bvh` with a sphere test per child.
 #version 460
 #extension GL_GOOGLE_include_directive : require
 #extension GL_KHR_shader_subgroup_basic : require
 
 #define VKRAY_BVH_SPHERES
+#include "include/bvh_stackless.glsl"
 #include "include/bvh_traversal.glsl"
+
+Hit traceClosest(vec3 origin, vec3 dir, float tmax) { return bvhTrace(origin, dir, tmax); }
+bool traceAny(vec3 origin, vec3 dir, float tmax) { return bvhStacklessTrace(origin, dir, tmax, true).triangle >= 0; }
+
 #include "include/render_main.glsl"

@@ -1,6 +1,7 @@
-// The `bvh-stackless` walk of the 4-wide BVH: no stack, a parent link per node instead (after
-// Hapala, Davidovic, Wald, Havran and Slusallek, "Efficient Stack-less BVH Traversal for Ray
-// Tracing", SCCG 2011, whose three-state automaton walks a binary tree; here its 4-wide analogue).
+// The stackless walk of the 4-wide BVH (bvh-stackless's rays, and every BVH kernel's shadow rays):
+// no stack, a parent link per node instead (after Hapala, Davidovic, Wald, Havran and Slusallek,
+// "Efficient Stack-less BVH Traversal for Ray Tracing", SCCG 2011, whose three-state automaton walks
+// a binary tree; here its 4-wide analogue).
 // At a node the walk takes, among the children the ray enters within the best hit so far, the
 // first after the child it came back from, in one order of the node's children that is the same on
 // every visit: by entry distance, then by slot. With none left it climbs to the parent, whose link
@@ -78,8 +79,5 @@ Hit bvhStacklessTrace(vec3 origin, vec3 dir, float tmax, const bool anyHit) {
     bvhEndLoop(done, iteration);
     return best;
 }
-
-Hit traceClosest(vec3 origin, vec3 dir, float tmax) { return bvhStacklessTrace(origin, dir, tmax, false); }
-bool traceAny(vec3 origin, vec3 dir, float tmax) { return bvhStacklessTrace(origin, dir, tmax, true).triangle >= 0; }
 
 #endif

@@ -3,11 +3,12 @@
 // axis, so one read and one set of vector operations test all four; leaves are runs of the triangle
 // buffer in leaf order, named by the reference itself, and take no node.
 //
-// One walk for both queries (bvhTrace). Closest hit: the children a ray enters are sorted by entry
+// The stack walk, for closest hits (bvhTrace): the children a ray enters are sorted by entry
 // distance; the nearest is visited next and the others are pushed, farthest first, with their
 // entry distances on a stack in local memory; a popped entry entered beyond the best hit so far is
-// skipped. Any hit (shadow rays) walks the same way without sorting and stops at the first
-// triangle hit. Leaves test their triangles in the loop of leaf_triangles.glsl.
+// skipped. Leaves test their triangles in the loop of leaf_triangles.glsl. Shadow rays (any hit)
+// take the stackless walk of bvh_stackless.glsl in every BVH kernel: on llvmpipe a walk that stores
+// nothing per ray is the faster one for them (docs/benchmarks.md, "Shadow rays without a stack").
 #ifndef VKRAY_BVH_TRAVERSAL_GLSL
 #define VKRAY_BVH_TRAVERSAL_GLSL
 
@@ -28,10 +29,10 @@ void sortPair(inout vec4 key, inout uvec4 ref, int a, int b) {
     }
 }
 
-// The entered children first, closest hit nearest first: a sorting network of five compare-swaps
-// on the entry distance, +inf for a miss (any hit sorts 0 and +inf).
-void sortEntered(bvec4 hit, vec4 tEnter, uvec4 child, bool anyHit, out vec4 key, out uvec4 kids) {
-    key = mix(vec4(kInfinity), anyHit ? vec4(0.0) : tEnter, hit);
+// The entered children first, nearest first: a sorting network of five compare-swaps on the entry
+// distance, +inf for a miss.
+void sortEntered(bvec4 hit, vec4 tEnter, uvec4 child, out vec4 key, out uvec4 kids) {
+    key = mix(vec4(kInfinity), tEnter, hit);
     kids = child;
     sortPair(key, kids, 0, 1);
     sortPair(key, kids, 2, 3);
@@ -40,22 +41,21 @@ void sortEntered(bvec4 hit, vec4 tEnter, uvec4 child, bool anyHit, out vec4 key,
     sortPair(key, kids, 1, 2);
 }
 
-// Closest hit in (0, tmax), or with anyHit (a constant at both calls below, so the compiler folds
-// every test of it) the first hit found. For any hit best.t stays tmax until the walk ends.
+// Closest hit in (0, tmax).
 //
 // A loop over leaves around a loop over the node steps down to the next leaf ("while-while", Aila
 // and Laine, "Understanding the Efficiency of Ray Traversal on GPUs", HPG 2009): llvmpipe runs
 // every statement of a loop body for all SIMD lanes, masked, so with the leaf's triangle loop
 // inside the node loop every node step of every lane paid for a triangle test, about 11 node steps
 // for 2 triangle tests per camera ray here (docs/benchmarks.md, "Node steps apart from leaves").
-Hit bvhTrace(vec3 origin, vec3 dir, float tmax, const bool anyHit) {
+Hit bvhTrace(vec3 origin, vec3 dir, float tmax) {
     Hit best = noHit(tmax);
     if (params.counts.x == 0u) return best;
     const BoxRay boxRay = makeBoxRay(origin, dir);
     const WatertightRay ray = makeWatertightRay(origin, dir);
 
     uint stackRef[VKRAY_BVH_STACK_SIZE];
-    float stackEnter[VKRAY_BVH_STACK_SIZE];  // closest hit only
+    float stackEnter[VKRAY_BVH_STACK_SIZE];
     int top = 0;
     uint ref = 0u;  // the root: inner node 0
     bool haveRef = true;
@@ -66,13 +66,13 @@ Hit bvhTrace(vec3 origin, vec3 dir, float tmax, const bool anyHit) {
     // differently, and a triangle lying in a face of its box (axis-aligned geometry) was measured
     // to hit one ulp before the box's computed entry; compared unwidened, that node was dropped and
     // a closer hit, or an equal-t one of lower index (beats(), triangle.glsl), lost
-    // (scenes/stress/split-planes.scene, 3 of 3969 camera rays). Any hit never drops: it ends at
-    // its first hit. (A macro, not a function: GLSL passes arrays by copy.)
+    // (scenes/stress/split-planes.scene, 3 of 3969 camera rays). (A macro, not a function: GLSL
+    // passes arrays by copy.)
 #define VKRAY_BVH_POP()                                                            \
     {                                                                              \
         --top;                                                                     \
         ref = stackRef[top];                                                       \
-        haveRef = anyHit || !(stackEnter[top] > best.t * kRoundingSlack);          \
+        haveRef = !(stackEnter[top] > best.t * kRoundingSlack);                    \
     }
     while (budgetLeft() && iteration < VKRAY_BVH_MAX_ITERATIONS) {
         // Node steps while `ref` is an inner node or a dropped entry, and something is left. The
@@ -87,7 +87,7 @@ Hit bvhTrace(vec3 origin, vec3 dir, float tmax, const bool anyHit) {
                 const bvec4 hit = hitsChildren(n, boxRay, best.t, tEnter);
                 vec4 key;
                 uvec4 kids;
-                sortEntered(hit, tEnter, n.child, anyHit, key, kids);
+                sortEntered(hit, tEnter, n.child, key, kids);
                 const int hits = int(hit.x) + int(hit.y) + int(hit.z) + int(hit.w);
                 if (top + hits > VKRAY_BVH_STACK_SIZE) {  // deeper than the stack: flag, never guess
                     gLoopCutShort = true;
@@ -103,7 +103,7 @@ Hit bvhTrace(vec3 origin, vec3 dir, float tmax, const bool anyHit) {
                 int slot = top + hits - 2;
                 for (int i = 1; countPass() && i < hits; ++i) {
                     stackRef[slot] = pushRef.x;
-                    if (!anyHit) stackEnter[slot] = pushEnter.x;
+                    stackEnter[slot] = pushEnter.x;
                     --slot;
                     pushRef = pushRef.yzwx;
                     pushEnter = pushEnter.yzwx;
@@ -123,9 +123,7 @@ Hit bvhTrace(vec3 origin, vec3 dir, float tmax, const bool anyHit) {
         countLeaf();
         const uint first = leafFirst(ref);
         const uint count = leafCount(ref);
-        // Cut short by the driver (flagged there), or an occluder found: the walk ends.
-        if (!testSlots(first, first + count, ray, anyHit, LEAF_SLOTS, best) || (anyHit && best.triangle >= 0))
-            return best;
+        if (!testSlots(first, first + count, ray, false, LEAF_SLOTS, best)) return best;  // cut short by the driver
         haveRef = false;
         if (top > 0) VKRAY_BVH_POP()
     }
@@ -133,8 +131,5 @@ Hit bvhTrace(vec3 origin, vec3 dir, float tmax, const bool anyHit) {
     bvhEndLoop(!haveRef && top == 0, iteration);  // something left: the walk did not end by itself
     return best;
 }
-
-Hit traceClosest(vec3 origin, vec3 dir, float tmax) { return bvhTrace(origin, dir, tmax, false); }
-bool traceAny(vec3 origin, vec3 dir, float tmax) { return bvhTrace(origin, dir, tmax, true).triangle >= 0; }
 
 #endif

@@ -10,10 +10,11 @@
 // reaches its leaf loop at every node step, so four slots cost four triangle tests per step
 // (measured: the BVH kernel took 1.6x the time; docs/benchmarks.md, "Faster kernels on lavapipe").
 // Large leaves (a burst of overlapping triangles) keep four, within the loop budget.
-layout(constant_id = VKRAY_SPEC_LEAF_SLOTS) const uint LEAF_SLOTS = 1u;
-const uint kBruteSlotsPerIteration = 4u;
 #ifndef VKRAY_LEAF_TRIANGLES_GLSL
 #define VKRAY_LEAF_TRIANGLES_GLSL
+
+layout(constant_id = VKRAY_SPEC_LEAF_SLOTS) const uint LEAF_SLOTS = 1u;
+const uint kBruteSlotsPerIteration = 4u;
 
 #include "bindings.glsl"
 #include "trace_status.glsl"

@@ -21,10 +21,10 @@
 // (GpuAccelData.triangleOrder) so a leaf's triangles are contiguous. Unused child slots hold
 // VKRAY_BVH_NO_CHILD.
 //
-// bvh-stackless only: the view VKRAY_BINDING_INDEX_TEXELS (R32UI) holds one parent link per node,
-// parent << 2 | the node's slot in its parent, VKRAY_BVH_NO_PARENT for the root (after Hapala,
-// Davidovic, Wald, Havran and Slusallek, "Efficient Stack-less BVH Traversal for Ray Tracing",
-// SCCG 2011). The stack walk of `bvh` uploads none.
+// The view VKRAY_BINDING_INDEX_TEXELS (R32UI) holds one parent link per node, parent << 2 | the
+// node's slot in its parent, VKRAY_BVH_NO_PARENT for the root (after Hapala, Davidovic, Wald, Havran
+// and Slusallek, "Efficient Stack-less BVH Traversal for Ray Tracing", SCCG 2011), for the stackless
+// walk: bvh-stackless's rays, and every BVH kernel's shadow rays.
 #ifndef VKRAY_BVH_LAYOUT_H
 #define VKRAY_BVH_LAYOUT_H
 

@@ -52,8 +52,9 @@ accel::GpuAccelData cyclicBvh(accel::Kernel kernel) {
                                            .centreZ = gpu::vec4(c.z), .radius = gpu::vec4(r), .child = node.child};
         data.nodes = accel::asBytes(std::vector<gpu::GpuBvhSphereNode>{sphere});
     }
-    // bvh-stackless: the root's parent link; the walk goes down into itself before it ever climbs.
-    if (kernel == accel::Kernel::BvhStackless) data.indices = accel::asBytes(std::vector<uint32_t>{VKRAY_BVH_NO_PARENT});
+    // The root's parent link (the stackless walk: bvh-stackless, and every BVH kernel's shadow
+    // rays); the walk goes down into itself before it ever climbs.
+    data.indices = accel::asBytes(std::vector<uint32_t>{VKRAY_BVH_NO_PARENT});
     return data;
 }
 

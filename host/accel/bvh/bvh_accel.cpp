@@ -42,13 +42,13 @@ public:
         accel::GpuAccelData data;
         data.kernel = accel::bvhKernel(config_, stackless_);
         data.triangleOrder = flat_.triangleOrder;
-        if (spheres()) {
-            data.nodes = accel::asBytes(gpuSphereNodes(flat_));
-        } else {
-            const std::vector<gpu::GpuBvhNode> nodes = gpuNodes(flat_);
-            if (stackless_) data.indices = accel::asBytes(gpuParentLinks(nodes));
+        // Every BVH kernel walks its shadow rays stackless, by the parent links.
+        const auto upload = [&](const auto& nodes) {
+            data.indices = accel::asBytes(gpuParentLinks(nodes));
             data.nodes = accel::asBytes(nodes);
-        }
+        };
+        if (spheres()) upload(gpuSphereNodes(flat_));
+        else upload(gpuNodes(flat_));
         data.maxLeafTriangles = uint32_t(config_.maxLeafSize);
         return data;
     }
@@ -83,9 +83,8 @@ public:
         const size_t wide = gpuNodeCount(flat);
         s.push_back({"gpu_nodes", double(wide), std::to_string(VKRAY_BVH_WIDTH) + "-wide nodes of the kernel"});
         const size_t nodeBytes = spheres() ? sizeof(gpu::GpuBvhSphereNode) : sizeof(gpu::GpuBvhNode);
-        s.push_back({"gpu_bytes", double(wide * (nodeBytes + (stackless_ ? sizeof(uint32_t) : 0))),
-                     stackless_ ? "bytes: node buffer and parent links (triangles, reordered, are uploaded as usual)"
-                                : "bytes: node buffer (triangles, reordered, are uploaded as usual)"});
+        s.push_back({"gpu_bytes", double(wide * (nodeBytes + sizeof(uint32_t))),
+                     "bytes: node buffer and parent links (triangles, reordered, are uploaded as usual)"});
         return s;
     }
 

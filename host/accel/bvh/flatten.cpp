@@ -209,9 +209,12 @@ std::vector<gpu::GpuBvhSphereNode> gpuSphereNodes(const FlatBvh& flat) {
     return wideNodes<gpu::GpuBvhSphereNode>(flat);
 }
 
-std::vector<uint32_t> gpuParentLinks(const std::vector<gpu::GpuBvhNode>& nodes) {
+namespace {
+
+template <class Node>
+std::vector<uint32_t> parentLinks(const std::vector<Node>& nodes) {
     if (nodes.size() > VKRAY_BVH_MAX_LINKED_NODES)
-        throw Error("the BVH has " + std::to_string(nodes.size()) + " 4-wide nodes; bvh-stackless's parent links name at most " +
+        throw Error("the BVH has " + std::to_string(nodes.size()) + " 4-wide nodes; the stackless walk's parent links name at most " +
                     std::to_string(VKRAY_BVH_MAX_LINKED_NODES));
     std::vector<uint32_t> links(nodes.size(), VKRAY_BVH_NO_PARENT);
     for (size_t i = 0; i < nodes.size(); ++i)
@@ -222,6 +225,11 @@ std::vector<uint32_t> gpuParentLinks(const std::vector<gpu::GpuBvhNode>& nodes) 
         }
     return links;
 }
+
+}  // namespace
+
+std::vector<uint32_t> gpuParentLinks(const std::vector<gpu::GpuBvhNode>& nodes) { return parentLinks(nodes); }
+std::vector<uint32_t> gpuParentLinks(const std::vector<gpu::GpuBvhSphereNode>& nodes) { return parentLinks(nodes); }
 
 size_t gpuNodeCount(const FlatBvh& flat) {
     if (flat.nodes.empty()) return 0;

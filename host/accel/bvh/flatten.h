@@ -18,9 +18,11 @@ FlatBvh flatten(const BinaryTree& tree, const CollapsedTree& collapsed);
 std::vector<gpu::GpuBvhNode> gpuNodes(const FlatBvh& flat);
 // The same wide nodes with their children's spheres (bvh-sphere; the tree must have spheres).
 std::vector<gpu::GpuBvhSphereNode> gpuSphereNodes(const FlatBvh& flat);
-// bvh-stackless's parent links of the wide nodes (shared/bvh_layout.h): parent << 2 | slot,
-// VKRAY_BVH_NO_PARENT for the root. Throws vkray::Error for more nodes than a link can name.
+// The parent links of the wide nodes (shared/bvh_layout.h), for the stackless walk (every BVH
+// kernel's shadow rays, and bvh-stackless's closest hits): parent << 2 | slot, VKRAY_BVH_NO_PARENT
+// for the root. Throws vkray::Error for more nodes than a link can name.
 std::vector<uint32_t> gpuParentLinks(const std::vector<gpu::GpuBvhNode>& nodes);
+std::vector<uint32_t> gpuParentLinks(const std::vector<gpu::GpuBvhSphereNode>& nodes);
 
 // gpuNodes(flat).size() (and gpuSphereNodes'), counted without writing the nodes.
 size_t gpuNodeCount(const FlatBvh& flat);

@@ -274,6 +274,11 @@ TEST(BvhAccel, BuildReportsPhasesAndStats) {
     EXPECT_EQ(gpu.kernel, accel::Kernel::Bvh);
     EXPECT_EQ(gpu.triangleOrder.size(), s.triangles.size());
     EXPECT_EQ(gpu.nodes.size() % sizeof(gpu::GpuBvhNode), 0u);
+    // A parent link a node, for the shadow rays' stackless walk; the root's names none.
+    ASSERT_EQ(gpu.indices.size(), gpu.nodes.size() / sizeof(gpu::GpuBvhNode) * sizeof(uint32_t));
+    uint32_t rootLink = 0;
+    std::memcpy(&rootLink, gpu.indices.data(), sizeof(rootLink));
+    EXPECT_EQ(rootLink, VKRAY_BVH_NO_PARENT);
     std::vector<std::string> keys;
     for (const accel::AccelStat& st : built->stats()) keys.push_back(st.key);
     // AAC-HQ records the leaf collapse while it clusters: no "collapse" phase of its own.
