@@ -13,6 +13,7 @@
 #define VKRAY_BVH_TRAVERSAL_GLSL
 
 #include "bvh_common.glsl"
+#include "bvh_stackless.glsl"
 #include "leaf_triangles.glsl"
 #include "trace_status.glsl"
 #include "triangle.glsl"
@@ -108,8 +109,9 @@ Hit bvhTrace(vec3 origin, vec3 dir, float tmax) {
                     pushRef = pushRef.yzwx;
                     pushEnter = pushEnter.yzwx;
                 }
-                top += max(hits - 1, 0);
-                iteration += max(hits - 1, 0);  // the pushes' passes count against the cap too
+                const int pushes = max(hits - 1, 0);
+                top += pushes;
+                iteration += pushes;  // the pushes' passes count against the cap too
                 ref = kids.x;
                 haveRef = hits > 0;
             }
@@ -131,5 +133,10 @@ Hit bvhTrace(vec3 origin, vec3 dir, float tmax) {
     bvhEndLoop(!haveRef && top == 0, iteration);  // something left: the walk did not end by itself
     return best;
 }
+
+// The stack kernels' two queries (bvh and its presets, bvh-sphere): closest hits by the stack walk,
+// shadow rays by the stackless one.
+Hit traceClosest(vec3 origin, vec3 dir, float tmax) { return bvhTrace(origin, dir, tmax); }
+bool traceAny(vec3 origin, vec3 dir, float tmax) { return bvhStacklessTrace(origin, dir, tmax, true).triangle >= 0; }
 
 #endif

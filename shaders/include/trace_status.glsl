@@ -72,21 +72,22 @@ bool subgroupProgress() {
     return sSubgroupProgress[gl_SubgroupID] != 0u;
 }
 
-// Called first in the condition of every loop, once per pass of the subgroup through the loop's
-// header: counts the pass and says whether the budget allows it. Always true in the plain kernel.
-bool budgetLeft() {
-    if (!RESUMABLE) return true;
-    if (subgroupElect()) sLoopIterations[gl_SubgroupID] += 1u;
-    subgroupMemoryBarrierShared();
-    return sLoopIterations[gl_SubgroupID] <= VKRAY_RESUMABLE_LOOP_BUDGET;
-}
-// The same count for a pass that may not be refused: a loop that finishes a step already begun (the
-// BVH walk's pushes, at most VKRAY_BVH_WIDTH passes). The few passes it takes after the budget is
-// spent fit in the margin between the budget and llvmpipe's own count.
+// Counts a pass of the subgroup through a loop's header in the resumable variant; always true, so
+// it can stand in a loop's condition. Alone it serves a loop that may not be refused a pass, one
+// that finishes a step already begun (the BVH walk's pushes, at most VKRAY_BVH_WIDTH passes): the
+// few passes it takes after the budget is spent fit in the margin between the budget and
+// llvmpipe's own count.
 bool countPass() {
-    budgetLeft();
+    if (RESUMABLE) {
+        if (subgroupElect()) sLoopIterations[gl_SubgroupID] += 1u;
+        subgroupMemoryBarrierShared();
+    }
     return true;
 }
+
+// Called first in the condition of every other loop: counts the pass and says whether the budget
+// allows it. Always true in the plain kernel.
+bool budgetLeft() { return countPass() && (!RESUMABLE || sLoopIterations[gl_SubgroupID] <= VKRAY_RESUMABLE_LOOP_BUDGET); }
 
 uint gCappedRays = 0;
 uint gShadowRays = 0;
