@@ -190,9 +190,11 @@ uint32_t tilesPerSubmission(const VulkanContext& ctx, size_t tiles) {
         std::min<uint64_t>({tiles, limit, ctx.info().maxStorageBufferRange / tileBytes}), 1));
 }
 
-// Records the dispatches of `tiles` into `cmd`, each writing its own slice of the pixel buffer.
+// Records the dispatches of `tiles` into `cmd`, each writing its own slice of the pixel buffer. An
+// invocation renders `blockRows` pixels (ShaderFeatures::pixelsPerInvocation), one in each of as many
+// bands of the tile's 8x8 block rows, so the dispatch has that many times fewer workgroup rows.
 void recordBatch(const vk::raii::CommandBuffer& cmd, const ComputeKernel& kernel, std::span<const Tile> tiles,
-                 const GpuFrameParams& base) {
+                 const GpuFrameParams& base, uint32_t blockRows) {
     for (size_t k = 0; k < tiles.size(); ++k) {
         const Tile& t = tiles[k];
         GpuFrameParams p = base;
@@ -200,7 +202,7 @@ void recordBatch(const vk::raii::CommandBuffer& cmd, const ComputeKernel& kernel
         p.imageTile.w = t.y;
         p.counts.z = uint32_t(k) * kTilePixels;
         kernel.dispatch(cmd, &p, (t.width + VKRAY_WORKGROUP_X - 1) / VKRAY_WORKGROUP_X,
-                        (t.height + VKRAY_WORKGROUP_Y - 1) / VKRAY_WORKGROUP_Y);
+                        (t.height + VKRAY_WORKGROUP_Y * blockRows - 1) / (VKRAY_WORKGROUP_Y * blockRows));
     }
 }
 
@@ -247,12 +249,13 @@ void renderTiles(const VulkanContext& ctx, const ComputeKernel& kernel, const Pi
                  std::span<const Tile> tiles, uint32_t perSubmission, const GpuFrameParams& base, Frame& frame,
                  GpuRenderReport& rep, const TileProgress& progress, std::vector<Tile>& unfinished) {
     const BatchTimer timer(ctx);
+    const uint32_t pixelsPerInvocation = uint32_t(rep.features.pixelsPerInvocation);
     for (size_t first = 0; first < tiles.size(); first += perSubmission) {
         const std::span<const Tile> batch = tiles.subspan(first, std::min<size_t>(perSubmission, tiles.size() - first));
         OneShotCommands commands(ctx);
         const vk::raii::CommandBuffer& cmd = commands.begin();
         timer.begin(cmd);
-        recordBatch(cmd, kernel, batch, base);
+        recordBatch(cmd, kernel, batch, base, pixelsPerInvocation);
         timer.end(cmd);  // the kernels' time, not the copy's (PixelOutput)
         pixels.recordToHost(cmd, batch.size() * kTilePixels * sizeof(GpuPixel));
         commands.submitAndWait();
@@ -301,7 +304,7 @@ void resumeStrip(const VulkanContext& ctx, const ComputeKernel& kernel, const Re
                                 filled, nullptr, nullptr);
         }
         timer.begin(cmd);
-        recordBatch(cmd, kernel, std::span<const Tile>(&strip, 1), base);
+        recordBatch(cmd, kernel, std::span<const Tile>(&strip, 1), base, 1);
         timer.end(cmd);
         pixels.recordToHost(cmd, kTilePixels * sizeof(GpuPixel));
         commands.submitAndWait();
@@ -370,9 +373,10 @@ std::vector<uint32_t> kernelFromDir(accel::Kernel kernel, KernelVariant variant)
 
 }  // namespace
 
-ShaderFeatures renderFeatures(const Scene& scene, const RenderOptions& options, uint32_t maxLeafTriangles,
-                              uint32_t kdShortStack) {
+ShaderFeatures renderFeatures(const VulkanContext& ctx, const Scene& scene, const RenderOptions& options,
+                              uint32_t maxLeafTriangles, uint32_t kdShortStack) {
     ShaderFeatures f = ShaderFeatures::forScene(scene, options.maxDepth);
+    f.pixelsPerInvocation = int(ctx.info().pixelsPerInvocation);
     f.countTraversal = options.countTraversal;
     f.primaryAovs = options.primaryAovs;
     f.setMaxLeafTriangles(maxLeafTriangles);
@@ -382,7 +386,7 @@ ShaderFeatures renderFeatures(const Scene& scene, const RenderOptions& options, 
 
 double prepareKernel(const Scene& scene, const RenderOptions& options, accel::Kernel kernel, KernelCache& kernels) {
     const auto start = Clock::now();
-    kernels.kernel(kernel, renderFeatures(scene, options, 1));
+    kernels.kernel(kernel, renderFeatures(kernels.context(), scene, options, 1));
     return msSince(start);
 }
 
@@ -433,7 +437,7 @@ Frame renderOnGpu(const VulkanContext& ctx, const Scene& scene, const RenderOpti
     rep.uploadMs = msSince(start);
 
     start = Clock::now();
-    rep.features = renderFeatures(scene, options, accel.maxLeafTriangles, accel.kdShortStack);
+    rep.features = renderFeatures(ctx, scene, options, accel.maxLeafTriangles, accel.kdShortStack);
     rep.features.texelViewBits = viewBits;
     std::optional<KernelCache> ownKernels;
     if (!kernels) kernels = &ownKernels.emplace(ctx);

@@ -72,6 +72,7 @@ public:
     // from that folder, read once per cache.
     ComputeKernel& kernel(accel::Kernel kernel, const ShaderFeatures& features);
     size_t size() const { return kernels_.size(); }
+    const VulkanContext& context() const { return ctx_; }
 
 private:
     using Variant = std::pair<accel::Kernel, int>;  // the kernel, KernelVariant::index()
@@ -82,11 +83,11 @@ private:
     std::map<std::pair<Variant, std::vector<std::pair<uint32_t, uint32_t>>>, std::unique_ptr<ComputeKernel>> kernels_;
 };
 
-// What the kernel of a render of `scene` with `options` is specialised with, for a structure whose
-// largest leaf holds `maxLeafTriangles` (and, for kd-shortstack, whose stack holds `kdShortStack`
-// entries; 0: the default; GpuAccelData's fields of the same names).
-ShaderFeatures renderFeatures(const Scene& scene, const RenderOptions& options, uint32_t maxLeafTriangles,
-                              uint32_t kdShortStack = 0);
+// What the kernel of a render of `scene` with `options` on ctx's device is specialised with, for a
+// structure whose largest leaf holds `maxLeafTriangles` (and, for kd-shortstack, whose stack holds
+// `kdShortStack` entries; 0: the default; GpuAccelData's fields of the same names).
+ShaderFeatures renderFeatures(const VulkanContext& ctx, const Scene& scene, const RenderOptions& options,
+                              uint32_t maxLeafTriangles, uint32_t kdShortStack = 0);
 
 // Creates in `kernels` the pipeline that a render of `scene` with `kernel` will use, so that the
 // driver compiles it while the structure is built: for a structure whose leaves all hold at most

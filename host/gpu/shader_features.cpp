@@ -38,6 +38,7 @@ Specialization ShaderFeatures::specialization() const {
     s.set(VKRAY_SPEC_PRIMARY_AOVS, primaryAovs);
     s.set(VKRAY_SPEC_KD_SHORT_STACK, uint32_t(kdShortStack));
     s.set(VKRAY_SPEC_TEXEL_VIEW_BITS, uint32_t(texelViewBits));
+    s.set(VKRAY_SPEC_PIXELS_PER_INVOCATION, uint32_t(resumable ? 1 : pixelsPerInvocation));
     return s;
 }
 
@@ -50,7 +51,8 @@ std::vector<std::pair<std::string, bool>> ShaderFeatures::list() const {
             {"traversal counters", countTraversal},
             {"primary-hit AOVs", primaryAovs},
             {"one triangle per leaf-loop iteration", singleSlotLeaves},
-            {"arrays split over several texel views", texelViewBits > 0}};
+            {"arrays split over several texel views", texelViewBits > 0},
+            {"several pixels per invocation", pixelsPerInvocation > 1}};
 }
 
 }  // namespace vkray::gpu

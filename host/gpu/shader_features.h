@@ -42,6 +42,9 @@ struct ShaderFeatures {
     // Texel arrays split over views of 2^texelViewBits texels (VKRAY_SPEC_TEXEL_VIEW_BITS; 0: every
     // array in one view, the kernel's fetches compiled without the choice of view).
     int texelViewBits = 0;
+    // Pixels an invocation of the plain kernel renders (VKRAY_SPEC_PIXELS_PER_INVOCATION): the
+    // device's DeviceInfo::pixelsPerInvocation; the resumable variant renders one.
+    int pixelsPerInvocation = 1;
 
     // Which GpuPixel fields the kernel writes (render_main.glsl, storePixel): the primary-hit AOVs
     // and the counters when specialised to, and every field in the resumable variant, which reads

@@ -9,6 +9,7 @@
 #include <string_view>
 
 #include "core/error.h"
+#include "shared/gpu_layout.h"
 
 namespace vkray::gpu {
 namespace {
@@ -60,13 +61,17 @@ DeviceInfo describe(const vk::raii::PhysicalDevice& pd, uint32_t index) {
                                    vk::PhysicalDeviceSubgroupProperties>();
     const auto& props = chain.get<vk::PhysicalDeviceProperties2>().properties;
     const auto& drv = chain.get<vk::PhysicalDeviceDriverProperties>();
-    d.subgroupSize = chain.get<vk::PhysicalDeviceSubgroupProperties>().subgroupSize;
+    const auto& subgroups = chain.get<vk::PhysicalDeviceSubgroupProperties>();
+    d.subgroupSize = subgroups.subgroupSize;
+    d.subgroupVote = (subgroups.supportedOperations & vk::SubgroupFeatureFlagBits::eVote) &&
+                     (subgroups.supportedStages & vk::ShaderStageFlagBits::eCompute);
     d.name = props.deviceName.data();
     d.type = typeName(props.deviceType);
     d.driver = std::string(drv.driverName.data());
     if (drv.driverInfo[0] != '\0') d.driver += " / " + std::string(drv.driverInfo.data());
     d.apiVersion = versionString(props.apiVersion);
     d.loopBudget = drv.driverID == vk::DriverId::eMesaLlvmpipe;
+    d.pixelsPerInvocation = props.deviceType == vk::PhysicalDeviceType::eCpu ? VKRAY_MAX_PIXELS_PER_INVOCATION : 1;
     d.maxStorageBufferRange = props.limits.maxStorageBufferRange;
     d.maxTexelBufferElements = props.limits.maxTexelBufferElements;
     d.timestampPeriodNs = props.limits.timestampPeriod;
@@ -184,7 +189,7 @@ VulkanContext::VulkanContext(const ContextOptions& options)
         int bestRank = 1 << 30;
         for (uint32_t i = 0; i < devices.size(); ++i) {
             int rank = typeRank(devices[i].getProperties().deviceType);
-            if (infos[i].hasCompute && rank < bestRank) bestRank = rank, chosen = i;
+            if (infos[i].hasCompute && infos[i].subgroupVote && rank < bestRank) bestRank = rank, chosen = i;
         }
     } else if (std::all_of(want.begin(), want.end(), [](unsigned char c) { return std::isdigit(c); })) {
         uint32_t idx = uint32_t(std::min<unsigned long>(std::stoul(want), 1ul << 30));
@@ -200,14 +205,19 @@ VulkanContext::VulkanContext(const ContextOptions& options)
             if (lower(infos[i].name).find(lower(want)) != std::string::npos) chosen = i;
         if (!chosen) throw Error("--device " + want + ": no Vulkan device name contains it (see `vkray devices`)");
     }
-    if (!chosen) throw Error("no Vulkan device with a compute queue");
+    if (!chosen) throw Error("no Vulkan device with a compute queue and subgroup vote operations");
     if (!infos[*chosen].hasCompute)
         throw Error("Vulkan device '" + infos[*chosen].name + "' has no compute queue");
+    if (!infos[*chosen].subgroupVote)
+        throw Error("Vulkan device '" + infos[*chosen].name +
+                    "' has no subgroup vote operations in compute shaders, which vkray's kernels use");
 
     physical_ = std::move(devices[*chosen]);
     info_ = infos[*chosen];
     if (options.maxTexelsPerView > 0)
         info_.maxTexelBufferElements = std::min<uint64_t>(info_.maxTexelBufferElements, options.maxTexelsPerView);
+    if (options.pixelsPerInvocation > 0)
+        info_.pixelsPerInvocation = std::min<uint32_t>(options.pixelsPerInvocation, VKRAY_MAX_PIXELS_PER_INVOCATION);
     limits_ = physical_.getProperties().limits;
     queueFamily_ = *computeQueueFamily(physical_);
     timestampValidBits_ = physical_.getQueueFamilyProperties()[queueFamily_].timestampValidBits;

@@ -26,12 +26,20 @@ struct DeviceInfo {
     uint64_t deviceLocalBytes = 0;
     float timestampPeriodNs = 0.0f;
     bool hasCompute = false;
+    // Subgroup vote operations in compute shaders (the kernels' subgroupAll; every desktop GPU and
+    // lavapipe have them).
+    bool subgroupVote = false;
     // Invocations that run together (VkPhysicalDeviceSubgroupProperties::subgroupSize): 8 on
     // llvmpipe with 256-bit vectors, 32 on NVIDIA, 32 or 64 on AMD.
     uint32_t subgroupSize = 0;
     // llvmpipe (lavapipe): all loops of an invocation end once they ran 65535 iterations together
     // (Mesa's LP_MAX_TGSI_LOOP_ITERATIONS); render_main.glsl, "Resumable pixels".
     bool loopBudget = false;
+    // Pixels an invocation of the plain render kernel renders (VKRAY_SPEC_PIXELS_PER_INVOCATION;
+    // render_main.glsl, "Pixels per invocation"): VKRAY_MAX_PIXELS_PER_INVOCATION on a CPU device,
+    // where a SIMD vector's lanes wait for its last ray and each invocation has its costs; 1 on a
+    // GPU, which needs every thread it can get (a dispatch is one tile of at most 65,536 pixels).
+    uint32_t pixelsPerInvocation = 1;
 };
 
 struct ContextOptions {
@@ -43,6 +51,9 @@ struct ContextOptions {
     // Tests: behave as if one texel view held at most this many texels (0: the device's own
     // maxTexelBufferElements), so that small scenes take the path of arrays split over views.
     uint64_t maxTexelsPerView = 0;
+    // Tests: render this many pixels an invocation, 1 to VKRAY_MAX_PIXELS_PER_INVOCATION (0: the
+    // device's DeviceInfo::pixelsPerInvocation), so that either path runs on any device.
+    uint32_t pixelsPerInvocation = 0;
 };
 
 bool validationRequestedByEnvironment();

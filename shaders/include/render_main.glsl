@@ -1,7 +1,8 @@
 // The body of every render kernel (shaders/render_<accel>.comp): one invocation per pixel of one
-// tile. Camera ray, closest hit, iterative Whitted shading over a small stack of pending rays (GLSL
-// has no recursion), primary-hit AOVs; in the resumable variant, across several dispatches. The kernel file also includes one accelerator, which
-// defines traceClosest and traceAny (accelerator.glsl), before or after this file.
+// tile (several on a CPU device: "Pixels per invocation" below). Camera ray, closest hit,
+// iterative Whitted shading over a small stack of pending rays (GLSL has no recursion), primary-hit
+// AOVs; in the resumable variant, across several dispatches. The kernel file also includes one
+// accelerator, which defines traceClosest and traceAny (accelerator.glsl), before or after this file.
 #ifndef VKRAY_RENDER_MAIN_GLSL
 #define VKRAY_RENDER_MAIN_GLSL
 
@@ -116,13 +117,25 @@ void secondaryRays(PendingRay ray, SurfacePoint s, GpuMaterial m, out PendingRay
 #if VKRAY_WORKGROUP_X != 8 || VKRAY_WORKGROUP_Y != 8
 #error "pixelInTile assumes 8x8 workgroups"
 #endif
-uvec2 pixelInTile() {
+// The plain kernel's invocation renders PIXELS_PER_INVOCATION pixels (k = 0, 1, ...; "Pixels per
+// invocation" below), one in each of as many bands of the tile's block rows, at the same place in
+// each, so the interleaving above holds within every band; the resumable variant's one is k = 0.
+layout(constant_id = VKRAY_SPEC_PIXELS_PER_INVOCATION) const uint PIXELS_PER_INVOCATION = 1u;
+
+uvec2 pixelInTile(uint k) {
     const uint rows = gl_NumWorkGroups.y, half_ = (rows + 1) / 2, gy = gl_WorkGroupID.y;
-    const uint blockRow = gy < half_ ? 2 * gy : 2 * (gy - half_) + 1;
+    const uint blockRow = k * rows + (gy < half_ ? 2 * gy : 2 * (gy - half_) + 1);
     const uint lane = gl_LocalInvocationID.x, run = gl_LocalInvocationID.y;
     return uvec2(gl_WorkGroupID.x * 8u + (run & 1u) * 4u + (lane & 3u),
                  blockRow * 8u + (run >> 1u) * 2u + (lane >> 2u));
 }
+
+bool inImage(uvec2 local) {
+    return local.x < VKRAY_TILE_SIZE && local.y < VKRAY_TILE_SIZE &&
+           all(lessThan(params.imageTile.zw + local, params.imageTile.xy));
+}
+
+uint outputIndex(uvec2 local) { return params.counts.z + local.y * params.counts.w + local.x; }
 
 // Shades the hit pt.hit of `ray` from light pt.light on (pt.color holds the lights before it) and
 // pushes the ray's children. False when the lights could not all be added (the budget ran out):
@@ -139,33 +152,44 @@ bool shadeAndSpawn(inout PixelTrace pt, PendingRay ray, SurfacePoint s, GpuMater
     return true;
 }
 
+// Traces the top pending ray and shades its hit. False where the resumable variant has to stop:
+// `stage` says where to go on (the ray is still pending, or its hit's lights are half added).
+bool traceNextRay(inout PixelTrace pt, out uint stage) {
+    stage = VKRAY_RESUME_RAYS;
+    const PendingRay ray = loadRay(pt.stackTop - 1);
+    const Hit hit = traceClosest(ray.origin, ray.dir, kInfinity);
+    if (RESUMABLE && gLoopCutShort) return false;  // the ray stays pending
+    gProgress = true;
+    --pt.stackTop;
+    if (hit.triangle < 0) {  // a miss sees the background
+        pt.radiance += ray.weight * params.background.rgb;
+        return true;
+    }
+    const SurfacePoint s = surfaceAt(hit, ray.dir);
+    if (pt.rays == 0) {
+        pt.depth = hit.t;
+        pt.normal = s.normal;
+        pt.primId = s.original;
+    }
+    const GpuMaterial m = loadMaterial(s.material);
+    pt.hit = hit;
+    pt.light = 0u;
+    pt.color = unlitShading(m);
+    stage = VKRAY_RESUME_LIGHTS;
+    return shadeAndSpawn(pt, ray, s, m);  // false in the resumable variant only
+}
+
+bool raysPending(PixelTrace pt) { return pt.stackTop > 0 && pt.rays < kMaxRaysPerPixel; }
+
 // Traces the pending rays, depth-first: each ray pushes at most two children one level deeper and
 // only below MAX_DEPTH, so at most MAX_DEPTH rays are ever pending. Returns VKRAY_RESUME_DONE when
 // none is left, else the stage to go on at (the plain kernel flags the pixel instead).
 uint traceRays(inout PixelTrace pt) {
-    for (; budgetLeft() && pt.stackTop > 0 && pt.rays < kMaxRaysPerPixel; ++pt.rays) {
-        const PendingRay ray = loadRay(pt.stackTop - 1);
-        const Hit hit = traceClosest(ray.origin, ray.dir, kInfinity);
-        if (RESUMABLE && gLoopCutShort) return VKRAY_RESUME_RAYS;  // the ray stays pending
-        gProgress = true;
-        --pt.stackTop;
-        if (hit.triangle < 0) {  // a miss sees the background
-            pt.radiance += ray.weight * params.background.rgb;
-            continue;
-        }
-        const SurfacePoint s = surfaceAt(hit, ray.dir);
-        if (pt.rays == 0) {
-            pt.depth = hit.t;
-            pt.normal = s.normal;
-            pt.primId = s.original;
-        }
-        const GpuMaterial m = loadMaterial(s.material);
-        pt.hit = hit;
-        pt.light = 0u;
-        pt.color = unlitShading(m);
-        if (!shadeAndSpawn(pt, ray, s, m)) {  // the resumable variant only
-            ++pt.rays;
-            return VKRAY_RESUME_LIGHTS;
+    for (; budgetLeft() && raysPending(pt); ++pt.rays) {
+        uint stage;
+        if (!traceNextRay(pt, stage)) {
+            if (stage == VKRAY_RESUME_LIGHTS) ++pt.rays;  // its closest hit is traced
+            return stage;
         }
     }
     return pt.stackTop > 0 ? VKRAY_RESUME_RAYS : VKRAY_RESUME_DONE;
@@ -232,51 +256,100 @@ void storePixel(uint i, PixelTrace pt, uint flags) {
     }
 }
 
-void main() {
-    const uvec2 local = pixelInTile();
+// The resumable variant: one pixel, from where the last dispatch left it.
+void renderResumable() {
+    const uvec2 local = pixelInTile(0u);
     const uvec2 imageSize = params.imageTile.xy;
     const uvec2 pixel = params.imageTile.zw + local;
-    if (local.x >= VKRAY_TILE_SIZE || local.y >= VKRAY_TILE_SIZE ||
-        any(greaterThanEqual(pixel, imageSize)))
-        return;
-    const uint outIndex = params.counts.z + local.y * params.counts.w + local.x;
+    if (!inImage(local)) return;
+    const uint outIndex = outputIndex(local);
     const uint resumeIndex = local.y * VKRAY_TILE_SIZE + local.x;
-
-    startLoopBudget();
+    gRayBase = resumeIndex * uint(MAX_DEPTH);
     PixelTrace pt;
-    uint stage = VKRAY_RESUME_RAYS;
-    if (RESUMABLE) {
-        gRayBase = resumeIndex * uint(MAX_DEPTH);
-        stage = resumePixel(resumeIndex, outIndex, pixel, imageSize, pt);
-        if (stage == VKRAY_RESUME_DONE) return;
-        if (stage == VKRAY_RESUME_LIGHTS) {  // the interrupted hit first
-            const PendingRay ray = loadRay(pt.stackTop);
-            const SurfacePoint s = surfaceAt(pt.hit, ray.dir);
-            if (shadeAndSpawn(pt, ray, s, loadMaterial(s.material))) stage = VKRAY_RESUME_RAYS;
-        }
-    } else {
-        pt = freshPixel(pixel, imageSize);
+    uint stage = resumePixel(resumeIndex, outIndex, pixel, imageSize, pt);
+    if (stage == VKRAY_RESUME_DONE) return;
+    if (stage == VKRAY_RESUME_LIGHTS) {  // the interrupted hit first
+        const PendingRay ray = loadRay(pt.stackTop);
+        const SurfacePoint s = surfaceAt(pt.hit, ray.dir);
+        if (shadeAndSpawn(pt, ray, s, loadMaterial(s.material))) stage = VKRAY_RESUME_RAYS;
     }
     if (stage == VKRAY_RESUME_RAYS) stage = traceRays(pt);
 
-    // Unfinished: the plain kernel flags the pixel; the resumable one goes on in the next dispatch
-    // unless its subgroup got nothing done in this one, or the pixel reached its ray cap. Either
-    // flags it when the driver's budget ran out (the resumable variant's own budget keeps it from
-    // doing so).
+    // Unfinished: it goes on in the next dispatch unless its subgroup got nothing done in this one,
+    // or the pixel reached its ray cap. Flagged cut short when the driver's budget ran out all the
+    // same (the variant's own budget keeps it from doing so).
     const bool unfinished = stage != VKRAY_RESUME_DONE;
-    const bool progressed = RESUMABLE && subgroupProgress();  // every pixel of the subgroup says
-    const bool cutShort = loopBudgetRanOut() ||
-                          (RESUMABLE ? unfinished && (!progressed || pt.rays >= kMaxRaysPerPixel)
-                                     : gLoopCutShort || unfinished);
-    const uint flags = cutShort ? VKRAY_PIXEL_CUT_SHORT : unfinished ? VKRAY_PIXEL_UNFINISHED : 0u;
-    storePixel(outIndex, pt, flags);
-    if (RESUMABLE)
-        resume[resumeIndex] = GpuPixelResume(pt.color, cutShort ? VKRAY_RESUME_DONE : stage,
-                                             vec3(pt.hit.t, pt.hit.uv), pt.hit.triangle,
-                                             vec3(gBruteResumeBest.t, gBruteResumeBest.uv),
-                                             gBruteResumeBest.triangle, uint(pt.stackTop), uint(pt.rays),
-                                             pt.light, gBruteResumeSlot, gBruteResumeBest.original,
-                                             pt.hit.original, 0u, 0u);
+    const bool progressed = subgroupProgress();  // every pixel of the subgroup says
+    const bool cutShort = loopBudgetRanOut() || (unfinished && (!progressed || pt.rays >= kMaxRaysPerPixel));
+    storePixel(outIndex, pt, cutShort ? VKRAY_PIXEL_CUT_SHORT : unfinished ? VKRAY_PIXEL_UNFINISHED : 0u);
+    resume[resumeIndex] = GpuPixelResume(pt.color, cutShort ? VKRAY_RESUME_DONE : stage,
+                                         vec3(pt.hit.t, pt.hit.uv), pt.hit.triangle,
+                                         vec3(gBruteResumeBest.t, gBruteResumeBest.uv),
+                                         gBruteResumeBest.triangle, uint(pt.stackTop), uint(pt.rays),
+                                         pt.light, gBruteResumeSlot, gBruteResumeBest.original,
+                                         pt.hit.original, 0u, 0u);
+}
+
+// Pixels per invocation (the plain kernel). A pixel's rays are a loop, and llvmpipe runs the 8
+// lanes of a SIMD vector through it until the vector's last ray, and pays for every invocation.
+// On a CPU device an invocation therefore renders PIXELS_PER_INVOCATION pixels (pixelInTile), in
+// one loop that traces one ray a pass; a lane whose pixel is done waits
+// until every lane of its subgroup is done, then all start their next pixel's camera ray together.
+// (Letting each lane start its next pixel at once kept the lanes busier, but put camera rays and
+// reflection rays of different pixels in one vector, whose walk then covers both: faster on a
+// 250-triangle scene, slower on a 52,000-triangle one; docs/benchmarks.md, "Several pixels an
+// invocation".) On a GPU PIXELS_PER_INVOCATION is 1 and this is the plain loop over one pixel.
+void flagIfInImage(uint k) {
+    const uvec2 local = pixelInTile(k);
+    if (inImage(local)) pixels[outputIndex(local)].flags = VKRAY_PIXEL_CUT_SHORT;
+}
+
+bool lastPixel(uint k) { return k + 1u == PIXELS_PER_INVOCATION || !inImage(pixelInTile(k + 1u)); }
+
+void renderPixels() {
+    const uvec2 imageSize = params.imageTile.xy;
+    uvec2 local = pixelInTile(0u);
+    if (!inImage(local)) return;
+    PixelTrace pt = freshPixel(params.imageTile.zw + local, imageSize);
+    bool stored = false;
+    for (uint k = 0u;;) {
+        const bool done = !raysPending(pt);
+        if (done && !stored) {  // a ray still pending hit the ray cap (kMaxRaysPerPixel)
+            storePixel(outputIndex(local), pt, gLoopCutShort || pt.stackTop > 0 ? VKRAY_PIXEL_CUT_SHORT : 0u);
+            stored = true;
+        }
+        if (done && lastPixel(k)) break;
+        const bool subgroupDone = subgroupAll(done);
+        if (done) {
+            if (!subgroupDone) continue;
+            local = pixelInTile(++k);
+            gShadowRays = gCappedRays = gNodesVisited = gLeavesVisited = gTrianglesTested = gRestarts = 0u;
+            pt = freshPixel(params.imageTile.zw + local, imageSize);  // its camera ray is pending
+            stored = false;
+        }
+        uint stage;
+        traceNextRay(pt, stage);  // always true in the plain kernel
+        ++pt.rays;
+    }
+    // Where llvmpipe's loop budget ran out, the loop above may have ended early, leaving pixels
+    // unwritten or written from stale values (trace_status.glsl): all of them are flagged, in code
+    // without a loop (after the budget every loop ends after one pass).
+    if (loopBudgetRanOut()) {
+        flagIfInImage(0u);
+        if (PIXELS_PER_INVOCATION > 1u) flagIfInImage(1u);
+        if (PIXELS_PER_INVOCATION > 2u) flagIfInImage(2u);
+        if (PIXELS_PER_INVOCATION > 3u) flagIfInImage(3u);
+    }
+}
+
+#if VKRAY_MAX_PIXELS_PER_INVOCATION > 4
+#error "renderPixels flags at most four pixels of an invocation"
+#endif
+
+void main() {
+    startLoopBudget();
+    if (RESUMABLE) renderResumable();
+    else renderPixels();
 }
 
 #endif

@@ -87,7 +87,13 @@ using uvec4 = glm::uvec4;
 // (VKRAY_TEXEL_VIEWS; read by the kernels' VKRAY_SPLIT_TEXEL_VIEWS variant, bindings.glsl); 0 when
 // every array fits one view (the usual variant).
 #define VKRAY_SPEC_TEXEL_VIEW_BITS 10
-#define VKRAY_SPEC_COUNT 11
+// uint: pixels an invocation of the plain kernel renders, one in each of as many bands of a tile's
+// 8x8 block rows (render_main.glsl, "Pixels per invocation"), 1 to VKRAY_MAX_PIXELS_PER_INVOCATION: more than one
+// on CPU devices only. The host dispatches that many times fewer workgroup rows; the resumable
+// variant renders one.
+#define VKRAY_SPEC_PIXELS_PER_INVOCATION 11
+#define VKRAY_MAX_PIXELS_PER_INVOCATION 4
+#define VKRAY_SPEC_COUNT 12
 #define VKRAY_SINGLE_SLOT_LEAF_LIMIT 128
 
 // ---- GpuPixel.flags ------------------------------------------------------------------------------

@@ -1,5 +1,6 @@
 // The GPU renderer on scenes built in code: tiling, AOVs, depth semantics, device choice, limits.
 #include <cmath>
+#include <filesystem>
 #include <limits>
 
 #include <gtest/gtest.h>
@@ -12,6 +13,7 @@
 #include "gpu/gpu_renderer.h"
 #include "gpu/lockstep.h"
 #include "gpu_test_util.h"
+#include "scene/scene_parser.h"
 
 namespace vkray {
 namespace {
@@ -198,6 +200,42 @@ TEST(GpuRenderer, LockstepNodesFromThePixelCounts) {
     EXPECT_EQ(rep.lockstepNodes, expected);
     EXPECT_GE(rep.lockstepNodes, rep.nodesVisited);
     EXPECT_GT(rep.nodesVisited, 0u);
+}
+
+// The plain kernel renders one pixel an invocation on a GPU and several on a CPU device
+// (render_main.glsl, "Pixels per invocation"). Every count gives the same pixels, AOVs, ray and
+// traversal counts, on an image whose last block rows leave some invocations' later pixels outside
+// it, with reflection, refraction, both kinds of light and smooth normals.
+TEST(GpuRenderer, PixelsPerInvocationChangeNoPixel) {
+    const gpu::DeviceInfo& device = test::gpuContext().info();
+    EXPECT_EQ(device.pixelsPerInvocation, device.type == "cpu" ? uint32_t(VKRAY_MAX_PIXELS_PER_INVOCATION) : 1u);
+    const Scene scene = loadScene(std::filesystem::path(VKRAY_SOURCE_DIR) / "scenes" / "objects.scene");
+    const RenderOptions o{.width = 70, .height = 45, .maxDepth = 3, .countTraversal = true};
+    std::vector<std::unique_ptr<gpu::VulkanContext>> contexts;
+    for (uint32_t n = 1; n <= VKRAY_MAX_PIXELS_PER_INVOCATION; ++n) {
+        gpu::ContextOptions options = test::gpuContextOptions();
+        options.pixelsPerInvocation = n;
+        contexts.push_back(std::make_unique<gpu::VulkanContext>(options));
+    }
+    for (const char* accel : {"bvh", "kd-restart", "brute"}) {
+        SCOPED_TRACE(accel);
+        gpu::GpuRenderReport one;
+        const Frame reference = gpu::renderOnGpu(*contexts[0], scene, o, accel::resolveAccel(accel), &one);
+        EXPECT_EQ(one.features.pixelsPerInvocation, 1);
+        EXPECT_GT(one.shadowRays, 0u);
+        for (uint32_t n = 2; n <= VKRAY_MAX_PIXELS_PER_INVOCATION; ++n) {
+            SCOPED_TRACE(n);
+            gpu::GpuRenderReport rep;
+            const Frame f = gpu::renderOnGpu(*contexts[n - 1], scene, o, accel::resolveAccel(accel), &rep);
+            EXPECT_EQ(rep.features.pixelsPerInvocation, int(n));
+            test::expectSamePixels(reference, f, PixelWindow{0, 0, o.width, o.height});
+            EXPECT_EQ(rep.raysTraced, one.raysTraced);
+            EXPECT_EQ(rep.shadowRays, one.shadowRays);
+            EXPECT_EQ(rep.nodesPerPixel, one.nodesPerPixel);
+            EXPECT_EQ(rep.trianglesTested, one.trianglesTested);
+            EXPECT_EQ(rep.pixelsCutShort, 0u);
+        }
+    }
 }
 
 TEST(GpuRenderer, FeaturesFollowTheScene) {
