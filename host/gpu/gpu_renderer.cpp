@@ -191,10 +191,11 @@ uint32_t tilesPerSubmission(const VulkanContext& ctx, size_t tiles) {
 }
 
 // Records the dispatches of `tiles` into `cmd`, each writing its own slice of the pixel buffer. An
-// invocation renders `blockRows` pixels (ShaderFeatures::pixelsPerInvocation), one in each of as many
-// bands of the tile's 8x8 block rows, so the dispatch has that many times fewer workgroup rows.
-void recordBatch(const vk::raii::CommandBuffer& cmd, const ComputeKernel& kernel, std::span<const Tile> tiles,
-                 const GpuFrameParams& base, uint32_t blockRows) {
+// invocation of the kernel specialised with `features` renders features.invocationPixels() pixels,
+// one in each of as many bands of the tile's 8x8 block rows: that many times fewer workgroup rows.
+void recordBatch(const vk::raii::CommandBuffer& cmd, const ComputeKernel& kernel, const ShaderFeatures& features,
+                 std::span<const Tile> tiles, const GpuFrameParams& base) {
+    const uint32_t blockRows = features.invocationPixels();
     for (size_t k = 0; k < tiles.size(); ++k) {
         const Tile& t = tiles[k];
         GpuFrameParams p = base;
@@ -249,13 +250,12 @@ void renderTiles(const VulkanContext& ctx, const ComputeKernel& kernel, const Pi
                  std::span<const Tile> tiles, uint32_t perSubmission, const GpuFrameParams& base, Frame& frame,
                  GpuRenderReport& rep, const TileProgress& progress, std::vector<Tile>& unfinished) {
     const BatchTimer timer(ctx);
-    const uint32_t pixelsPerInvocation = uint32_t(rep.features.pixelsPerInvocation);
     for (size_t first = 0; first < tiles.size(); first += perSubmission) {
         const std::span<const Tile> batch = tiles.subspan(first, std::min<size_t>(perSubmission, tiles.size() - first));
         OneShotCommands commands(ctx);
         const vk::raii::CommandBuffer& cmd = commands.begin();
         timer.begin(cmd);
-        recordBatch(cmd, kernel, batch, base, pixelsPerInvocation);
+        recordBatch(cmd, kernel, rep.features, batch, base);
         timer.end(cmd);  // the kernels' time, not the copy's (PixelOutput)
         pixels.recordToHost(cmd, batch.size() * kTilePixels * sizeof(GpuPixel));
         commands.submitAndWait();
@@ -289,8 +289,9 @@ uint32_t resumeStripRows(const VulkanContext& ctx, int maxDepth) {
 
 // Dispatches one strip with the resumable variant until none of its pixels is unfinished. Every
 // dispatch either gets each unfinished pixel further or flags it cut short, so the loop ends.
-void resumeStrip(const VulkanContext& ctx, const ComputeKernel& kernel, const ResumeBuffers& resume,
-                 const PixelOutput& pixels, const Tile& strip, const GpuFrameParams& base, GpuRenderReport& rep) {
+void resumeStrip(const VulkanContext& ctx, const ComputeKernel& kernel, const ShaderFeatures& features,
+                 const ResumeBuffers& resume, const PixelOutput& pixels, const Tile& strip, const GpuFrameParams& base,
+                 GpuRenderReport& rep) {
     const BatchTimer timer(ctx);
     for (bool fresh = true;; fresh = false) {
         OneShotCommands commands(ctx);
@@ -304,7 +305,7 @@ void resumeStrip(const VulkanContext& ctx, const ComputeKernel& kernel, const Re
                                 filled, nullptr, nullptr);
         }
         timer.begin(cmd);
-        recordBatch(cmd, kernel, std::span<const Tile>(&strip, 1), base, 1);
+        recordBatch(cmd, kernel, features, std::span<const Tile>(&strip, 1), base);
         timer.end(cmd);
         pixels.recordToHost(cmd, kTilePixels * sizeof(GpuPixel));
         commands.submitAndWait();
@@ -327,7 +328,7 @@ void renderResumable(const VulkanContext& ctx, ComputeKernel& kernel, const Shad
     rep.resumeRows = rows;
     for (size_t t = 0; t < tiles.size(); ++t) {
         for (const Tile& strip : splitIntoStrips(tiles[t], rows)) {
-            resumeStrip(ctx, kernel, resume, pixels, strip, base, rep);  // the strip as a tile of its own
+            resumeStrip(ctx, kernel, features, resume, pixels, strip, base, rep);  // the strip as a tile of its own
             readTile(pixels.pixels(), strip, features, frame, rep);
         }
         if (progress) progress(uint32_t(t + 1), uint32_t(tiles.size()));

@@ -38,7 +38,7 @@ Specialization ShaderFeatures::specialization() const {
     s.set(VKRAY_SPEC_PRIMARY_AOVS, primaryAovs);
     s.set(VKRAY_SPEC_KD_SHORT_STACK, uint32_t(kdShortStack));
     s.set(VKRAY_SPEC_TEXEL_VIEW_BITS, uint32_t(texelViewBits));
-    s.set(VKRAY_SPEC_PIXELS_PER_INVOCATION, uint32_t(resumable ? 1 : pixelsPerInvocation));
+    s.set(VKRAY_SPEC_PIXELS_PER_INVOCATION, invocationPixels());
     return s;
 }
 

@@ -58,6 +58,9 @@ struct ShaderFeatures {
     void setKdShortStack(uint32_t entries) { kdShortStack = entries > 0 ? int(entries) : VKRAY_KD_SHORT_STACK_SIZE; }
     Specialization specialization() const;
     KernelVariant variant() const { return {resumable, texelViewBits > 0}; }
+    // Pixels an invocation of this variant renders: the kernel's specialization and the host's
+    // dispatch both follow it (the resumable variant renders one).
+    uint32_t invocationPixels() const { return resumable ? 1u : uint32_t(pixelsPerInvocation); }
     // (name, compiled in) for --stats, of the plain kernel (resumed tiles are reported apart).
     std::vector<std::pair<std::string, bool>> list() const;
 };

@@ -152,8 +152,9 @@ bool shadeAndSpawn(inout PixelTrace pt, PendingRay ray, SurfacePoint s, GpuMater
     return true;
 }
 
-// Traces the top pending ray and shades its hit. False where the resumable variant has to stop:
-// `stage` says where to go on (the ray is still pending, or its hit's lights are half added).
+// Traces the top pending ray (counted in pt.rays once its closest hit is found) and shades its hit.
+// False where the resumable variant has to stop: `stage` says where to go on (the ray is still
+// pending, or its hit's lights are half added).
 bool traceNextRay(inout PixelTrace pt, out uint stage) {
     stage = VKRAY_RESUME_RAYS;
     const PendingRay ray = loadRay(pt.stackTop - 1);
@@ -161,12 +162,13 @@ bool traceNextRay(inout PixelTrace pt, out uint stage) {
     if (RESUMABLE && gLoopCutShort) return false;  // the ray stays pending
     gProgress = true;
     --pt.stackTop;
+    const bool cameraRay = pt.rays++ == 0;
     if (hit.triangle < 0) {  // a miss sees the background
         pt.radiance += ray.weight * params.background.rgb;
         return true;
     }
     const SurfacePoint s = surfaceAt(hit, ray.dir);
-    if (pt.rays == 0) {
+    if (cameraRay) {
         pt.depth = hit.t;
         pt.normal = s.normal;
         pt.primId = s.original;
@@ -185,12 +187,9 @@ bool raysPending(PixelTrace pt) { return pt.stackTop > 0 && pt.rays < kMaxRaysPe
 // only below MAX_DEPTH, so at most MAX_DEPTH rays are ever pending. Returns VKRAY_RESUME_DONE when
 // none is left, else the stage to go on at (the plain kernel flags the pixel instead).
 uint traceRays(inout PixelTrace pt) {
-    for (; budgetLeft() && raysPending(pt); ++pt.rays) {
+    while (budgetLeft() && raysPending(pt)) {
         uint stage;
-        if (!traceNextRay(pt, stage)) {
-            if (stage == VKRAY_RESUME_LIGHTS) ++pt.rays;  // its closest hit is traced
-            return stage;
-        }
+        if (!traceNextRay(pt, stage)) return stage;
     }
     return pt.stackTop > 0 ? VKRAY_RESUME_RAYS : VKRAY_RESUME_DONE;
 }
@@ -323,13 +322,12 @@ void renderPixels() {
         if (done) {
             if (!subgroupDone) continue;
             local = pixelInTile(++k);
-            gShadowRays = gCappedRays = gNodesVisited = gLeavesVisited = gTrianglesTested = gRestarts = 0u;
+            resetPixelCounters();
             pt = freshPixel(params.imageTile.zw + local, imageSize);  // its camera ray is pending
             stored = false;
         }
         uint stage;
         traceNextRay(pt, stage);  // always true in the plain kernel
-        ++pt.rays;
     }
     // Where llvmpipe's loop budget ran out, the loop above may have ended early, leaving pixels
     // unwritten or written from stale values (trace_status.glsl): all of them are flagged, in code

@@ -96,6 +96,11 @@ uint gLeavesVisited = 0;
 uint gTrianglesTested = 0;
 uint gRestarts = 0;
 
+// A new pixel of the same invocation (render_main.glsl, "Pixels per invocation") counts from zero.
+void resetPixelCounters() {
+    gCappedRays = gShadowRays = gNodesVisited = gLeavesVisited = gTrianglesTested = gRestarts = 0u;
+}
+
 // The counters compile to nothing unless the host specialises COUNT_TRAVERSAL to true.
 void countNode() { if (COUNT_TRAVERSAL) ++gNodesVisited; }
 void countLeaf() { if (COUNT_TRAVERSAL) ++gLeavesVisited; }
