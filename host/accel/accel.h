@@ -74,8 +74,8 @@ struct GpuAccelData {
     // Bytes per texel of the nodes' texel view (VKRAY_BINDING_NODE_TEXELS): 16 (RGBA32UI), 8 (RG32UI)
     // or 4 (R32UI), the node size or a divisor of it, so one node is whole texels.
     uint32_t nodeTexelBytes = 16;
-    // Most triangles a leaf holds (0 for brute force): the kernels' leaf loop is specialised on it
-    // (VKRAY_SPEC_LEAF_SLOTS).
+    // Most triangles a leaf holds (0 for brute force): beyond VKRAY_SINGLE_SLOT_LEAF_LIMIT the
+    // resumable variant's leaf loop tests four a pass (VKRAY_SPEC_LEAF_SLOTS).
     uint32_t maxLeafTriangles = 0;
     // kd-shortstack: its stack's entries (VKRAY_SPEC_KD_SHORT_STACK); 0 for the other kernels.
     uint32_t kdShortStack = 0;

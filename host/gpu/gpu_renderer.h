@@ -90,9 +90,9 @@ ShaderFeatures renderFeatures(const VulkanContext& ctx, const Scene& scene, cons
                               uint32_t maxLeafTriangles, uint32_t kdShortStack = 0);
 
 // Creates in `kernels` the pipeline that a render of `scene` with `kernel` will use, so that the
-// driver compiles it while the structure is built: for a structure whose leaves all hold at most
-// VKRAY_SINGLE_SLOT_LEAF_LIMIT triangles (any BVH; a kd-tree with larger leaves gets its own
-// pipeline in the render). Returns the milliseconds it took.
+// driver compiles it while the structure is built: the plain kernel's, the same whatever the
+// structure's leaves (only the resumable variant's leaf loop depends on them). Returns the
+// milliseconds it took.
 double prepareKernel(const Scene& scene, const RenderOptions& options, accel::Kernel kernel, KernelCache& kernels);
 
 // Renders with an acceleration structure already built (accel::buildAccel(...)->gpuData()).

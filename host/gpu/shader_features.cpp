@@ -34,7 +34,7 @@ Specialization ShaderFeatures::specialization() const {
     s.set(VKRAY_SPEC_HAS_DIRECTIONAL_LIGHTS, directionalLights);
     s.set(VKRAY_SPEC_HAS_SMOOTH_NORMALS, smoothNormals);
     s.set(VKRAY_SPEC_COUNT_TRAVERSAL, countTraversal);
-    s.set(VKRAY_SPEC_LEAF_SLOTS, singleSlotLeaves ? 1u : 4u);
+    s.set(VKRAY_SPEC_LEAF_SLOTS, leafSlots());
     s.set(VKRAY_SPEC_PRIMARY_AOVS, primaryAovs);
     s.set(VKRAY_SPEC_KD_SHORT_STACK, uint32_t(kdShortStack));
     s.set(VKRAY_SPEC_TEXEL_VIEW_BITS, uint32_t(texelViewBits));
@@ -50,7 +50,6 @@ std::vector<std::pair<std::string, bool>> ShaderFeatures::list() const {
             {"smooth normals", smoothNormals},
             {"traversal counters", countTraversal},
             {"primary-hit AOVs", primaryAovs},
-            {"one triangle per leaf-loop iteration", singleSlotLeaves},
             {"arrays split over several texel views", texelViewBits > 0},
             {"several pixels per invocation", pixelsPerInvocation > 1}};
 }

@@ -30,8 +30,9 @@ struct ShaderFeatures {
     bool smoothNormals = false;
     bool countTraversal = false;     // statistics variant (RenderOptions::countTraversal)
     bool primaryAovs = true;         // depth, normal and triangle id written (RenderOptions::primaryAovs)
-    // Leaf loop: one triangle per iteration unless a leaf holds more than
-    // VKRAY_SINGLE_SLOT_LEAF_LIMIT (then four, for lavapipe's loop budget).
+    // Every leaf of the structure holds at most VKRAY_SINGLE_SLOT_LEAF_LIMIT triangles. If not, the
+    // resumable variant's leaf loop tests four a pass, for lavapipe's loop budget (leafSlots()); the
+    // plain kernel tests one whatever the leaves, and resumes a tile that runs out.
     bool singleSlotLeaves = true;
     // Resumable pixels: the kernel's resumable variant (its own SPIR-V, compiled with
     // VKRAY_RESUMABLE_KERNEL), used only for tiles the plain kernel could not finish within the
@@ -61,6 +62,9 @@ struct ShaderFeatures {
     // Pixels an invocation of this variant renders: the kernel's specialization and the host's
     // dispatch both follow it (the resumable variant renders one).
     uint32_t invocationPixels() const { return resumable ? 1u : uint32_t(pixelsPerInvocation); }
+    // Triangles a pass of the leaf loop tests: four only in the resumable variant for a structure
+    // with larger leaves; the plain kernel's SPIR-V has the one-triangle loop alone (leaf_triangles.glsl).
+    uint32_t leafSlots() const { return resumable && !singleSlotLeaves ? 4u : 1u; }
     // (name, compiled in) for --stats, of the plain kernel (resumed tiles are reported apart).
     std::vector<std::pair<std::string, bool>> list() const;
 };

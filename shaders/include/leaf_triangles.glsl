@@ -3,17 +3,25 @@
 //
 // Slots per iteration: brute force tests four per iteration, which divides its iterations by four,
 // keeps the loops of a pixel far below lavapipe's budget of 65535 iterations (trace_status.glsl) and
-// multiplies the scene size it can handle under it. A leaf tests LEAF_SLOTS per iteration, one
-// unless the structure has leaves of more than VKRAY_SINGLE_SLOT_LEAF_LIMIT triangles (the host
-// decides, shader_features.cpp): llvmpipe runs a loop body at least once wherever the loop is
-// reached, for all SIMD lanes and masked, even when no lane has a triangle to test, and a traversal
-// reaches its leaf loop at every node step, so four slots cost four triangle tests per step
-// (measured: the BVH kernel took 1.6x the time; docs/benchmarks.md, "Faster kernels on lavapipe").
-// Large leaves (a burst of overlapping triangles) keep four, within the loop budget.
+// multiplies the scene size it can handle under it. A leaf tests LEAF_SLOTS per iteration, one:
+// llvmpipe runs a loop body at least once wherever the loop is reached, for all SIMD lanes and
+// masked, even when no lane has a triangle to test, and a traversal reaches its leaf loop at every
+// node step, so four slots cost four triangle tests per step (measured: the BVH kernel took 1.6x
+// the time; docs/benchmarks.md, "Faster kernels on lavapipe"). Only the resumable variant tests
+// four, for a structure with leaves of more than VKRAY_SINGLE_SLOT_LEAF_LIMIT triangles (a burst
+// of overlapping triangles; the host decides: ShaderFeatures::leafSlots()): with one a pass, a
+// tile of such leaves that runs out of llvmpipe's budget in the plain kernel is resumed there. In
+// the plain kernel the four-slot loop was dead code for almost every structure that lavapipe still
+// translated before the specialization constant folded it: a quarter of the SPIR-V, 7-10 ms of
+// every render (docs/benchmarks.md, "One triangle a leaf-loop pass in the plain kernel").
 #ifndef VKRAY_LEAF_TRIANGLES_GLSL
 #define VKRAY_LEAF_TRIANGLES_GLSL
 
+#ifdef VKRAY_RESUMABLE_KERNEL
 layout(constant_id = VKRAY_SPEC_LEAF_SLOTS) const uint LEAF_SLOTS = 1u;
+#else
+const uint LEAF_SLOTS = 1u;
+#endif
 const uint kBruteSlotsPerIteration = 4u;
 
 #include "bindings.glsl"

@@ -67,8 +67,9 @@ using uvec4 = glm::uvec4;
 // bool: count nodes, leaves and triangle tests per pixel (GpuPixel) — the statistics variant; off,
 // the counting is compiled out so timing runs pay nothing for it.
 #define VKRAY_SPEC_COUNT_TRAVERSAL 6
-// uint: triangles a leaf loop tests per iteration, 1 or 4 (leaf_triangles.glsl): 1 unless the
-// structure has a leaf of more than VKRAY_SINGLE_SLOT_LEAF_LIMIT triangles.
+// uint: triangles the resumable variant's leaf loop tests per iteration, 1 or 4 (leaf_triangles.glsl;
+// the plain kernel always tests 1): 1 unless the structure has a leaf of more than
+// VKRAY_SINGLE_SLOT_LEAF_LIMIT triangles.
 #define VKRAY_SPEC_LEAF_SLOTS 7
 // (Not a specialization constant: the resumable variant of render_main.glsl, "Resumable pixels", in
 // which a pixel whose loops run out of the driver's loop budget saves where it is
