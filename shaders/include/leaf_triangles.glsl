@@ -12,8 +12,9 @@
 // of overlapping triangles; the host decides: ShaderFeatures::leafSlots()): with one a pass, a
 // tile of such leaves that runs out of llvmpipe's budget in the plain kernel is resumed there. In
 // the plain kernel the four-slot loop was dead code for almost every structure that lavapipe still
-// translated before the specialization constant folded it: a quarter of the SPIR-V, 7-10 ms of
-// every render (docs/benchmarks.md, "One triangle a leaf-loop pass in the plain kernel").
+// translated before the specialization constant folded it: a quarter of the SPIR-V, 4-6 ms of
+// every render's pipeline creation (docs/benchmarks.md, "One triangle a leaf-loop pass in the
+// plain kernel").
 #ifndef VKRAY_LEAF_TRIANGLES_GLSL
 #define VKRAY_LEAF_TRIANGLES_GLSL
 
