@@ -219,15 +219,16 @@ Structure prepareStructure(const Scene& scene, const RenderOptions& options, con
     return s;
 }
 
-// Renders with the structure `spec` names: on the GPU of `ctx`, or on the CPU reference when there
-// is none. Fills the build and render parts of `report`. On the GPU the kernel's pipeline is
-// created on a thread while the structure is built (tens of ms on lavapipe).
+// Renders with the structure `spec` names: on the GPU of `ctx` with the pipelines of `kernels`, or
+// on the CPU reference when there is none. Fills the build and render parts of `report`. On the GPU
+// the kernel's pipeline is created on a thread while the structure is built (tens of ms on
+// lavapipe), unless an earlier scene of the command created it.
 Frame renderFrame(const Scene& scene, const RenderOptions& options, const accel::AccelSpec& spec,
-                  const gpu::VulkanContext* ctx, AccelFiles& files, bool showProgress, RenderReport& report) {
-    std::optional<gpu::KernelCache> kernels;
-    std::future<double> compiling;  // waits in its destructor, so kernels outlives it
+                  const gpu::VulkanContext* ctx, gpu::KernelCache* kernels, AccelFiles& files, bool showProgress,
+                  RenderReport& report) {
+    std::future<double> compiling;  // waits in its destructor
+    const size_t pipelinesAtStart = kernels ? kernels->size() : 0;
     if (ctx) {
-        kernels.emplace(*ctx);
         compiling = std::async(std::launch::async, [&] {
             return gpu::prepareKernel(scene, options, accel::kernelOf(spec), *kernels);
         });
@@ -245,8 +246,9 @@ Frame renderFrame(const Scene& scene, const RenderOptions& options, const accel:
     const double preparedMs = compiling.get();
     gpu::GpuRenderReport& rep = report.gpu.emplace();
     frame = gpu::renderOnGpu(*ctx, scene, options, *structure.data, &rep,
-                             showProgress ? gpu::TileProgress(printTileProgress) : gpu::TileProgress(), &*kernels);
+                             showProgress ? gpu::TileProgress(printTileProgress) : gpu::TileProgress(), kernels);
     rep.pipelineMs += preparedMs;
+    rep.pipelinesCreated = uint32_t(kernels->size() - pipelinesAtStart);
     report.renderMs = msSince(t0);
     if (rep.cappedRays > 0)
         std::fprintf(stderr, "warning: %llu rays reached the traversal's iteration cap and were ended "
@@ -256,8 +258,10 @@ Frame renderFrame(const Scene& scene, const RenderOptions& options, const accel:
 }
 
 // The Vulkan device of a render, opened on a thread while the first scene loads (the loader and the
-// driver take tens of milliseconds to start) and kept for the scenes after it. Its errors surface
-// when it is first needed, after the first scene's, as when it opened second.
+// driver take tens of milliseconds to start) and kept for the scenes after it, with the kernels'
+// pipelines: a scene that needs the same kernel with the same features as an earlier one does not
+// wait for its pipeline again. Its errors surface when it is first needed, after the first scene's,
+// as when it opened second.
 class Device {
 public:
     explicit Device(const RenderArgs& args) {
@@ -268,13 +272,18 @@ public:
         });
     }
     const gpu::VulkanContext* get() {  // null for --cpu
-        if (opening_.valid()) ctx_ = opening_.get();
+        if (opening_.valid()) {
+            ctx_ = opening_.get();
+            kernels_.emplace(*ctx_);
+        }
         return ctx_.get();
     }
+    gpu::KernelCache* kernels() { return kernels_ ? &*kernels_ : nullptr; }  // once get() opened the device
 
 private:
     std::future<std::unique_ptr<gpu::VulkanContext>> opening_;
     std::unique_ptr<gpu::VulkanContext> ctx_;
+    std::optional<gpu::KernelCache> kernels_;  // destroyed before ctx_, whose device it uses
 };
 
 // XXH64 of a file's bytes, as 16 hex digits.
@@ -399,7 +408,7 @@ RenderReport renderScene(const RenderArgs& args, const std::string& sceneFile, c
         return report;
     }
 
-    const Frame frame = renderFrame(scene, options, spec, ctx, accelFiles, showProgress, report);
+    const Frame frame = renderFrame(scene, options, spec, ctx, device.kernels(), accelFiles, showProgress, report);
     // Only an EXR keeps the metadata: the scene file and geometry are hashed for those alone.
     bool anyExr = !out.empty() && imageFormatForPath(out) == ImageFormat::Exr;
     for (const auto& [name, file] : aovFiles) anyExr = anyExr || imageFormatForPath(file) == ImageFormat::Exr;

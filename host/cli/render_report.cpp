@@ -74,7 +74,8 @@ nlohmann::json gpuJson(const gpu::GpuRenderReport& g) {
     for (const auto& [name, on] : g.features.list()) features[name] = on;
     nlohmann::json j = {{"kernel", g.kernel}, {"tiles", g.tiles}, {"submissions", g.submissions},
                         {"bytes_uploaded", g.bytesUploaded}, {"accel_bytes", g.accelBytes},
-                        {"upload_ms", g.uploadMs}, {"pipeline_ms", g.pipelineMs}, {"gpu_ms", g.gpuMs},
+                        {"upload_ms", g.uploadMs}, {"pipeline_ms", g.pipelineMs},
+                        {"pipelines_created", g.pipelinesCreated}, {"gpu_ms", g.gpuMs},
                         {"dispatch_ms", g.renderMs}, {"rays", g.raysTraced}, {"shadow_rays", g.shadowRays},
                         {"capped_rays", g.cappedRays}, {"features", features},
                         {"resumed", {{"tiles", g.resumedTiles}, {"from_start", g.resumedFromStart},
@@ -111,8 +112,8 @@ void printGpuStats(const gpu::GpuRenderReport& g) {
                         double(g.lockstepNodes) / all, g.lockstepLanes,
                         100.0 * double(g.nodesVisited) / double(g.lockstepNodes));
     }
-    std::printf("timing:      upload %.1f ms, pipeline %.1f ms, gpu %.1f ms (timestamps), dispatch+readback %.1f ms\n",
-                g.uploadMs, g.pipelineMs, g.gpuMs, g.renderMs);
+    std::printf("timing:      upload %.1f ms, pipeline %.1f ms%s, gpu %.1f ms (timestamps), dispatch+readback %.1f ms\n",
+                g.uploadMs, g.pipelineMs, g.pipelinesCreated == 0 ? " (an earlier scene's)" : "", g.gpuMs, g.renderMs);
 }
 
 }  // namespace

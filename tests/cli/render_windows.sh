@@ -2,7 +2,9 @@
 # `vkray render`'s windows end to end on the GPU (lavapipe without one): four --tile renders joined by
 # `vkray assemble` are bit-identical to the whole render (EXR floats; colour with reflections and
 # two samples a pixel), so is a --crop window's EXR placed by its data window, --pixel prints the
-# pixel of the whole render, and several scenes in one call land in --out-dir under their own names.
+# pixel of the whole render, and several scenes in one call land in --out-dir under their own names;
+# on the GPU a scene that needs an earlier scene's kernel pipeline renders with it, bit-identical to
+# its render alone (the pipeline's descriptors then name the second scene's buffers).
 # usage: render_windows.sh VKRAY SCENE_DIR OUT_DIR
 set -euo pipefail
 vkray=$1 scenes=$2 out=$3/windows
@@ -47,4 +49,17 @@ grep -Eq "^  radiance [0-9.e+-]+ " <<<"$line" || fail "--pixel printed no traced
 mkdir -p "$out/many"
 "$vkray" render "$scenes/default.scene" "$scenes/cornell.scene" --cpu --size 32x24 --quiet --out-dir "$out/many"
 [[ -s "$out/many/default.png" && -s "$out/many/cornell.png" ]] || fail "--out-dir holds $(ls "$out/many")"
-echo "ok: tiles assembled bit-identical, crop = pixel bounds, --pixel printed, two scenes in --out-dir"
+
+# Two scenes of the same kernel features (at one maxdepth) on the GPU: the second creates no pipeline
+# and renders as it does alone.
+many=(--size 48x36 --maxdepth 4 --accel bvh)
+mkdir -p "$out/gpu-many"
+"$vkray" render "$scenes/default.scene" "$scenes/cornell.scene" "${many[@]}" --json --out-dir "$out/gpu-many" > "$out/gpu-many.json"
+created=$(python3 -c 'import json, sys; print(" ".join(str(r["gpu"]["pipelines_created"]) for r in json.load(open(sys.argv[1]))))' "$out/gpu-many.json")
+[[ $created == "1 0" ]] || fail "pipelines created by the two scenes: $created (expected 1 0)"
+for s in default cornell; do
+  "$vkray" render "$scenes/$s.scene" "${many[@]}" --quiet -o "$out/gpu-alone-$s.png"
+  "$vkray" compare "$out/gpu-many/$s.png" "$out/gpu-alone-$s.png" --threshold 0 --max-rmse 0 --max-bad-fraction 0 \
+    || fail "$s.scene rendered after another scene differs from its render alone"
+done
+echo "ok: tiles assembled bit-identical, crop = pixel bounds, --pixel printed, two scenes in --out-dir, a pipeline shared"
