@@ -55,7 +55,7 @@ mkdir -p "$out/many"
 many=(--size 48x36 --maxdepth 4 --accel bvh)
 mkdir -p "$out/gpu-many"
 "$vkray" render "$scenes/default.scene" "$scenes/cornell.scene" "${many[@]}" --json --out-dir "$out/gpu-many" > "$out/gpu-many.json"
-created=$(python3 -c 'import json, sys; print(" ".join(str(r["gpu"]["pipelines_created"]) for r in json.load(open(sys.argv[1]))))' "$out/gpu-many.json")
+created=$(jq -r '[.[].gpu.pipelines_created | tostring] | join(" ")' "$out/gpu-many.json")
 [[ $created == "1 0" ]] || fail "pipelines created by the two scenes: $created (expected 1 0)"
 for s in default cornell; do
   "$vkray" render "$scenes/$s.scene" "${many[@]}" --quiet -o "$out/gpu-alone-$s.png"
