@@ -219,21 +219,20 @@ Structure prepareStructure(const Scene& scene, const RenderOptions& options, con
     return s;
 }
 
-// Renders with the structure `spec` names: on the GPU of `ctx` with the pipelines of `kernels`, or
-// on the CPU reference when there is none. Fills the build and render parts of `report`. On the GPU
-// the kernel's pipeline is created on a thread while the structure is built (tens of ms on
-// lavapipe), unless an earlier scene of the command created it.
+// Renders with the structure `spec` names: on the GPU, with the pipelines of `kernels` (on its
+// device), or on the CPU reference when there is none. Fills the build and render parts of
+// `report`. On the GPU the kernel's pipeline is created on a thread while the structure is built
+// (tens of ms on lavapipe), unless an earlier scene of the command created it.
 Frame renderFrame(const Scene& scene, const RenderOptions& options, const accel::AccelSpec& spec,
-                  const gpu::VulkanContext* ctx, gpu::KernelCache* kernels, AccelFiles& files, bool showProgress,
-                  RenderReport& report) {
+                  gpu::KernelCache* kernels, AccelFiles& files, bool showProgress, RenderReport& report) {
     std::future<double> compiling;  // waits in its destructor
-    const size_t pipelinesAtStart = kernels ? kernels->size() : 0;
-    if (ctx) {
+    const size_t pipelinesBefore = kernels ? kernels->size() : 0;
+    if (kernels) {
         compiling = std::async(std::launch::async, [&] {
             return gpu::prepareKernel(scene, options, accel::kernelOf(spec), *kernels);
         });
     }
-    const Structure structure = prepareStructure(scene, options, spec, files, ctx != nullptr, showProgress, report);
+    const Structure structure = prepareStructure(scene, options, spec, files, kernels != nullptr, showProgress, report);
 
     Frame frame;
     const Clock::time_point t0 = Clock::now();
@@ -244,11 +243,12 @@ Frame renderFrame(const Scene& scene, const RenderOptions& options, const accel:
         return frame;
     }
     const double preparedMs = compiling.get();
+    const size_t prepared = kernels->size() - pipelinesBefore;
     gpu::GpuRenderReport& rep = report.gpu.emplace();
-    frame = gpu::renderOnGpu(*ctx, scene, options, *structure.data, &rep,
+    frame = gpu::renderOnGpu(kernels->context(), scene, options, *structure.data, &rep,
                              showProgress ? gpu::TileProgress(printTileProgress) : gpu::TileProgress(), kernels);
     rep.pipelineMs += preparedMs;
-    rep.pipelinesCreated = uint32_t(kernels->size() - pipelinesAtStart);
+    rep.pipelinesCreated += uint32_t(prepared);
     report.renderMs = msSince(t0);
     if (rep.cappedRays > 0)
         std::fprintf(stderr, "warning: %llu rays reached the traversal's iteration cap and were ended "
@@ -408,7 +408,7 @@ RenderReport renderScene(const RenderArgs& args, const std::string& sceneFile, c
         return report;
     }
 
-    const Frame frame = renderFrame(scene, options, spec, ctx, device.kernels(), accelFiles, showProgress, report);
+    const Frame frame = renderFrame(scene, options, spec, device.kernels(), accelFiles, showProgress, report);
     // Only an EXR keeps the metadata: the scene file and geometry are hashed for those alone.
     bool anyExr = !out.empty() && imageFormatForPath(out) == ImageFormat::Exr;
     for (const auto& [name, file] : aovFiles) anyExr = anyExr || imageFormatForPath(file) == ImageFormat::Exr;

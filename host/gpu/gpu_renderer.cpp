@@ -442,6 +442,7 @@ Frame renderOnGpu(const VulkanContext& ctx, const Scene& scene, const RenderOpti
     rep.features.texelViewBits = viewBits;
     std::optional<KernelCache> ownKernels;
     if (!kernels) kernels = &ownKernels.emplace(ctx);
+    const size_t pipelinesBefore = kernels->size();
     ComputeKernel& kernel = kernels->kernel(accel.kernel, rep.features);
     rep.pipelineMs = msSince(start);
 
@@ -488,6 +489,7 @@ Frame renderOnGpu(const VulkanContext& ctx, const Scene& scene, const RenderOpti
     if (options.spp > 1)
         for (glm::vec3& c : frame.color) c /= float(options.spp);
     rep.renderMs = msSince(start);
+    rep.pipelinesCreated = uint32_t(kernels->size() - pipelinesBefore);
     ctx.checkValidation();
     throwIfCutShort(ctx, scene, accel.kernel, rep.pixelsCutShort);
     return frame;

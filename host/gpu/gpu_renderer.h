@@ -29,8 +29,8 @@ struct GpuRenderReport {
     uint64_t bytesUploaded = 0;
     double uploadMs = 0.0;       // scene buffers, host clock
     double pipelineMs = 0.0;     // kernel specialisation and pipeline creation, host clock
-    // Pipelines this render created; 0 when every one it used was made for an earlier scene of the
-    // same command (the render command's KernelCache outlives its scenes).
+    // Pipelines this render created in its KernelCache; 0 when every one it used was there already
+    // (an earlier scene's: the render command keeps one cache for all its scenes).
     uint32_t pipelinesCreated = 0;
     double gpuMs = -1.0;         // sum of the batches' timestamp intervals; -1 without timestamps
     double renderMs = 0.0;       // dispatch to read-back done, host clock
