@@ -4,6 +4,7 @@
 #include <nlohmann/json.hpp>
 
 #include "cli/commands.h"
+#include "gpu/driver_filter.h"
 #include "gpu/vulkan_context.h"
 
 namespace vkray::cli {
@@ -33,6 +34,9 @@ void registerDevicesCommand(CLI::App& app, int& exitCode) {
                             d.apiVersion.c_str(),
                             (unsigned long long)(d.maxStorageBufferRange >> 20), d.subgroupSize,
                             d.hasCompute ? "" : ", no compute queue");
+            if (const auto skipped = gpu::skippedDrivers())
+                std::printf("(not loaded, no DRM render node in /dev/dri: %s; VK_LOADER_DRIVERS_DISABLE= loads them)\n",
+                            skipped->c_str());
         }
         exitCode = 0;
     });

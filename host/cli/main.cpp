@@ -11,6 +11,7 @@
 #include "cli/commands.h"
 #include "core/error.h"
 #include "core/suggest.h"
+#include "gpu/driver_filter.h"
 
 namespace {
 
@@ -48,6 +49,8 @@ std::string usageMessage(const CLI::App& app, const CLI::ParseError& e) {
 }  // namespace
 
 int main(int argc, char** argv) {
+    // Before any thread starts: it may set the Vulkan loader's environment (driver_filter.h).
+    vkray::gpu::skipDriversWithoutDevices();
     CLI::App app{"vkray: a Vulkan compute ray tracer for studying acceleration structures"};
     app.set_version_flag("--version", VKRAY_VERSION);
     app.require_subcommand(1);
