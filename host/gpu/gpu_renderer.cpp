@@ -65,8 +65,9 @@ std::vector<Tile> splitIntoStrips(const Tile& tile, uint32_t rows) {
     return strips;
 }
 
-// Pixels of `tile` (its GpuPixels at `src`) with `flag` set.
-uint32_t countFlagged(const GpuPixel* src, const Tile& tile, uint32_t flag) {
+// Pixels of `tile` (its records at `src`: GpuPixel or GpuPixelColor) with `flag` set.
+template <class Record>
+uint32_t countFlagged(const Record* src, const Tile& tile, uint32_t flag) {
     uint32_t n = 0;
     for (uint32_t y = 0; y < tile.height; ++y)
         for (uint32_t x = 0; x < tile.width; ++x) n += (src[y * VKRAY_TILE_SIZE + x].flags & flag) != 0;
@@ -88,7 +89,7 @@ GpuFrameParams frameParams(const Scene& scene, const RenderOptions& options) {
     p.v = vec4(glm::vec3(cam.v), float(cam.tanY));
     p.w = vec4(glm::vec3(cam.w), 0.0f);
     p.attenuation = vec4(scene.attenuation, 0.0f);
-    p.background = vec4(scene.background, 0.0f);
+    p.background = glm::vec3(scene.background);
     p.imageTile = uvec4(uint32_t(options.width), uint32_t(options.height), 0u, 0u);
     setSample(p, 0);
     p.counts = uvec4(uint32_t(scene.triangles.size()), uint32_t(scene.lights.size()), 0u,
@@ -127,6 +128,21 @@ void readTile(const GpuPixel* src, const Tile& tile, const ShaderFeatures& featu
     if (counters)
         rep.lockstepNodes += lockstepNodes(tile.width, tile.height, rep.lockstepLanes,
                                            [&](uint32_t x, uint32_t y) { return src[y * VKRAY_TILE_SIZE + x].nodes; });
+}
+
+// Reads the compact records of `tile` (render_main.glsl, "Pixel records") and its ray counts into
+// `frame` and `rep`.
+void readCompactTile(const GpuPixelColor* src, const GpuTileCounts& counts, const Tile& tile, Frame& frame,
+                     GpuRenderReport& rep) {
+    for (uint32_t y = 0; y < tile.height; ++y)
+        for (uint32_t x = 0; x < tile.width; ++x) {
+            const GpuPixelColor& px = src[y * VKRAY_TILE_SIZE + x];
+            frame.color[frame.index(int(tile.x + x) - frame.x0, int(tile.y + y) - frame.y0)] = px.color;
+            rep.pixelsCutShort += (px.flags & VKRAY_PIXEL_CUT_SHORT) != 0;
+        }
+    rep.raysTraced += counts.rays;
+    rep.shadowRays += counts.shadowRays;
+    rep.cappedRays += counts.capped;
 }
 
 // The position of a kernel's SPIR-V in the generated registry, -1 when it has none. An index rather
@@ -202,6 +218,7 @@ void recordBatch(const vk::raii::CommandBuffer& cmd, const ComputeKernel& kernel
         p.imageTile.z = t.x;
         p.imageTile.w = t.y;
         p.counts.z = uint32_t(k) * kTilePixels;
+        p.tileCounts = uint32_t(tiles.size()) * kTilePixels + uint32_t(k);
         kernel.dispatch(cmd, &p, (t.width + VKRAY_WORKGROUP_X - 1) / VKRAY_WORKGROUP_X,
                         (t.height + VKRAY_WORKGROUP_Y * blockRows - 1) / (VKRAY_WORKGROUP_Y * blockRows));
     }
@@ -243,6 +260,37 @@ void bindBuffers(ComputeKernel& kernel, const SceneBuffers& scene, const AccelBu
     kernel.bind(r);
 }
 
+// Zeroes the batch's GpuTileCounts (`bytes` from `offset` of the pixel buffer) before its dispatches
+// add to them.
+void zeroTileCounts(const vk::raii::CommandBuffer& cmd, const PixelOutput& pixels, vk::DeviceSize offset,
+                    vk::DeviceSize bytes) {
+    cmd.fillBuffer(pixels.target().handle(), offset, bytes, 0u);
+    const vk::MemoryBarrier filled{.srcAccessMask = vk::AccessFlagBits::eTransferWrite,
+                                   .dstAccessMask = vk::AccessFlagBits::eShaderRead | vk::AccessFlagBits::eShaderWrite};
+    cmd.pipelineBarrier(vk::PipelineStageFlagBits::eTransfer, vk::PipelineStageFlagBits::eComputeShader, {}, filled,
+                        nullptr, nullptr);
+}
+
+// Reads a batch's records, as the kernel of `features` wrote them, into `frame` and `rep`; a tile with
+// pixels cut short goes to `unfinished` instead.
+void readBatch(const PixelOutput& pixels, std::span<const Tile> batch, const ShaderFeatures& features, Frame& frame,
+               GpuRenderReport& rep, std::vector<Tile>& unfinished) {
+    const auto* full = pixels.records<GpuPixel>();
+    const auto* colors = pixels.records<GpuPixelColor>();
+    const auto* counts = reinterpret_cast<const GpuTileCounts*>(colors + batch.size() * kTilePixels);
+    const bool compact = features.compactPixels();
+    for (size_t k = 0; k < batch.size(); ++k) {
+        const size_t at = k * kTilePixels;
+        if ((compact ? countFlagged(colors + at, batch[k], VKRAY_PIXEL_CUT_SHORT)
+                     : countFlagged(full + at, batch[k], VKRAY_PIXEL_CUT_SHORT)) > 0)
+            unfinished.push_back(batch[k]);
+        else if (compact)
+            readCompactTile(colors + at, counts[k], batch[k], frame, rep);
+        else
+            readTile(full + at, batch[k], features, frame, rep);
+    }
+}
+
 // Dispatches the tiles, `perSubmission` at a time into `pixels`, and reads each batch into `frame`.
 // A tile with pixels the driver's loop budget cut short is left for the resumable variant
 // (renderResumable) and added to `unfinished`.
@@ -250,22 +298,22 @@ void renderTiles(const VulkanContext& ctx, const ComputeKernel& kernel, const Pi
                  std::span<const Tile> tiles, uint32_t perSubmission, const GpuFrameParams& base, Frame& frame,
                  GpuRenderReport& rep, const TileProgress& progress, std::vector<Tile>& unfinished) {
     const BatchTimer timer(ctx);
+    const bool compact = rep.features.compactPixels();
     for (size_t first = 0; first < tiles.size(); first += perSubmission) {
         const std::span<const Tile> batch = tiles.subspan(first, std::min<size_t>(perSubmission, tiles.size() - first));
+        const size_t recordsEnd = batch.size() * kTilePixels;  // the tile counts follow the compact records
         OneShotCommands commands(ctx);
         const vk::raii::CommandBuffer& cmd = commands.begin();
+        if (compact) zeroTileCounts(cmd, pixels, recordsEnd * sizeof(GpuPixelColor), batch.size() * sizeof(GpuTileCounts));
         timer.begin(cmd);
         recordBatch(cmd, kernel, rep.features, batch, base);
         timer.end(cmd);  // the kernels' time, not the copy's (PixelOutput)
-        pixels.recordToHost(cmd, batch.size() * kTilePixels * sizeof(GpuPixel));
+        pixels.recordToHost(cmd, compact ? recordsEnd * sizeof(GpuPixelColor) + batch.size() * sizeof(GpuTileCounts)
+                                         : recordsEnd * sizeof(GpuPixel));
         commands.submitAndWait();
         ++rep.submissions;
         rep.gpuMs += timer.batchMs();
-        const GpuPixel* src = pixels.pixels();
-        for (size_t k = 0; k < batch.size(); ++k) {
-            if (countFlagged(src + k * kTilePixels, batch[k], VKRAY_PIXEL_CUT_SHORT) > 0) unfinished.push_back(batch[k]);
-            else readTile(src + k * kTilePixels, batch[k], rep.features, frame, rep);
-        }
+        readBatch(pixels, batch, rep.features, frame, rep, unfinished);
         if (progress) progress(uint32_t(first + batch.size()), uint32_t(tiles.size()));
     }
 }
@@ -311,7 +359,7 @@ void resumeStrip(const VulkanContext& ctx, const ComputeKernel& kernel, const Sh
         commands.submitAndWait();
         ++rep.resumeDispatches;
         if (rep.gpuMs >= 0.0) rep.gpuMs += timer.batchMs();
-        if (countFlagged(pixels.pixels(), strip, VKRAY_PIXEL_UNFINISHED) == 0) return;
+        if (countFlagged(pixels.records<GpuPixel>(), strip, VKRAY_PIXEL_UNFINISHED) == 0) return;
     }
 }
 
@@ -329,7 +377,7 @@ void renderResumable(const VulkanContext& ctx, ComputeKernel& kernel, const Shad
     for (size_t t = 0; t < tiles.size(); ++t) {
         for (const Tile& strip : splitIntoStrips(tiles[t], rows)) {
             resumeStrip(ctx, kernel, features, resume, pixels, strip, base, rep);  // the strip as a tile of its own
-            readTile(pixels.pixels(), strip, features, frame, rep);
+            readTile(pixels.records<GpuPixel>(), strip, features, frame, rep);
         }
         if (progress) progress(uint32_t(t + 1), uint32_t(tiles.size()));
     }

@@ -1,6 +1,6 @@
-// Where the render kernels write their GpuPixel records (VKRAY_BINDING_PIXELS) and where the host
+// Where the render kernels write their pixel records (VKRAY_BINDING_PIXELS) and where the host
 // reads them. Where the host-readable memory is the device's own (lavapipe, integrated GPUs), that is
-// one mapped buffer. On a discrete GPU it is not: the kernels' scattered 64-byte writes would cross
+// one mapped buffer. On a discrete GPU it is not: the kernels' scattered writes would cross
 // the bus one by one, so they write device-local memory and a copy moves each batch to the host in
 // one transfer.
 #pragma once
@@ -27,7 +27,10 @@ public:
     // Records, after a batch's dispatches, what makes its first `bytes` readable by the host once the
     // submission's fence signals.
     void recordToHost(const vk::raii::CommandBuffer& cmd, vk::DeviceSize bytes) const;
-    const GpuPixel* pixels() const { return static_cast<const GpuPixel*>(host_.mapped()); }
+    // The records as the host reads them: GpuPixel, or GpuPixelColor followed by GpuTileCounts
+    // (render_main.glsl, "Pixel records").
+    template <class Record>
+    const Record* records() const { return static_cast<const Record*>(host_.mapped()); }
 
 private:
     Buffer host_;

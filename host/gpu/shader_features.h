@@ -52,6 +52,9 @@ struct ShaderFeatures {
     // its pixels back.
     bool writesPrimaryAovs() const { return primaryAovs || resumable; }
     bool writesCounters() const { return countTraversal || resumable; }
+    // Neither: the kernel writes compact records (GpuPixelColor) and per-tile ray counts
+    // (GpuTileCounts) instead of GpuPixel (render_main.glsl, "Pixel records").
+    bool compactPixels() const { return !writesPrimaryAovs() && !writesCounters(); }
 
     static ShaderFeatures forScene(const Scene& scene, int maxDepth);
     void setMaxLeafTriangles(uint32_t triangles) { singleSlotLeaves = triangles <= VKRAY_SINGLE_SLOT_LEAF_LIMIT; }

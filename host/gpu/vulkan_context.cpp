@@ -63,8 +63,9 @@ DeviceInfo describe(const vk::raii::PhysicalDevice& pd, uint32_t index) {
     const auto& drv = chain.get<vk::PhysicalDeviceDriverProperties>();
     const auto& subgroups = chain.get<vk::PhysicalDeviceSubgroupProperties>();
     d.subgroupSize = subgroups.subgroupSize;
-    d.subgroupVote = (subgroups.supportedOperations & vk::SubgroupFeatureFlagBits::eVote) &&
-                     (subgroups.supportedStages & vk::ShaderStageFlagBits::eCompute);
+    d.subgroupOps = (subgroups.supportedOperations & vk::SubgroupFeatureFlagBits::eVote) &&
+                    (subgroups.supportedOperations & vk::SubgroupFeatureFlagBits::eArithmetic) &&
+                    (subgroups.supportedStages & vk::ShaderStageFlagBits::eCompute);
     d.name = props.deviceName.data();
     d.type = typeName(props.deviceType);
     d.driver = std::string(drv.driverName.data());
@@ -189,7 +190,7 @@ VulkanContext::VulkanContext(const ContextOptions& options)
         int bestRank = 1 << 30;
         for (uint32_t i = 0; i < devices.size(); ++i) {
             int rank = typeRank(devices[i].getProperties().deviceType);
-            if (infos[i].hasCompute && infos[i].subgroupVote && rank < bestRank) bestRank = rank, chosen = i;
+            if (infos[i].hasCompute && infos[i].subgroupOps && rank < bestRank) bestRank = rank, chosen = i;
         }
     } else if (std::all_of(want.begin(), want.end(), [](unsigned char c) { return std::isdigit(c); })) {
         uint32_t idx = uint32_t(std::min<unsigned long>(std::stoul(want), 1ul << 30));
@@ -205,12 +206,12 @@ VulkanContext::VulkanContext(const ContextOptions& options)
             if (lower(infos[i].name).find(lower(want)) != std::string::npos) chosen = i;
         if (!chosen) throw Error("--device " + want + ": no Vulkan device name contains it (see `vkray devices`)");
     }
-    if (!chosen) throw Error("no Vulkan device with a compute queue and subgroup vote operations");
+    if (!chosen) throw Error("no Vulkan device with a compute queue and subgroup vote and arithmetic operations");
     if (!infos[*chosen].hasCompute)
         throw Error("Vulkan device '" + infos[*chosen].name + "' has no compute queue");
-    if (!infos[*chosen].subgroupVote)
+    if (!infos[*chosen].subgroupOps)
         throw Error("Vulkan device '" + infos[*chosen].name +
-                    "' has no subgroup vote operations in compute shaders, which vkray's kernels use");
+                    "' lacks subgroup vote or arithmetic operations in compute shaders, which vkray's kernels use");
 
     physical_ = std::move(devices[*chosen]);
     info_ = infos[*chosen];

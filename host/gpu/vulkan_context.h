@@ -26,9 +26,9 @@ struct DeviceInfo {
     uint64_t deviceLocalBytes = 0;
     float timestampPeriodNs = 0.0f;
     bool hasCompute = false;
-    // Subgroup vote operations in compute shaders (the kernels' subgroupAll; every desktop GPU and
-    // lavapipe have them).
-    bool subgroupVote = false;
+    // Subgroup vote and arithmetic operations in compute shaders (the kernels' subgroupAll and
+    // subgroupAdd; every desktop GPU and lavapipe have them).
+    bool subgroupOps = false;
     // Invocations that run together (VkPhysicalDeviceSubgroupProperties::subgroupSize): 8 on
     // llvmpipe with 256-bit vectors, 32 on NVIDIA, 32 or 64 on AMD.
     uint32_t subgroupSize = 0;

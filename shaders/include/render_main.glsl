@@ -41,6 +41,22 @@ layout(std430, set = 0, binding = VKRAY_BINDING_RESUME_RAYS) buffer ResumeRays {
     GpuPendingRay resumeRays[];
 };
 
+// Pixel records. The host reads every pixel's colour and flags, the ray counts summed, and the
+// primary-hit AOVs and traversal counters only where it asked for them. The full record (GpuPixel)
+// takes a 64-byte cache line a pixel. Where neither AOVs nor counters are read, and not in the
+// resumable variant (which reads its records back), the kernel writes the compact one instead
+// (GpuPixelColor, four pixels a line) and adds its ray counts to the tile's GpuTileCounts, summed
+// over the subgroup first: 0.86-0.98 of the kernel time on lavapipe (docs/benchmarks.md, "Compact
+// pixel records"), and a quarter of the bytes to copy back from a discrete GPU.
+const bool COMPACT_PIXELS = !RESUMABLE && !PRIMARY_AOVS && !COUNT_TRAVERSAL;
+layout(std430, set = 0, binding = VKRAY_BINDING_PIXELS) buffer CompactPixels {
+    GpuPixelColor compactPixels[];
+};
+layout(std430, set = 0, binding = VKRAY_BINDING_PIXELS) buffer TileCounts {
+    GpuTileCounts tileCounts[];
+};
+uvec3 gInvocationCounts = uvec3(0u);  // compact records: rays, shadow rays, capped rays of the invocation
+
 // The pending rays: in registers, or in the resumable variant in this pixel's part of resumeRays
 // (saving them then needs no loop of its own). An entry read or written at a per-lane index is a
 // loop over the SIMD lanes per word on llvmpipe, and a pending ray is ten words (docs/benchmarks.md,
@@ -192,7 +208,7 @@ bool traceNextRay(inout PixelTrace pt, out uint stage) {
     --pt.stackTop;
     const bool cameraRay = pt.rays++ == 0;
     if (hit.triangle < 0) {  // a miss sees the background
-        pt.radiance += ray.weight * params.background.rgb;
+        pt.radiance += ray.weight * params.background;
         return true;
     }
     const SurfacePoint s = surfaceAt(hit, ray.dir);
@@ -265,6 +281,11 @@ uint resumePixel(uint resumeIndex, uint outIndex, uvec2 pixel, uvec2 imageSize, 
 // SIMD lanes: the full 16 words were 6% of a camera-ray render (docs/benchmarks.md, "A third
 // round").
 void storePixel(uint i, PixelTrace pt, uint flags) {
+    if (COMPACT_PIXELS) {
+        compactPixels[i] = GpuPixelColor(pt.radiance, flags);
+        gInvocationCounts += uvec3(uint(pt.rays), gShadowRays, gCappedRays);
+        return;
+    }
     pixels[i].color = pt.radiance;
     pixels[i].flags = flags;
     pixels[i].rays = uint(pt.rays);
@@ -328,7 +349,9 @@ void renderResumable() {
 // invocation".) On a GPU PIXELS_PER_INVOCATION is 1 and this is the plain loop over one pixel.
 void flagIfInImage(uint k) {
     const uvec2 local = pixelInTile(k);
-    if (inImage(local)) pixels[outputIndex(local)].flags = VKRAY_PIXEL_CUT_SHORT;
+    if (!inImage(local)) return;
+    if (COMPACT_PIXELS) compactPixels[outputIndex(local)].flags = VKRAY_PIXEL_CUT_SHORT;
+    else pixels[outputIndex(local)].flags = VKRAY_PIXEL_CUT_SHORT;
 }
 
 bool lastPixel(uint k) { return k + 1u == PIXELS_PER_INVOCATION || !inImage(pixelInTile(k + 1u)); }
@@ -372,10 +395,24 @@ void renderPixels() {
 #error "renderPixels flags at most four pixels of an invocation"
 #endif
 
+// Compact records: the subgroup's ray counts into its tile's (one atomic a count and subgroup).
+void addTileCounts() {
+    const uvec3 sums = subgroupAdd(gInvocationCounts);
+    if (subgroupElect()) {
+        atomicAdd(tileCounts[params.tileCounts].rays, sums.x);
+        atomicAdd(tileCounts[params.tileCounts].shadowRays, sums.y);
+        atomicAdd(tileCounts[params.tileCounts].capped, sums.z);
+    }
+}
+
 void main() {
     startLoopBudget();
-    if (RESUMABLE) renderResumable();
-    else renderPixels();
+    if (RESUMABLE) {
+        renderResumable();
+    } else {
+        renderPixels();
+        if (COMPACT_PIXELS) addTileCounts();
+    }
 }
 
 #endif

@@ -27,7 +27,7 @@ using uvec4 = glm::uvec4;
 #define VKRAY_TILE_SIZE 256
 
 // ---- Descriptor bindings (set 0) -------------------------------------------------------------
-#define VKRAY_BINDING_PIXELS 0       // GpuPixel[], one batch of tiles
+#define VKRAY_BINDING_PIXELS 0       // GpuPixel[] or GpuPixelColor[] + GpuTileCounts[], one batch of tiles
 // The resumable variant's saved pixels (VKRAY_SPEC_RESUMABLE; a one-element dummy otherwise):
 #define VKRAY_BINDING_RESUME 1       // GpuPixelResume[], one per pixel of the dispatch
 #define VKRAY_BINDING_RESUME_RAYS 2  // GpuPendingRay[], MAX_DEPTH per pixel: the pending-ray stacks
@@ -203,6 +203,22 @@ VKRAY_STRUCT(GpuPixel) {  // 64 bytes
     uint capped;     // rays ended by a traversal's iteration cap (reported, never hidden)
 };
 
+// The compact record (render_main.glsl, "Pixel records"): what the plain kernel writes where the host
+// reads neither AOVs nor traversal counters, four pixels to a 64-byte cache line instead of one. A
+// batch holds its tiles' GpuPixelColor records at the indices their GpuPixel records would have,
+// in 16-byte units (so the first quarter of the buffer), then one GpuTileCounts a tile: the ray
+// counts the full records carry per pixel, summed over the tile by the kernel.
+VKRAY_STRUCT(GpuPixelColor) {  // 16 bytes
+    vec3 color;
+    uint flags;  // VKRAY_PIXEL_* bits
+};
+VKRAY_STRUCT(GpuTileCounts) {  // 16 bytes; the host zeroes it before the tile's dispatch
+    uint rays;
+    uint shadowRays;
+    uint capped;
+    uint unused;
+};
+
 // Push constants: 128 bytes, the most every Vulkan device guarantees.
 VKRAY_STRUCT(GpuFrameParams) {
     vec4 eye;          // xyz eye, w = the camera ray's x within its pixel (0.5: the centre)
@@ -212,7 +228,8 @@ VKRAY_STRUCT(GpuFrameParams) {
     vec4 attenuation;  // xyz = constant, linear, quadratic
     uvec4 imageTile;   // x, y = image width, height; z, w = this tile's origin in pixels
     uvec4 counts;      // x = triangles, y = lights, z = first GpuPixel of this tile, w = tile row pitch
-    vec4 background;   // rgb: the radiance of a ray that hits nothing; w unused
+    vec3 background;   // the radiance of a ray that hits nothing
+    uint tileCounts;   // compact records: this tile's GpuTileCounts, in 16-byte units of the pixel buffer
 };
 
 #ifdef __cplusplus
@@ -231,6 +248,8 @@ static_assert(sizeof(GpuPixel) == 64 && offsetof(GpuPixel, depth) == 12 &&
               offsetof(GpuPixel, normal) == 16 && offsetof(GpuPixel, primId) == 28 &&
               offsetof(GpuPixel, flags) == 32 && offsetof(GpuPixel, shadowRays) == 40 &&
               offsetof(GpuPixel, nodes) == 44 && offsetof(GpuPixel, capped) == 60);
+static_assert(sizeof(GpuPixelColor) == 16 && offsetof(GpuPixelColor, flags) == 12 && sizeof(GpuTileCounts) == 16,
+              "compact records and tile counts share the pixel buffer's 16-byte index space");
 static_assert(sizeof(GpuPixelResume) == 80 && offsetof(GpuPixelResume, stage) == 12 &&
               offsetof(GpuPixelResume, hitTriangle) == 28 && offsetof(GpuPixelResume, bruteTriangle) == 44 &&
               offsetof(GpuPixelResume, stackTop) == 48 && offsetof(GpuPixelResume, bruteSlot) == 60 &&
@@ -238,7 +257,8 @@ static_assert(sizeof(GpuPixelResume) == 80 && offsetof(GpuPixelResume, stage) ==
 static_assert(sizeof(GpuPendingRay) == 48 && offsetof(GpuPendingRay, depth) == 12 &&
               offsetof(GpuPendingRay, dir) == 16 && offsetof(GpuPendingRay, weight) == 32);
 static_assert(sizeof(GpuFrameParams) == 128 && offsetof(GpuFrameParams, imageTile) == 80 &&
-              offsetof(GpuFrameParams, counts) == 96 && offsetof(GpuFrameParams, background) == 112);
+              offsetof(GpuFrameParams, counts) == 96 && offsetof(GpuFrameParams, background) == 112 &&
+              offsetof(GpuFrameParams, tileCounts) == 124);
 }  // namespace vkray::gpu
 #endif
 #undef VKRAY_STRUCT

@@ -185,6 +185,35 @@ TEST(GpuRenderer, WithoutPrimaryAovsTheImageAndCountsAreTheSame) {
     }
 }
 
+// A render that keeps neither AOVs nor counters takes the compact records (GpuPixelColor, and the
+// ray counts summed a tile: render_main.glsl, "Pixel records"): the same pixels bit for bit and the
+// same ray counts as the full records, over several tiles a batch (each its own counts) and batches, with
+// reflection, refraction, both kinds of light and pixels of the last tiles outside the image.
+TEST(GpuRenderer, CompactRecordsGiveTheSamePixelsAndCounts) {
+    Scene scene = loadScene(std::filesystem::path(VKRAY_SOURCE_DIR) / "scenes" / "objects.scene");
+    scene.background = glm::vec3(0.25f, 0.5f, 0.75f);  // no record is all zeros: stale counts would show
+    const RenderOptions full{.width = 520, .height = 270, .maxDepth = 3};  // 6 tiles: two batches on lavapipe
+    RenderOptions compact = full;
+    compact.primaryAovs = false;
+    for (const char* accel : {"bvh", "kd-stack", "kd-backtrack"}) {
+        SCOPED_TRACE(accel);
+        gpu::GpuRenderReport a, b;
+        const Frame f = test::renderGpu(scene, full, &a, accel);
+        const Frame g = test::renderGpu(scene, compact, &b, accel);
+        EXPECT_FALSE(a.features.compactPixels());
+        EXPECT_TRUE(b.features.compactPixels());
+        EXPECT_EQ(b.tiles, 6u);
+        ASSERT_EQ(f.color.size(), g.color.size());
+        for (size_t i = 0; i < f.color.size(); ++i) ASSERT_EQ(f.color[i], g.color[i]) << "pixel " << i;
+        EXPECT_GT(a.shadowRays, 0u);
+        EXPECT_GT(a.raysTraced, uint64_t(full.width) * full.height);  // secondary rays too
+        EXPECT_EQ(b.raysTraced, a.raysTraced);
+        EXPECT_EQ(b.shadowRays, a.shadowRays);
+        EXPECT_EQ(b.cappedRays, a.cappedRays);
+        EXPECT_EQ(b.pixelsCutShort, 0u);
+    }
+}
+
 // The lock-step count of a one-tile render is the per-pixel counts' (gpu/lockstep.h) with the
 // device's subgroup size, and at least the steps themselves.
 TEST(GpuRenderer, LockstepNodesFromThePixelCounts) {

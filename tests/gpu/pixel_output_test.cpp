@@ -27,7 +27,7 @@ const uint32_t* writeAndRead(const gpu::PixelOutput& out, vk::DeviceSize words, 
                         nullptr, nullptr);
     out.recordToHost(cmd, words * 4);
     commands.submitAndWait();
-    return reinterpret_cast<const uint32_t*>(out.pixels());
+    return out.records<uint32_t>();
 }
 
 TEST(PixelOutput, BothRoutesBringTheWritesToTheHost) {
