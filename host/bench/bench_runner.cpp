@@ -242,16 +242,17 @@ private:
     };
     Traced traceTimed(const Scene& scene, const Scene& dark, const RenderOptions& render,
                       const accel::GpuAccelData& data, const std::string& label, bool rayKinds) {
-        RenderOptions primary = render, depthOne = render;
+        RenderOptions timed = render, primary = render, depthOne = render;
         primary.maxDepth = depthOne.maxDepth = 1;
-        // Rates only: these renders' AOVs are never read (the error figures come from the full one).
-        primary.primaryAovs = depthOne.primaryAovs = false;
+        // The timed renders keep no AOVs, as a render without --aov (the kernel then writes compact
+        // pixel records); the error figures come from one more full render, with them, untimed.
+        timed.primaryAovs = primary.primaryAovs = depthOne.primaryAovs = false;
         Traced t;
         std::vector<double> full, prim, one, single, packet;
         for (int r = 0; r <= options_.repeat; ++r) {  // run 0 is the warm-up
             step("trace " + label, r, options_.repeat);
-            t.full = this->render(scene, render, data);
-            if (r > 0) full.push_back(t.full.report.gpuMs);
+            const GpuRun f = this->render(scene, timed, data);
+            if (r > 0) full.push_back(f.report.gpuMs);
             if (!rayKinds) continue;
             const GpuRun p = this->render(dark, primary, data);
             t.depthOne = this->render(scene, depthOne, data);
@@ -275,6 +276,7 @@ private:
             embreePacket_.insert(embreePacket_.end(), packet.begin(), packet.end());
         }
         t.fullMs = spreadOf(full);
+        t.full = this->render(scene, render, data);  // the image and AOVs of the error figures
         if (rayKinds) {
             t.primaryMs = spreadOf(prim);
             t.depthOneMs = spreadOf(one);
