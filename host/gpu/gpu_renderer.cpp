@@ -140,9 +140,10 @@ void readCompactTile(const GpuPixelColor* src, const GpuTileCounts& counts, cons
             frame.color[frame.index(int(tile.x + x) - frame.x0, int(tile.y + y) - frame.y0)] = px.color;
             rep.pixelsCutShort += (px.flags & VKRAY_PIXEL_CUT_SHORT) != 0;
         }
-    rep.raysTraced += counts.rays;
-    rep.shadowRays += counts.shadowRays;
-    rep.cappedRays += counts.capped;
+    const auto sum = [](uint32_t low, uint32_t high) { return uint64_t(high) << 32 | low; };
+    rep.raysTraced += sum(counts.raysLow, counts.raysHigh);
+    rep.shadowRays += sum(counts.shadowRaysLow, counts.shadowRaysHigh);
+    rep.cappedRays += sum(counts.cappedLow, counts.cappedHigh);
 }
 
 // The position of a kernel's SPIR-V in the generated registry, -1 when it has none. An index rather
@@ -218,7 +219,8 @@ void recordBatch(const vk::raii::CommandBuffer& cmd, const ComputeKernel& kernel
         p.imageTile.z = t.x;
         p.imageTile.w = t.y;
         p.counts.z = uint32_t(k) * kTilePixels;
-        p.tileCounts = uint32_t(tiles.size()) * kTilePixels + uint32_t(k);
+        // The counts follow the batch's compact records (16 bytes each), two units a tile.
+        p.tileCounts = uint32_t(tiles.size()) * kTilePixels / 2 + uint32_t(k);
         kernel.dispatch(cmd, &p, (t.width + VKRAY_WORKGROUP_X - 1) / VKRAY_WORKGROUP_X,
                         (t.height + VKRAY_WORKGROUP_Y * blockRows - 1) / (VKRAY_WORKGROUP_Y * blockRows));
     }

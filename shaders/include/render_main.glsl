@@ -395,15 +395,23 @@ void renderPixels() {
 #error "renderPixels flags at most four pixels of an invocation"
 #endif
 
-// Compact records: the subgroup's ray counts into its tile's (one atomic a count and subgroup).
+// Compact records: the subgroup's ray counts into its tile's 64-bit sums (an atomic on the low word a
+// count and subgroup; the high word takes the carry, seen in the low word's old value). A macro: GLSL
+// passes no buffer member by reference.
+#define VKRAY_ADD_COUNT(count, value)                                                  \
+    {                                                                                  \
+        const uint old = atomicAdd(tileCounts[params.tileCounts].count##Low, value);   \
+        if (old + (value) < old) atomicAdd(tileCounts[params.tileCounts].count##High, 1u); \
+    }
 void addTileCounts() {
     const uvec3 sums = subgroupAdd(gInvocationCounts);
     if (subgroupElect()) {
-        atomicAdd(tileCounts[params.tileCounts].rays, sums.x);
-        atomicAdd(tileCounts[params.tileCounts].shadowRays, sums.y);
-        atomicAdd(tileCounts[params.tileCounts].capped, sums.z);
+        VKRAY_ADD_COUNT(rays, sums.x)
+        VKRAY_ADD_COUNT(shadowRays, sums.y)
+        VKRAY_ADD_COUNT(capped, sums.z)
     }
 }
+#undef VKRAY_ADD_COUNT
 
 void main() {
     startLoopBudget();

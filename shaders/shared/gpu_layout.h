@@ -207,16 +207,18 @@ VKRAY_STRUCT(GpuPixel) {  // 64 bytes
 // reads neither AOVs nor traversal counters, four pixels to a 64-byte cache line instead of one. A
 // batch holds its tiles' GpuPixelColor records at the indices their GpuPixel records would have,
 // in 16-byte units (so the first quarter of the buffer), then one GpuTileCounts a tile: the ray
-// counts the full records carry per pixel, summed over the tile by the kernel.
+// counts the full records carry per pixel, summed over the tile by the kernel. The sums are 64-bit,
+// low and high words (a tile's shadow rays can pass 2^32: 65,536 pixels, each up to 65,536 rays
+// and a shadow ray a light for each).
 VKRAY_STRUCT(GpuPixelColor) {  // 16 bytes
     vec3 color;
     uint flags;  // VKRAY_PIXEL_* bits
 };
-VKRAY_STRUCT(GpuTileCounts) {  // 16 bytes; the host zeroes it before the tile's dispatch
-    uint rays;
-    uint shadowRays;
-    uint capped;
-    uint unused;
+VKRAY_STRUCT(GpuTileCounts) {  // 32 bytes, two 16-byte units; the host zeroes it before the tile's dispatch
+    uint raysLow, raysHigh;
+    uint shadowRaysLow, shadowRaysHigh;
+    uint cappedLow, cappedHigh;
+    uint unused0, unused1;
 };
 
 // Push constants: 128 bytes, the most every Vulkan device guarantees.
@@ -229,7 +231,7 @@ VKRAY_STRUCT(GpuFrameParams) {
     uvec4 imageTile;   // x, y = image width, height; z, w = this tile's origin in pixels
     uvec4 counts;      // x = triangles, y = lights, z = first GpuPixel of this tile, w = tile row pitch
     vec3 background;   // the radiance of a ray that hits nothing
-    uint tileCounts;   // compact records: this tile's GpuTileCounts, in 16-byte units of the pixel buffer
+    uint tileCounts;   // compact records: this tile's GpuTileCounts (an index of GpuTileCounts[] over the pixel buffer)
 };
 
 #ifdef __cplusplus
@@ -248,8 +250,9 @@ static_assert(sizeof(GpuPixel) == 64 && offsetof(GpuPixel, depth) == 12 &&
               offsetof(GpuPixel, normal) == 16 && offsetof(GpuPixel, primId) == 28 &&
               offsetof(GpuPixel, flags) == 32 && offsetof(GpuPixel, shadowRays) == 40 &&
               offsetof(GpuPixel, nodes) == 44 && offsetof(GpuPixel, capped) == 60);
-static_assert(sizeof(GpuPixelColor) == 16 && offsetof(GpuPixelColor, flags) == 12 && sizeof(GpuTileCounts) == 16,
-              "compact records and tile counts share the pixel buffer's 16-byte index space");
+static_assert(sizeof(GpuPixelColor) == 16 && offsetof(GpuPixelColor, flags) == 12 && sizeof(GpuTileCounts) == 32 &&
+                  offsetof(GpuTileCounts, shadowRaysLow) == 8 && offsetof(GpuTileCounts, cappedLow) == 16,
+              "compact records and tile counts share the pixel buffer's 16-byte units");
 static_assert(sizeof(GpuPixelResume) == 80 && offsetof(GpuPixelResume, stage) == 12 &&
               offsetof(GpuPixelResume, hitTriangle) == 28 && offsetof(GpuPixelResume, bruteTriangle) == 44 &&
               offsetof(GpuPixelResume, stackTop) == 48 && offsetof(GpuPixelResume, bruteSlot) == 60 &&
