@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cstddef>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -46,6 +47,18 @@ constexpr uint64_t kMaxBytesPerSubmission = uint64_t(256) << 20;
 struct Tile {
     uint32_t x, y, width, height;
 };
+
+// A batch of compact records (render_main.glsl, "Pixel records"): its tiles' GpuPixelColor records,
+// then a GpuTileCounts a tile, from this byte of the pixel buffer on.
+vk::DeviceSize tileCountsOffset(size_t tiles) { return tiles * kTilePixels * sizeof(GpuPixelColor); }
+static_assert(kTilePixels * sizeof(GpuPixelColor) % sizeof(GpuTileCounts) == 0,
+              "the counts start at a whole GpuTileCounts of the buffer");
+
+// The bytes of a batch of `tiles` the host reads, as the kernel of `features` writes them.
+vk::DeviceSize batchBytes(size_t tiles, const ShaderFeatures& features) {
+    return features.compactPixels() ? tileCountsOffset(tiles) + tiles * sizeof(GpuTileCounts)
+                                    : tiles * kTilePixels * sizeof(GpuPixel);
+}
 
 // The window's pixels as tiles, in image coordinates.
 std::vector<Tile> splitIntoTiles(const PixelWindow& window) {
@@ -130,16 +143,14 @@ void readTile(const GpuPixel* src, const Tile& tile, const ShaderFeatures& featu
                                            [&](uint32_t x, uint32_t y) { return src[y * VKRAY_TILE_SIZE + x].nodes; });
 }
 
-// Reads the compact records of `tile` (render_main.glsl, "Pixel records") and its ray counts into
-// `frame` and `rep`.
+// Reads the compact records of `tile` (render_main.glsl, "Pixel records"), none of them cut short
+// (those tiles go to the resumable variant), and its ray counts into `frame` and `rep`.
 void readCompactTile(const GpuPixelColor* src, const GpuTileCounts& counts, const Tile& tile, Frame& frame,
                      GpuRenderReport& rep) {
     for (uint32_t y = 0; y < tile.height; ++y)
-        for (uint32_t x = 0; x < tile.width; ++x) {
-            const GpuPixelColor& px = src[y * VKRAY_TILE_SIZE + x];
-            frame.color[frame.index(int(tile.x + x) - frame.x0, int(tile.y + y) - frame.y0)] = px.color;
-            rep.pixelsCutShort += (px.flags & VKRAY_PIXEL_CUT_SHORT) != 0;
-        }
+        for (uint32_t x = 0; x < tile.width; ++x)
+            frame.color[frame.index(int(tile.x + x) - frame.x0, int(tile.y + y) - frame.y0)] =
+                src[y * VKRAY_TILE_SIZE + x].color;
     const auto sum = [](uint32_t low, uint32_t high) { return uint64_t(high) << 32 | low; };
     rep.raysTraced += sum(counts.raysLow, counts.raysHigh);
     rep.shadowRays += sum(counts.shadowRaysLow, counts.shadowRaysHigh);
@@ -219,8 +230,7 @@ void recordBatch(const vk::raii::CommandBuffer& cmd, const ComputeKernel& kernel
         p.imageTile.z = t.x;
         p.imageTile.w = t.y;
         p.counts.z = uint32_t(k) * kTilePixels;
-        // The counts follow the batch's compact records (16 bytes each), two units a tile.
-        p.tileCounts = uint32_t(tiles.size()) * kTilePixels / 2 + uint32_t(k);
+        p.tileCounts = uint32_t(tileCountsOffset(tiles.size()) / sizeof(GpuTileCounts) + k);
         kernel.dispatch(cmd, &p, (t.width + VKRAY_WORKGROUP_X - 1) / VKRAY_WORKGROUP_X,
                         (t.height + VKRAY_WORKGROUP_Y * blockRows - 1) / (VKRAY_WORKGROUP_Y * blockRows));
     }
@@ -262,11 +272,9 @@ void bindBuffers(ComputeKernel& kernel, const SceneBuffers& scene, const AccelBu
     kernel.bind(r);
 }
 
-// Zeroes the batch's GpuTileCounts (`bytes` from `offset` of the pixel buffer) before its dispatches
-// add to them.
-void zeroTileCounts(const vk::raii::CommandBuffer& cmd, const PixelOutput& pixels, vk::DeviceSize offset,
-                    vk::DeviceSize bytes) {
-    cmd.fillBuffer(pixels.target().handle(), offset, bytes, 0u);
+// Zeroes the GpuTileCounts of a batch of `tiles` before its dispatches add to them.
+void zeroTileCounts(const vk::raii::CommandBuffer& cmd, const PixelOutput& pixels, size_t tiles) {
+    cmd.fillBuffer(pixels.target().handle(), tileCountsOffset(tiles), tiles * sizeof(GpuTileCounts), 0u);
     const vk::MemoryBarrier filled{.srcAccessMask = vk::AccessFlagBits::eTransferWrite,
                                    .dstAccessMask = vk::AccessFlagBits::eShaderRead | vk::AccessFlagBits::eShaderWrite};
     cmd.pipelineBarrier(vk::PipelineStageFlagBits::eTransfer, vk::PipelineStageFlagBits::eComputeShader, {}, filled,
@@ -279,17 +287,16 @@ void readBatch(const PixelOutput& pixels, std::span<const Tile> batch, const Sha
                GpuRenderReport& rep, std::vector<Tile>& unfinished) {
     const auto* full = pixels.records<GpuPixel>();
     const auto* colors = pixels.records<GpuPixelColor>();
-    const auto* counts = reinterpret_cast<const GpuTileCounts*>(colors + batch.size() * kTilePixels);
-    const bool compact = features.compactPixels();
+    const auto* counts = reinterpret_cast<const GpuTileCounts*>(pixels.records<std::byte>() + tileCountsOffset(batch.size()));
     for (size_t k = 0; k < batch.size(); ++k) {
         const size_t at = k * kTilePixels;
-        if ((compact ? countFlagged(colors + at, batch[k], VKRAY_PIXEL_CUT_SHORT)
-                     : countFlagged(full + at, batch[k], VKRAY_PIXEL_CUT_SHORT)) > 0)
-            unfinished.push_back(batch[k]);
-        else if (compact)
-            readCompactTile(colors + at, counts[k], batch[k], frame, rep);
-        else
-            readTile(full + at, batch[k], features, frame, rep);
+        if (features.compactPixels()) {
+            if (countFlagged(colors + at, batch[k], VKRAY_PIXEL_CUT_SHORT) > 0) unfinished.push_back(batch[k]);
+            else readCompactTile(colors + at, counts[k], batch[k], frame, rep);
+        } else {
+            if (countFlagged(full + at, batch[k], VKRAY_PIXEL_CUT_SHORT) > 0) unfinished.push_back(batch[k]);
+            else readTile(full + at, batch[k], features, frame, rep);
+        }
     }
 }
 
@@ -300,18 +307,15 @@ void renderTiles(const VulkanContext& ctx, const ComputeKernel& kernel, const Pi
                  std::span<const Tile> tiles, uint32_t perSubmission, const GpuFrameParams& base, Frame& frame,
                  GpuRenderReport& rep, const TileProgress& progress, std::vector<Tile>& unfinished) {
     const BatchTimer timer(ctx);
-    const bool compact = rep.features.compactPixels();
     for (size_t first = 0; first < tiles.size(); first += perSubmission) {
         const std::span<const Tile> batch = tiles.subspan(first, std::min<size_t>(perSubmission, tiles.size() - first));
-        const size_t recordsEnd = batch.size() * kTilePixels;  // the tile counts follow the compact records
         OneShotCommands commands(ctx);
         const vk::raii::CommandBuffer& cmd = commands.begin();
-        if (compact) zeroTileCounts(cmd, pixels, recordsEnd * sizeof(GpuPixelColor), batch.size() * sizeof(GpuTileCounts));
+        if (rep.features.compactPixels()) zeroTileCounts(cmd, pixels, batch.size());
         timer.begin(cmd);
         recordBatch(cmd, kernel, rep.features, batch, base);
         timer.end(cmd);  // the kernels' time, not the copy's (PixelOutput)
-        pixels.recordToHost(cmd, compact ? recordsEnd * sizeof(GpuPixelColor) + batch.size() * sizeof(GpuTileCounts)
-                                         : recordsEnd * sizeof(GpuPixel));
+        pixels.recordToHost(cmd, batchBytes(batch.size(), rep.features));
         commands.submitAndWait();
         ++rep.submissions;
         rep.gpuMs += timer.batchMs();
