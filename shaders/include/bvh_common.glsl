@@ -127,6 +127,14 @@ bvec4 hitsChildren(GpuBvhNode n, BoxRay r, float tLimit, out vec4 tEnter) {
 }
 #endif
 
+// Node `index`'s parent link, parent << 2 | its slot there (shared/bvh_layout.h): in the node itself
+// for boxes, in the index view for spheres.
+#ifdef VKRAY_BVH_SPHERES
+uint bvhParentLink(uint index, GpuBvhSphereNode n) { return indexTexel(int(index)).x; }
+#else
+uint bvhParentLink(uint index, GpuBvhNode n) { return n.planesZ.z; }
+#endif
+
 // Leaves are runs of the triangle buffer in leaf order: Hit.triangle is a slot of it.
 uint slotTriangle(uint slot) { return slot; }
 

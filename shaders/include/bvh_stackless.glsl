@@ -17,9 +17,6 @@
 #include "trace_status.glsl"
 #include "triangle.glsl"
 
-// Inner node `index`'s parent link: parent << 2 | its slot there (shared/bvh_layout.h).
-uint bvhParentLink(uint index) { return indexTexel(int(index)).x; }
-
 // Component i of v, by selects (a dynamic index made llvmpipe keep the vector in memory).
 float bvhPick(vec4 v, int i) { return i == 0 ? v.x : (i == 1 ? v.y : (i == 2 ? v.z : v.w)); }
 uint bvhPick(uvec4 v, int i) { return i == 0 ? v.x : (i == 1 ? v.y : (i == 2 ? v.z : v.w)); }
@@ -60,7 +57,7 @@ Hit bvhStacklessTrace(vec3 origin, vec3 dir, float tmax, const bool anyHit) {
             const bvec4 hit = hitsChildren(n, boxRay, best.t, tEnter);
             const int next = bvhNextChild(hit, anyHit ? vec4(0.0) : tEnter, from);
             const uint ref = bvhPick(n.child, max(next, 0));
-            const uint link = next < 0 ? bvhParentLink(node) : 0u;
+            const uint link = next < 0 ? bvhParentLink(node, n) : 0u;
             leaf = next >= 0 && isLeafRef(ref) ? ref : VKRAY_BVH_NO_CHILD;
             done = next < 0 && link == VKRAY_BVH_NO_PARENT;
             // A leaf: stay, and go on after it; an inner child: down; none: up to the parent.

@@ -21,10 +21,12 @@
 // (GpuAccelData.triangleOrder) so a leaf's triangles are contiguous. Unused child slots hold
 // VKRAY_BVH_NO_CHILD.
 //
-// The view VKRAY_BINDING_INDEX_TEXELS (R32UI) holds one parent link per node, parent << 2 | the
-// node's slot in its parent, VKRAY_BVH_NO_PARENT for the root (after Hapala, Davidovic, Wald, Havran
-// and Slusallek, "Efficient Stack-less BVH Traversal for Ray Tracing", SCCG 2011), for the stackless
-// walk: bvh-stackless's rays, and every BVH kernel's shadow rays.
+// Every node has a parent link, parent << 2 | the node's slot in its parent, VKRAY_BVH_NO_PARENT for
+// the root (after Hapala, Davidovic, Wald, Havran and Slusallek, "Efficient Stack-less BVH Traversal
+// for Ray Tracing", SCCG 2011), for the stackless walk: bvh-stackless's rays, and every BVH kernel's
+// shadow rays. A box node carries it in a spare word (GpuBvhNode.planesZ.z), so the walk's step
+// reads it with the node; a sphere node has none to spare, and its links are the view
+// VKRAY_BINDING_INDEX_TEXELS (R32UI), one a node.
 #ifndef VKRAY_BVH_LAYOUT_H
 #define VKRAY_BVH_LAYOUT_H
 
@@ -77,7 +79,7 @@ VKRAY_BVH_STRUCT(GpuBvhNode) {  // 64 bytes: four 16-byte slots
     vec3 corner;     // the grid's corner
     uint exponents;  // bytes 0-2: x, y, z
     uvec4 planesXY;  // children 0-3: lower x, upper x, lower y, upper y planes, a byte each
-    uvec4 planesZ;   // lower z, upper z, 0, 0
+    uvec4 planesZ;   // lower z, upper z, the node's parent link, 0
     uvec4 child;     // children 0-3: references, VKRAY_BVH_NO_CHILD where unused
 };
 #define VKRAY_BVH_EXPONENT_BIAS 127

@@ -53,8 +53,9 @@ accel::GpuAccelData cyclicBvh(accel::Kernel kernel) {
         data.nodes = accel::asBytes(std::vector<gpu::GpuBvhSphereNode>{sphere});
     }
     // The root's parent link (the stackless walk: bvh-stackless, and every BVH kernel's shadow
-    // rays); the walk goes down into itself before it ever climbs.
-    data.indices = accel::asBytes(std::vector<uint32_t>{VKRAY_BVH_NO_PARENT});
+    // rays), in the box node (quantizedNode's) or beside the sphere node; the walk goes down into
+    // itself before it ever climbs.
+    if (kernel == accel::Kernel::BvhSphere) data.indices = accel::asBytes(std::vector<uint32_t>{VKRAY_BVH_NO_PARENT});
     return data;
 }
 

@@ -42,13 +42,15 @@ public:
         accel::GpuAccelData data;
         data.kernel = accel::bvhKernel(config_, stackless_);
         data.triangleOrder = flat_.triangleOrder;
-        // Every BVH kernel walks its shadow rays stackless, by the parent links.
-        const auto upload = [&](const auto& nodes) {
+        // Every BVH kernel walks its shadow rays stackless, by the parent links: a box node holds
+        // its own, sphere nodes' are an array beside them.
+        if (spheres()) {
+            const std::vector<gpu::GpuBvhSphereNode> nodes = gpuSphereNodes(flat_);
             data.indices = accel::asBytes(gpuParentLinks(nodes));
             data.nodes = accel::asBytes(nodes);
-        };
-        if (spheres()) upload(gpuSphereNodes(flat_));
-        else upload(gpuNodes(flat_));
+        } else {
+            data.nodes = accel::asBytes(gpuNodes(flat_));
+        }
         data.maxLeafTriangles = uint32_t(config_.maxLeafSize);
         return data;
     }
@@ -82,9 +84,9 @@ public:
         s.push_back({"sah_cost", flat.sahCost, sahUnit(config_)});
         const size_t wide = gpuNodeCount(flat);
         s.push_back({"gpu_nodes", double(wide), std::to_string(VKRAY_BVH_WIDTH) + "-wide nodes of the kernel"});
-        const size_t nodeBytes = spheres() ? sizeof(gpu::GpuBvhSphereNode) : sizeof(gpu::GpuBvhNode);
-        s.push_back({"gpu_bytes", double(wide * (nodeBytes + sizeof(uint32_t))),
-                     "bytes: node buffer and parent links (triangles, reordered, are uploaded as usual)"});
+        const size_t nodeBytes = spheres() ? sizeof(gpu::GpuBvhSphereNode) + sizeof(uint32_t) : sizeof(gpu::GpuBvhNode);
+        s.push_back({"gpu_bytes", double(wide * nodeBytes),
+                     "bytes: nodes with their parent links (triangles, reordered, are uploaded as usual)"});
         return s;
     }
 

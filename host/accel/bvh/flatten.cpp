@@ -202,13 +202,6 @@ std::vector<Node> wideNodes(const FlatBvh& flat) {
 
 }  // namespace
 
-std::vector<gpu::GpuBvhNode> gpuNodes(const FlatBvh& flat) { return wideNodes<gpu::GpuBvhNode>(flat); }
-
-std::vector<gpu::GpuBvhSphereNode> gpuSphereNodes(const FlatBvh& flat) {
-    if (flat.spheres.size() != flat.nodes.size()) throw Error("internal: a BVH without spheres has no sphere nodes");
-    return wideNodes<gpu::GpuBvhSphereNode>(flat);
-}
-
 namespace {
 
 template <class Node>
@@ -228,7 +221,18 @@ std::vector<uint32_t> parentLinks(const std::vector<Node>& nodes) {
 
 }  // namespace
 
-std::vector<uint32_t> gpuParentLinks(const std::vector<gpu::GpuBvhNode>& nodes) { return parentLinks(nodes); }
+std::vector<gpu::GpuBvhNode> gpuNodes(const FlatBvh& flat) {
+    std::vector<gpu::GpuBvhNode> nodes = wideNodes<gpu::GpuBvhNode>(flat);
+    const std::vector<uint32_t> links = parentLinks(nodes);
+    for (size_t i = 0; i < nodes.size(); ++i) nodes[i].planesZ.z = links[i];
+    return nodes;
+}
+
+std::vector<gpu::GpuBvhSphereNode> gpuSphereNodes(const FlatBvh& flat) {
+    if (flat.spheres.size() != flat.nodes.size()) throw Error("internal: a BVH without spheres has no sphere nodes");
+    return wideNodes<gpu::GpuBvhSphereNode>(flat);
+}
+
 std::vector<uint32_t> gpuParentLinks(const std::vector<gpu::GpuBvhSphereNode>& nodes) { return parentLinks(nodes); }
 
 size_t gpuNodeCount(const FlatBvh& flat) {

@@ -126,7 +126,7 @@ gpu::GpuBvhNode quantizedNode(std::span<const Aabb> boxes, const gpu::uvec4& chi
     }
     node.exponents = exponents;
     node.planesXY = gpu::uvec4(planes[0], planes[1], planes[2], planes[3]);
-    node.planesZ = gpu::uvec4(planes[4], planes[5], 0u, 0u);
+    node.planesZ = gpu::uvec4(planes[4], planes[5], VKRAY_BVH_NO_PARENT, 0u);
     return node;
 }
 

@@ -14,7 +14,8 @@
 namespace vkray::bvh {
 
 // The node of up to VKRAY_BVH_WIDTH children: boxes[k] bounds the child of reference child[k]
-// (unused slots: VKRAY_BVH_NO_CHILD, their planes 0). Every box must be non-empty and finite.
+// (unused slots: VKRAY_BVH_NO_CHILD, their planes 0). Every box must be non-empty and finite. Its
+// parent link (planesZ.z) is VKRAY_BVH_NO_PARENT: gpuNodes (flatten.h) links the tree's nodes.
 gpu::GpuBvhNode quantizedNode(std::span<const Aabb> boxes, const gpu::uvec4& child);
 
 // Child k's box as the kernel's planes, in double, where every such plane is exact.

@@ -125,11 +125,13 @@ TEST(BvhStructure, SmallScenes) {
 
 // The GPU layout holds the same tree: from node 0 every triangle slot is reached exactly once, in
 // leaf order; every child's quantised box holds the triangles below it; inner nodes are numbered
-// depth-first; unused slots come last.
+// depth-first; unused slots come last; every inner node links back to its parent and slot there,
+// the root to none.
 void checkGpuNodes(const FlatBvh& flat, const Scene& scene) {
     const std::vector<gpu::GpuBvhNode> nodes = gpuNodes(flat);
     ASSERT_FALSE(nodes.empty());
     EXPECT_EQ(gpuNodeCount(flat), nodes.size());
+    EXPECT_EQ(nodes[0].planesZ.z, VKRAY_BVH_NO_PARENT);
     uint32_t nextSlot = 0, nextInner = 1;
     std::vector<GridBox> path;  // the boxes of the children walked into, root first
     std::function<void(uint32_t)> walk = [&](uint32_t index) {
@@ -153,6 +155,7 @@ void checkGpuNodes(const FlatBvh& flat, const Scene& scene) {
                 nextSlot = first + count;
             } else {
                 EXPECT_EQ(ref, nextInner++) << "inner nodes in depth-first order";
+                EXPECT_EQ(nodes.at(ref).planesZ.z, index << 2 | uint32_t(k)) << "node " << ref << "'s parent link";
                 walk(ref);
             }
             path.pop_back();
@@ -274,11 +277,13 @@ TEST(BvhAccel, BuildReportsPhasesAndStats) {
     EXPECT_EQ(gpu.kernel, accel::Kernel::Bvh);
     EXPECT_EQ(gpu.triangleOrder.size(), s.triangles.size());
     EXPECT_EQ(gpu.nodes.size() % sizeof(gpu::GpuBvhNode), 0u);
-    // A parent link a node, for the shadow rays' stackless walk; the root's names none.
-    ASSERT_EQ(gpu.indices.size(), gpu.nodes.size() / sizeof(gpu::GpuBvhNode) * sizeof(uint32_t));
-    uint32_t rootLink = 0;
-    std::memcpy(&rootLink, gpu.indices.data(), sizeof(rootLink));
-    EXPECT_EQ(rootLink, VKRAY_BVH_NO_PARENT);
+    // The shadow rays' stackless walk reads each node's parent link from the node (the root's names
+    // none): no array beside the nodes.
+    EXPECT_TRUE(gpu.indices.empty());
+    ASSERT_GE(gpu.nodes.size(), sizeof(gpu::GpuBvhNode));
+    gpu::GpuBvhNode root{};
+    std::memcpy(&root, gpu.nodes.data(), sizeof(root));
+    EXPECT_EQ(root.planesZ.z, VKRAY_BVH_NO_PARENT);
     std::vector<std::string> keys;
     for (const accel::AccelStat& st : built->stats()) keys.push_back(st.key);
     // AAC-HQ records the leaf collapse while it clusters: no "collapse" phase of its own.
