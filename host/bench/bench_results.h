@@ -169,6 +169,20 @@ struct SceneResult {
     std::vector<ConfigurationRun> configurations;  // what of this scene the run measured, in run order
 };
 
+// Accelerator a's camera-ray rate over `bvh`'s in the same scene (the kd walks' yardstick): the two
+// ratios to Embree rtcIntersect1 where both have one (each against the Embree times of its own
+// repeats, so a change of the machine's load between the two cancels), else the camera-ray times.
+// Empty when the scene has no `bvh` or either time is missing.
+inline std::optional<double> primaryVsBvh(const SceneResult& scene, const AccelResult& a) {
+    const AccelResult* bvh = nullptr;
+    for (const AccelResult& b : scene.accels)
+        if (b.accel == "bvh") bvh = &b;
+    if (!bvh) return std::nullopt;
+    if (a.primaryVsEmbree() && bvh->primaryVsEmbree()) return *a.primaryVsEmbree() / *bvh->primaryVsEmbree();
+    if (!(a.primaryOnlyMs.median > 0.0) || !(bvh->primaryOnlyMs.median > 0.0)) return std::nullopt;
+    return bvh->primaryOnlyMs.median / a.primaryOnlyMs.median;
+}
+
 // The settings that decide what a run measures; shards merge only when theirs are equal.
 struct BenchSettings {
     std::vector<std::string> scenes, accels;

@@ -58,7 +58,7 @@ private:
     bool pixels_;
 };
 
-Json accelResult(const AccelResult& a, const ImageNames& names) {
+Json accelResult(const SceneResult& scene, const AccelResult& a, const ImageNames& names) {
     Json build = Json::array();
     for (const ThreadTiming& t : a.build) build.push_back({{"threads", t.threads}, {"ms", spread(t.ms)}});
     Json stats = Json::object();
@@ -81,6 +81,7 @@ Json accelResult(const AccelResult& a, const ImageNames& names) {
                                                            {"intersect16_ms", spread(*a.embreePacketMs)},
                                                            {"primary_vs_intersect1", number(a.primaryVsEmbree())}}
                                                      : Json(nullptr)},
+            {"primary_vs_bvh", number(primaryVsBvh(scene, a))},
             {"mrays_per_s", number(a.mraysPerSecond)},
             {"ray_kinds", kinds},
             {"per_ray", {{"nodes", number(a.nodesPerRay)},
@@ -135,7 +136,7 @@ Json embree(const EmbreeResult& e, double rays) {
 
 Json sceneResult(const SceneResult& s, const ImageNames& names) {
     Json accels = Json::array(), points = Json::array(), deltas = Json::array(), configs = Json::array();
-    for (const AccelResult& a : s.accels) accels.push_back(accelResult(a, names));
+    for (const AccelResult& a : s.accels) accels.push_back(accelResult(s, a, names));
     for (const ErrorPoint& p : s.errorPoints) points.push_back(errorPoint(p));
     for (const DeltaResult& d : s.deltas) deltas.push_back(deltaResult(d));
     for (const ConfigurationRun& c : s.configurations) configs.push_back({{"label", c.label}, {"shard", c.shard}});

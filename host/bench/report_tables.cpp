@@ -382,12 +382,12 @@ Table errorTable(const SceneResult& scene) {
 }
 
 // Primary rays against the CPU yardstick: every accelerator's camera-ray rate and its ratio to Embree
-// rtcIntersect1 timed in the same repeats (interleaved), after Embree's own rows.
+// rtcIntersect1 timed in the same repeats (interleaved), after Embree's own rows; and to bvh's.
 Table embreeTable(const SceneResult& scene) {
     Table t = makeTable("Primary rays against Embree",
-                        {"tracer", "camera rays ms", "Mrays/s", "vs Embree rtcIntersect1", "node steps a ray",
+                        {"tracer", "camera rays ms", "Mrays/s", "vs Embree rtcIntersect1", "vs bvh", "node steps a ray",
                          "SIMD efficiency"},
-                        {false, true, true, true, true, true});
+                        {false, true, true, true, true, true, true});
     const EmbreeResult& e = scene.embree;
     if (e.version.empty()) {
         t.whenEmpty = "No CPU baseline: " + e.note + ".";
@@ -398,20 +398,22 @@ Table embreeTable(const SceneResult& scene) {
         return v ? format(*v) : std::string(kMissing);
     };
     addRow(t, {e.version + " rtcIntersect1", formatSpread(e.singleMs),
-               cell(mraysPerSecond(rays, e.singleMs.median), formatNumber), "1.00x", kMissing, kMissing});
+               cell(mraysPerSecond(rays, e.singleMs.median), formatNumber), "1.00x", kMissing, kMissing, kMissing});
     addRow(t, {e.version + " rtcIntersect16", formatSpread(e.packetMs),
                cell(mraysPerSecond(rays, e.packetMs.median), formatNumber),
-               formatRatio(e.singleMs.median / e.packetMs.median), kMissing, kMissing});
+               formatRatio(e.singleMs.median / e.packetMs.median), kMissing, kMissing, kMissing});
     for (const AccelResult& a : scene.accels) {
         const std::optional<double> simd = a.primarySimdEfficiency();
         addRow(t, {a.accel, formatSpread(a.primaryOnlyMs), cell(a.primaryMrays(), formatNumber),
-                   cell(a.primaryVsEmbree(), formatRatio), formatPerRay(a.primaryNodesPerRay),
+                   cell(a.primaryVsEmbree(), formatRatio), cell(primaryVsBvh(scene, a), formatRatio),
+                   formatPerRay(a.primaryNodesPerRay),
                    simd ? formatPercent(*simd) + ", " + std::to_string(a.simdLanes) + " lanes" : std::string(kMissing)});
     }
     t.notes.push_back("Camera rays only (no lights, maxdepth 1): GPU time from timestamps, Embree wall-clock on " +
                       std::to_string(e.threads) + " threads, the same rays, medians with the min–max spread. Each "
                       "accelerator's ratio uses the Embree times measured in its own repeats, interleaved with its "
-                      "renders; Embree's rows pool all of them. Embree names the reference's primary triangle on " +
+                      "renders; Embree's rows pool all of them. vs bvh: the camera-ray rate over bvh's, as the "
+                      "ratio of the two ratios to Embree. Embree names the reference's primary triangle on " +
                       formatPercent(e.agreement) + " of the camera rays. Node steps and SIMD efficiency from the "
                       "statistics variant: the steps a ray over the steps a ray as the device's subgroups (of the "
                       "lanes given) run them, each until its slowest lane is done (Aila and Laine 2009).");

@@ -121,7 +121,11 @@ void printSummary(const bench::BenchResults& r, const std::filesystem::path& dir
                         a.accel.c_str(), a.build.back().ms.median, a.traceMs.median, a.mraysPerSecond,
                         a.nodesPerRay, a.error.rmse);
             if (const auto camera = a.primaryMrays()) std::printf("  camera rays %7.2f Mrays/s", *camera);
-            if (a.primaryVsEmbree()) std::printf(" (%.3fx Embree)", *a.primaryVsEmbree());
+            const auto overEmbree = a.primaryVsEmbree();
+            const auto overBvh = a.accel != "bvh" ? bench::primaryVsBvh(s, a) : std::nullopt;
+            if (overEmbree && overBvh) std::printf(" (%.3fx Embree, %.2fx bvh)", *overEmbree, *overBvh);
+            else if (overEmbree) std::printf(" (%.3fx Embree)", *overEmbree);
+            else if (overBvh) std::printf(" (%.2fx bvh)", *overBvh);
             std::printf("\n");
         }
     }

@@ -206,9 +206,10 @@ TEST_F(BenchShards, MergeListsWhatTheUnshardedRunListsWithEachShardsFigures) {
         const Json shard = readJson(shardDir(c["shard"].get<int>()) / "bench.json")["scenes"][0];
         const std::string label = c["label"].get<std::string>();
         if (label.starts_with("accel ")) {
+            // primary_vs_bvh is a figure of two configurations: checked below.
             auto pick = [&](const Json& s) {
                 for (const Json& a : s["accelerators"])
-                    if (a["accel"] == label.substr(6)) return without(a, "images");
+                    if (a["accel"] == label.substr(6)) return without(without(a, "images"), "primary_vs_bvh");
                 return Json();
             };
             EXPECT_FALSE(pick(scene).is_null()) << label;
@@ -221,6 +222,21 @@ TEST_F(BenchShards, MergeListsWhatTheUnshardedRunListsWithEachShardsFigures) {
             EXPECT_EQ(without(scene["reference"], "images"), without(shard["reference"], "images"));
         }
     }
+    // kd-stack's rate over bvh's, which no shard holds both of, from the merged figures.
+    const auto row = [&](const Json& s, const char* name) {
+        for (const Json& a : s["accelerators"])
+            if (a["accel"] == name) return a;
+        return Json();
+    };
+    const Json bvh = row(scene, "bvh"), kd = row(scene, "kd-stack");
+    ASSERT_FALSE(bvh.is_null() || kd.is_null());
+    const double expected = kd["embree_interleaved"].is_null()
+        ? bvh["primary_only_ms"]["median"].get<double>() / kd["primary_only_ms"]["median"].get<double>()
+        : kd["embree_interleaved"]["primary_vs_intersect1"].get<double>() /
+              bvh["embree_interleaved"]["primary_vs_intersect1"].get<double>();
+    ASSERT_TRUE(kd["primary_vs_bvh"].is_number());
+    EXPECT_NEAR(kd["primary_vs_bvh"].get<double>(), expected, 1e-9 * expected);
+    EXPECT_EQ(bvh["primary_vs_bvh"].get<double>(), 1.0);
     // Every error point, but for its Pareto mark (over the merged points), from its shard.
     std::vector<Json> shardPoints;
     for (int i = 0; i < kShards; ++i) {

@@ -280,6 +280,34 @@ TEST(BenchReport, AcceleratorTableExplainsEmptyRates) {
     EXPECT_NE(std::find(t.notes.begin(), t.notes.end(), "² no reflective or refractive surfaces"), t.notes.end());
 }
 
+// The kd walks' yardstick: each tracer's camera-ray rate over bvh's, from the two ratios to Embree
+// where there are both (each timed against its own Embree repeats), else from the camera-ray times.
+TEST(BenchReport, EmbreeTableGivesEachTracerOverBvh) {
+    SceneResult scene = fullScene();
+    scene.embree.version = "Embree 3.13.5";
+    scene.embree.threads = 2;
+    scene.embree.singleMs = around(10.0);
+    scene.embree.packetMs = around(8.0);
+    scene.accels[0].accel = "bvh";
+    scene.accels[0].primaryOnlyMs = around(20.0);
+    scene.accels[0].embreeSingleMs = around(10.0);  // 0.5x Embree
+    scene.accels[0].embreePacketMs = around(8.0);
+    scene.accels[2].primaryOnlyMs = around(36.0);
+    scene.accels[2].embreeSingleMs = around(12.0);  // kd-stack 0.333x Embree in its own repeats: 0.67x bvh
+    scene.accels[2].embreePacketMs = around(9.0);
+    scene.accels[3].primaryOnlyMs = around(40.0);  // kd-restart without Embree times: 20 / 40 ms
+    const Table t = embreeTable(scene);
+    ASSERT_EQ(t.rows.size(), 2 + scene.accels.size());
+    const size_t overBvh = 4;
+    ASSERT_EQ(t.columns.at(overBvh), "vs bvh");
+    EXPECT_EQ(t.rows[0][overBvh], "—");  // Embree's own rows
+    EXPECT_EQ(t.rows[2][overBvh], "1.00x");
+    EXPECT_EQ(t.rows[3][overBvh], "—");  // bvh-fast: no camera-ray time
+    EXPECT_EQ(t.rows[4][overBvh], "0.67x");
+    EXPECT_EQ(t.rows[5][overBvh], "0.50x");
+    EXPECT_FALSE(primaryVsBvh(fullScene(), fullScene().accels[2]));  // no bvh in the run
+}
+
 TEST(BenchReport, SignedChangesReadAsChanges) {
     EXPECT_EQ(formatChange(1.6444), "+164 %");
     EXPECT_EQ(formatChange(-0.2414), "−24 %");  // a minus sign, not a hyphen

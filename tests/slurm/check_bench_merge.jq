@@ -3,12 +3,14 @@
 # Output: one line per mismatch; nothing when the merge is right.
 def nopareto: del(.pareto);
 def points($sc; f): [$sc.error_vs_time[] | select(f) | nopareto];
-# The figures of one configuration in one scene's report (images are named per report: left out).
+# The figures of one configuration in one scene's report (images are named per report: left out;
+# so is an accelerator's primary_vs_bvh, a figure of two configurations that a shard holding only
+# one of them cannot give).
 def figures($sc; $name):
   if $name == "reference" then
     {reference: ($sc.reference | del(.images)), points: points($sc; .group == "cpu-reference")}
   elif ($name | startswith("accel ")) then ($name[6:]) as $a |
-    {accel: [$sc.accelerators[] | select(.accel == $a) | del(.images)],
+    {accel: [$sc.accelerators[] | select(.accel == $a) | del(.images, .primary_vs_bvh)],
      points: points($sc; .group == "accelerator" and .label == $a)}
   elif ($name | startswith("concurrent ")) then {concurrent: $sc.concurrent_build}
   elif ($name | startswith("aac-delta ")) then ($name[10:] | tonumber) as $d |
