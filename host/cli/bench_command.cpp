@@ -123,9 +123,12 @@ void printSummary(const bench::BenchResults& r, const std::filesystem::path& dir
             if (const auto camera = a.primaryMrays()) std::printf("  camera rays %7.2f Mrays/s", *camera);
             const auto overEmbree = a.primaryVsEmbree();
             const auto overBvh = a.accel != "bvh" ? bench::primaryVsBvh(s, a) : std::nullopt;
-            if (overEmbree && overBvh) std::printf(" (%.3fx Embree, %.2fx bvh)", *overEmbree, *overBvh);
-            else if (overEmbree) std::printf(" (%.3fx Embree)", *overEmbree);
-            else if (overBvh) std::printf(" (%.2fx bvh)", *overBvh);
+            if (overEmbree || overBvh) {
+                std::printf(" (");
+                if (overEmbree) std::printf("%.3fx Embree%s", *overEmbree, overBvh ? ", " : "");
+                if (overBvh) std::printf("%.2fx bvh", *overBvh);
+                std::printf(")");
+            }
             std::printf("\n");
         }
     }

@@ -78,13 +78,25 @@ std::vector<Tile> splitIntoStrips(const Tile& tile, uint32_t rows) {
     return strips;
 }
 
-// Pixels of `tile` (its records at `src`: GpuPixel or GpuPixelColor) with `flag` set.
+// Calls f(record, x, y) for each pixel of `tile` (x, y within it), its record at `src` (GpuPixel or
+// GpuPixelColor, VKRAY_TILE_SIZE a row).
+template <class Record, class F>
+void forEachRecord(const Record* src, const Tile& tile, F&& f) {
+    for (uint32_t y = 0; y < tile.height; ++y)
+        for (uint32_t x = 0; x < tile.width; ++x) f(src[y * VKRAY_TILE_SIZE + x], x, y);
+}
+
+// Pixels of `tile` (its records at `src`) with `flag` set.
 template <class Record>
 uint32_t countFlagged(const Record* src, const Tile& tile, uint32_t flag) {
     uint32_t n = 0;
-    for (uint32_t y = 0; y < tile.height; ++y)
-        for (uint32_t x = 0; x < tile.width; ++x) n += (src[y * VKRAY_TILE_SIZE + x].flags & flag) != 0;
+    forEachRecord(src, tile, [&](const Record& r, uint32_t, uint32_t) { n += (r.flags & flag) != 0; });
     return n;
+}
+
+// Index in `frame` of pixel (x, y) of `tile`.
+size_t frameIndex(const Frame& frame, const Tile& tile, uint32_t x, uint32_t y) {
+    return frame.index(int(tile.x + x) - frame.x0, int(tile.y + y) - frame.y0);
 }
 
 // Sample s of every pixel (RenderOptions::spp): where in its pixel the camera ray goes.
@@ -116,28 +128,26 @@ void readTile(const GpuPixel* src, const Tile& tile, const ShaderFeatures& featu
               GpuRenderReport& rep) {
     // Only a frame that keeps the AOVs gets them (the resumable variant writes them for itself).
     const bool aovs = frame.hasAovs(), counters = features.writesCounters();
-    for (uint32_t y = 0; y < tile.height; ++y)
-        for (uint32_t x = 0; x < tile.width; ++x) {
-            const GpuPixel& px = src[y * VKRAY_TILE_SIZE + x];
-            const size_t i = frame.index(int(tile.x + x) - frame.x0, int(tile.y + y) - frame.y0);
-            frame.color[i] = px.color;
-            if (aovs) {
-                frame.depth[i] = px.depth;
-                frame.normal[i] = px.normal;
-                frame.primId[i] = px.primId;
-            }
-            rep.raysTraced += px.rays;
-            rep.shadowRays += px.shadowRays;
-            rep.cappedRays += px.capped;
-            if (counters) {
-                rep.nodesVisited += px.nodes;
-                rep.leavesVisited += px.leaves;
-                rep.trianglesTested += px.triangles;
-                rep.restarts += px.restarts;
-                if (!rep.nodesPerPixel.empty()) rep.nodesPerPixel[i] += px.nodes;  // every sample's
-            }
-            rep.pixelsCutShort += (px.flags & VKRAY_PIXEL_CUT_SHORT) != 0;
+    forEachRecord(src, tile, [&](const GpuPixel& px, uint32_t x, uint32_t y) {
+        const size_t i = frameIndex(frame, tile, x, y);
+        frame.color[i] = px.color;
+        if (aovs) {
+            frame.depth[i] = px.depth;
+            frame.normal[i] = px.normal;
+            frame.primId[i] = px.primId;
         }
+        rep.raysTraced += px.rays;
+        rep.shadowRays += px.shadowRays;
+        rep.cappedRays += px.capped;
+        if (counters) {
+            rep.nodesVisited += px.nodes;
+            rep.leavesVisited += px.leaves;
+            rep.trianglesTested += px.triangles;
+            rep.restarts += px.restarts;
+            if (!rep.nodesPerPixel.empty()) rep.nodesPerPixel[i] += px.nodes;  // every sample's
+        }
+        rep.pixelsCutShort += (px.flags & VKRAY_PIXEL_CUT_SHORT) != 0;
+    });
     if (counters)
         rep.lockstepNodes += lockstepNodes(tile.width, tile.height, rep.lockstepLanes,
                                            [&](uint32_t x, uint32_t y) { return src[y * VKRAY_TILE_SIZE + x].nodes; });
@@ -147,10 +157,8 @@ void readTile(const GpuPixel* src, const Tile& tile, const ShaderFeatures& featu
 // (those tiles go to the resumable variant), and its ray counts into `frame` and `rep`.
 void readCompactTile(const GpuPixelColor* src, const GpuTileCounts& counts, const Tile& tile, Frame& frame,
                      GpuRenderReport& rep) {
-    for (uint32_t y = 0; y < tile.height; ++y)
-        for (uint32_t x = 0; x < tile.width; ++x)
-            frame.color[frame.index(int(tile.x + x) - frame.x0, int(tile.y + y) - frame.y0)] =
-                src[y * VKRAY_TILE_SIZE + x].color;
+    forEachRecord(src, tile,
+                  [&](const GpuPixelColor& px, uint32_t x, uint32_t y) { frame.color[frameIndex(frame, tile, x, y)] = px.color; });
     const auto sum = [](uint32_t low, uint32_t high) { return uint64_t(high) << 32 | low; };
     rep.raysTraced += sum(counts.raysLow, counts.raysHigh);
     rep.shadowRays += sum(counts.shadowRaysLow, counts.shadowRaysHigh);
@@ -288,15 +296,14 @@ void readBatch(const PixelOutput& pixels, std::span<const Tile> batch, const Sha
     const auto* full = pixels.records<GpuPixel>();
     const auto* colors = pixels.records<GpuPixelColor>();
     const auto* counts = reinterpret_cast<const GpuTileCounts*>(pixels.records<std::byte>() + tileCountsOffset(batch.size()));
+    const bool compact = features.compactPixels();
     for (size_t k = 0; k < batch.size(); ++k) {
         const size_t at = k * kTilePixels;
-        if (features.compactPixels()) {
-            if (countFlagged(colors + at, batch[k], VKRAY_PIXEL_CUT_SHORT) > 0) unfinished.push_back(batch[k]);
-            else readCompactTile(colors + at, counts[k], batch[k], frame, rep);
-        } else {
-            if (countFlagged(full + at, batch[k], VKRAY_PIXEL_CUT_SHORT) > 0) unfinished.push_back(batch[k]);
-            else readTile(full + at, batch[k], features, frame, rep);
-        }
+        const uint32_t cut = compact ? countFlagged(colors + at, batch[k], VKRAY_PIXEL_CUT_SHORT)
+                                     : countFlagged(full + at, batch[k], VKRAY_PIXEL_CUT_SHORT);
+        if (cut > 0) unfinished.push_back(batch[k]);
+        else if (compact) readCompactTile(colors + at, counts[k], batch[k], frame, rep);
+        else readTile(full + at, batch[k], features, frame, rep);
     }
 }
 
