@@ -255,6 +255,17 @@ uint kdDescend(int visit, uvec2 n, uint first, uint second, float thit, inout fl
     return visit == kKdSecond || visit == kKdPastFirst ? second : first;
 }
 
+// Whether child `child` of inner node `index` (n) is a leaf without triangles: the node's flag bits.
+bool kdChildEmpty(uvec2 n, uint index, uint child) {
+    return (n.y & (child == index + 1u ? VKRAY_KD_EMPTY_BELOW : VKRAY_KD_EMPTY_ABOVE)) != 0u;
+}
+
+// Whether the step at inner node `index` (n) reached one child alone, `child`, and it is a leaf
+// without triangles: a walk may then go on as it would after visiting that leaf (kd_stack.glsl).
+bool kdOnlyChildEmpty(uvec2 n, uint index, int visit, uint child) {
+    return (visit == kKdFirst || visit == kKdSecond) && kdChildEmpty(n, index, child);
+}
+
 // Where a restart begins (kd-restart, kd-pushdown, and kd-shortstack once its stack ran dry): the
 // root, or with push-down (Horn, Sugerman, Houston and Hanrahan, "Interactive k-D Tree GPU
 // Raytracing", I3D 2007, section 4.1) the last node a descent entered before its first step that

@@ -23,9 +23,12 @@
 // third round"). Node indices stay below 2^28: a kd-tree's nodes are read through one texel view of
 // at most maxTexelBufferElements (2^27 on lavapipe) texels, and the host refuses more
 // (VKRAY_KD_MAX_NODES).
-uint kdStackEntry(uint node, uint minAxis) { return node | (minAxis << VKRAY_KD_STACK_AXIS_SHIFT); }
+uint kdStackEntry(uint node, uint minAxis, bool emptyLeaf) {
+    return node | (minAxis << VKRAY_KD_STACK_AXIS_SHIFT) | (emptyLeaf ? VKRAY_KD_STACK_EMPTY_LEAF : 0u);
+}
 uint kdStackNode(uint entry) { return entry & VKRAY_KD_STACK_NODE_MASK; }
-uint kdStackAxis(uint entry) { return entry >> VKRAY_KD_STACK_AXIS_SHIFT; }
+uint kdStackAxis(uint entry) { return (entry >> VKRAY_KD_STACK_AXIS_SHIFT) & 3u; }
+bool kdStackEmptyLeaf(uint entry) { return (entry & VKRAY_KD_STACK_EMPTY_LEAF) != 0u; }
 
 #ifdef VKRAY_KD_SHORT_STACK
 const bool kKdShortStack = true;
@@ -37,6 +40,43 @@ const int kKdStackSlots = VKRAY_KD_STACK_SIZE;
 
 // The ring slot of logical stack position i (the short stack only; the full stack never wraps).
 int kdStackSlot(int i) { return kKdShortStack ? i % kKdStackSlots : i; }
+
+// A stack entry with its whole segment, in registers. The walk holds the top entry so (`held`) from
+// the push that made it or the pop that uncovered it until it is popped, and passes leaves without
+// triangles without stepping onto them: a descent step whose segment reaches one child alone, such a
+// leaf (kdOnlyChildEmpty), pops the held entry at once; and a pop that uncovers such a leaf (a far
+// child pushed with VKRAY_KD_STACK_EMPTY_LEAF) goes on with the entry below it, which that pop has
+// read anyway to hold it. On llvmpipe every leaf stepped onto costs a pass of the outer loop, with a
+// masked pass of the triangle loop (kd_common.glsl, "Loops"), and on the scanned meshes about three
+// of a camera ray's four leaves are empty (docs/benchmarks.md, "Empty leaves passed without a
+// visit"). Reading the top entry from the stack arrays in the step instead cost every step their
+// per-lane loads (slower). The hits are those of the CPU twin (KdStackTracer::walkPass), which
+// steps onto those leaves: only the leaf and node counts differ.
+struct KdHeldEntry {
+    uint node;
+    float segMin;
+    uint minAxis;
+    float segMax;
+    uint maxAxis;
+    bool valid;
+};
+
+// Stack word `entry` starting at `start`; it ends where the entry below starts (`belowEntry`, `belowStart`)
+// if there is one, else at `end` (the last dropped entry's start, or the pass's end).
+KdHeldEntry kdHeldEntry(uint entry, float start, bool hasBelow, uint belowEntry, float belowStart, float end,
+                        uint endAxis) {
+    return KdHeldEntry(kdStackNode(entry), start, kdStackAxis(entry), hasBelow ? belowStart : end,
+                       hasBelow ? kdStackAxis(belowEntry) : endAxis, true);
+}
+
+// The walk resumes at entry e.
+uint kdResume(KdHeldEntry e, out float segMin, out uint minAxis, out float segMax, out uint maxAxis) {
+    segMin = e.segMin;
+    minAxis = e.minAxis;
+    segMax = e.segMax;
+    maxAxis = e.maxAxis;
+    return e.node;
+}
 
 bool kdWalkPass(KdRay r, WatertightRay w, const bool anyHit, float segMin, uint minAxis, float segMax,
                 uint maxAxis, inout KdPass pass, inout int steps, inout Hit best) {
@@ -58,6 +98,7 @@ bool kdWalkPass(KdRay r, WatertightRay w, const bool anyHit, float segMin, uint 
     uint node = 0u;
     KdRestartPoint restart = kdRootRestart();  // the short stack's, when it runs dry
     bool passDone = false;
+    KdHeldEntry held = KdHeldEntry(0u, 0.0, 0u, 0.0, 0u, false);
     while (budgetLeft() && !passDone && steps < VKRAY_KD_MAX_STEPS) {
         // Down to the next leaf (kd_common.glsl, "Loops").
         uvec2 n = kdNode(node);
@@ -77,30 +118,43 @@ bool kdWalkPass(KdRay r, WatertightRay w, const bool anyHit, float segMin, uint 
                     break;
                 }
                 const int slot = kdStackSlot(top);
-                stackNode[slot] = kdStackEntry(second, kdAxis(n));
+                stackNode[slot] = kdStackEntry(second, kdAxis(n), kdChildEmpty(n, node, second));
                 stackMin[slot] = thit;
                 ++top;
+                held = KdHeldEntry(second, thit, kdAxis(n), segMax, maxAxis, true);
             }
+            const uint parent = node;
             node = kdDescend(visit, n, first, second, thit, segMin, minAxis, segMax, maxAxis);
             kdEntered(restart, kKdShortStack, visit, node);
+            if (held.valid && kdOnlyChildEmpty(n, parent, visit, node) && !kdFinished(best, anyHit, segMax)) {
+                --top;  // pop the held entry (the leaf's visit would have found nothing)
+                node = kdResume(held, segMin, minAxis, segMax, maxAxis);
+                held.valid = false;
+            }
             n = kdNode(node);
         }
         if (!kdLeafStep(n, steps)) break;  // the cap, or the driver
         kdVisitLeaf(n, w, anyHit, best);
         if (kdFinished(best, anyHit, segMax)) {
             passDone = true;
-        } else if (top > bottom) {  // pop the nearest pending node
+        } else if (top > bottom) {  // pop the nearest pending node; the one below it is held
             --top;
-            const uint entry = stackNode[kdStackSlot(top)];
-            node = kdStackNode(entry);
-            minAxis = kdStackAxis(entry);
-            segMin = stackMin[kdStackSlot(top)];
-            segMax = top > bottom ? stackMin[kdStackSlot(top - 1)] : dropEnd;
-            maxAxis = top > bottom ? kdStackAxis(stackNode[kdStackSlot(top - 1)]) : dropEndAxis;
+            const int i0 = kdStackSlot(top), i1 = kdStackSlot(max(top - 1, 0)), i2 = kdStackSlot(max(top - 2, 0));
+            const uint e1 = stackNode[i1];
+            const float m1 = stackMin[i1];
+            const uint e0 = stackNode[i0];
+            const KdHeldEntry popped = kdHeldEntry(e0, stackMin[i0], top > bottom, e1, m1, dropEnd, dropEndAxis);
+            held = kdHeldEntry(e1, m1, top - 1 > bottom, stackNode[i2], stackMin[i2], dropEnd, dropEndAxis);
+            // A leaf without triangles is passed: the entry below it is popped too.
+            const bool passLeaf = kdStackEmptyLeaf(e0) && top > bottom && !kdFinished(best, anyHit, popped.segMax);
+            node = kdResume(passLeaf ? held : popped, segMin, minAxis, segMax, maxAxis);
+            top -= passLeaf ? 1 : 0;
+            held.valid = !passLeaf && top > bottom;
         } else if (!kKdShortStack || kdCompare(pass, segMax, maxAxis, passMax, passMaxAxis) >= 0) {
             passDone = true;  // nothing pending, and nothing dropped beyond this leaf
         } else {  // the short stack ran dry: restart past this leaf at the pushed-down node
             top = bottom = 0;
+            held.valid = false;
             dropEnd = passMax;
             dropEndAxis = passMaxAxis;
             node = kdRestart(restart, passMax, passMaxAxis, segMin, minAxis, segMax, maxAxis);

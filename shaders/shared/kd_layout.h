@@ -58,6 +58,8 @@ using uint = uint32_t;
 #define VKRAY_KD_STACK_AXIS_SHIFT 28u
 #define VKRAY_KD_MAX_NODES (1u << VKRAY_KD_STACK_AXIS_SHIFT)
 #define VKRAY_KD_STACK_NODE_MASK (VKRAY_KD_MAX_NODES - 1u)
+// Set in a stack word whose node is a leaf without triangles (its parent's flag bits), above the axis.
+#define VKRAY_KD_STACK_EMPTY_LEAF (1u << (VKRAY_KD_STACK_AXIS_SHIFT + 2u))
 // The nodes binding read as RG32UI texels (VKRAY_BINDING_NODE_TEXELS): texel i + VKRAY_KD_HEADER_TEXELS
 // is node i.
 #define VKRAY_KD_NODE_TEXEL_BYTES 8
