@@ -210,6 +210,12 @@ void kdBoxExit(KdRay r, vec3 lo, vec3 hi, inout float t1, inout uint a1, inout K
     kdExitSlab(r, 2u, exitPlane.z, t1, a1, pass);
 }
 
+// Whether inner node n's child below its plane (or above it) is a leaf without triangles: the node's
+// flag bits (kd_layout.h), read without the child.
+bool kdChildEmpty(uvec2 n, bool below) {
+    return (n.y & (below ? VKRAY_KD_EMPTY_BELOW : VKRAY_KD_EMPTY_ABOVE)) != 0u;
+}
+
 const int kKdFirst = 0, kKdSecond = 1, kKdBoth = 2, kKdPastFirst = 3;
 
 // One inner-node step: which children of inner node `index` the segment [tmin, tmax] reaches.
@@ -236,7 +242,7 @@ int kdStepInner(KdRay r, uvec2 n, uint index, float tmin, uint tminAxis, float t
     thit = parallel ? -kInfinity : kdPlaneHit(r, axis, split);
     if (kdCompare(p, thit, axis, tmax, tmaxAxis) >= 0) return kKdFirst;
     if (kdCompare(p, thit, axis, tmin, tminAxis) <= 0) return kKdSecond;
-    return (n.y & (up ? VKRAY_KD_EMPTY_BELOW : VKRAY_KD_EMPTY_ABOVE)) != 0u ? kKdPastFirst : kKdBoth;
+    return kdChildEmpty(n, up) ? kKdPastFirst : kKdBoth;  // the first child is the one below when up
 }
 
 // Takes the step kdStepInner chose: the child to descend to, with the segment cut at the plane when
@@ -255,15 +261,10 @@ uint kdDescend(int visit, uvec2 n, uint first, uint second, float thit, inout fl
     return visit == kKdSecond || visit == kKdPastFirst ? second : first;
 }
 
-// Whether child `child` of inner node `index` (n) is a leaf without triangles: the node's flag bits.
-bool kdChildEmpty(uvec2 n, uint index, uint child) {
-    return (n.y & (child == index + 1u ? VKRAY_KD_EMPTY_BELOW : VKRAY_KD_EMPTY_ABOVE)) != 0u;
-}
-
 // Whether the step at inner node `index` (n) reached one child alone, `child`, and it is a leaf
 // without triangles: a walk may then go on as it would after visiting that leaf (kd_stack.glsl).
 bool kdOnlyChildEmpty(uvec2 n, uint index, int visit, uint child) {
-    return (visit == kKdFirst || visit == kKdSecond) && kdChildEmpty(n, index, child);
+    return (visit == kKdFirst || visit == kKdSecond) && kdChildEmpty(n, child == index + 1u);
 }
 
 // Where a restart begins (kd-restart, kd-pushdown, and kd-shortstack once its stack ran dry): the

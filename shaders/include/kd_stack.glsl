@@ -118,7 +118,7 @@ bool kdWalkPass(KdRay r, WatertightRay w, const bool anyHit, float segMin, uint 
                     break;
                 }
                 const int slot = kdStackSlot(top);
-                stackNode[slot] = kdStackEntry(second, kdAxis(n), kdChildEmpty(n, node, second));
+                stackNode[slot] = kdStackEntry(second, kdAxis(n), kdChildEmpty(n, second == node + 1u));
                 stackMin[slot] = thit;
                 ++top;
                 held = KdHeldEntry(second, thit, kdAxis(n), segMax, maxAxis, true);

@@ -2,7 +2,8 @@
 // Raytracer", Graphics Hardware 2005 (their pseudocode as reproduced in S. A. Mulia, "Penggunaan k-d Tree
 // dalam Ray Tracing", ITB 2018), in double precision on the CPU over the very arrays the GPU kernels read
 // (kd_layout.h), so the unit tests check the algorithms and the layout off the GPU.
-// shaders/include/kd_{stack,restart,backtrack}.glsl are the float twins.
+// shaders/include/kd_{stack,restart,backtrack}.glsl are the float twins (kd-stack's kernel also
+// passes leaves without triangles without stepping onto them: the same hits, fewer leaves counted).
 //
 // All three share (docs/kdtree.md, "Floating point"):
 //  - Children in ray order by the sign of the direction (the pseudocode's order(ray.direction[a],
