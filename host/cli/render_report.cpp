@@ -123,6 +123,7 @@ std::string reportJson(const RenderReport& r) {
     j["accel"] = {{"name", r.accel}};
     const bool loaded = r.accelFile && r.accelFile->loaded;
     if (!loaded) j["accel"]["build_ms"] = r.buildMs;  // a loaded structure was not built: no time to give
+    if (r.gpuDataMs) j["accel"]["gpu_data_ms"] = *r.gpuDataMs;
     for (const accel::AccelStat& st : r.accelStats) {
         if (isCount(st)) j["accel"][st.key] = int64_t(st.value);
         else j["accel"][st.key] = st.value;
@@ -145,7 +146,9 @@ std::string reportJson(const RenderReport& r) {
     j["lights"] = r.lights;
     j["origin"] = r.origin;
     j["load_ms"] = r.loadMs;
+    if (r.deviceMs) j["device_ms"] = *r.deviceMs;
     j["render_ms"] = r.renderMs;
+    if (!r.output.empty() || !r.aovs.empty()) j["write_ms"] = r.writeMs;
     j["total_ms"] = r.totalMs;
     if (r.buildOnly) j["build_only"] = true;
     if (r.output.empty()) j["output"] = nullptr;  // --pixel without -o, --build-only: no image
@@ -166,12 +169,15 @@ void printReport(const RenderReport& r, bool stats) {
     const std::string structure = r.accelFile && r.accelFile->loaded
                                       ? "structure loaded " + formatMs(r.accelFile->ms)
                                       : "build " + formatMs(r.buildMs);
+    const bool wrote = !r.output.empty() || !r.aovs.empty();
     if (r.buildOnly)
         std::printf("build time:  %s (load %s; total %s), nothing rendered\n", formatMs(r.buildMs).c_str(),
                     formatMs(r.loadMs).c_str(), formatMs(r.totalMs).c_str());
     else
-        std::printf("render time: %s (load %s, %s; total %s)\n", formatMs(r.renderMs).c_str(),
-                    formatMs(r.loadMs).c_str(), structure.c_str(), formatMs(r.totalMs).c_str());
+        std::printf("render time: %s (load %s, %s%s%s; total %s)\n", formatMs(r.renderMs).c_str(),
+                    formatMs(r.loadMs).c_str(), structure.c_str(),
+                    r.deviceMs && *r.deviceMs >= 0.05 ? (", device start " + formatMs(*r.deviceMs)).c_str() : "",
+                    wrote ? (", write " + formatMs(r.writeMs)).c_str() : "", formatMs(r.totalMs).c_str());
     if (!r.output.empty()) std::printf("output:      %s\n", r.output.c_str());
     for (const auto& [name, file] : r.aovs) std::printf("aov %-7s  %s\n", name.c_str(), file.c_str());
     if (r.accelFile)
@@ -187,7 +193,8 @@ void printReport(const RenderReport& r, bool stats) {
         std::printf("accel:       %s, loaded from %s in %.1f ms (not built)\n", r.accel.c_str(),
                     r.accelFile->path.c_str(), r.accelFile->ms);
     else
-        std::printf("accel:       %s, built in %.1f ms\n", r.accel.c_str(), builtMs(r));
+        std::printf("accel:       %s, built in %.1f ms%s\n", r.accel.c_str(), builtMs(r),
+                    r.gpuDataMs ? (", laid out for the kernel in " + formatMs(*r.gpuDataMs)).c_str() : "");
     for (const accel::AccelStat& st : r.accelStats) {
         std::printf("  %-24s %s %s\n", st.key.c_str(), statText(st).c_str(), st.unit.c_str());
         if (st.key == "sah_cost") std::printf("  %-24s %s\n", "", sahNote(st.unit).c_str());

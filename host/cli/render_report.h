@@ -29,11 +29,17 @@ struct RenderReport {
     RenderOptions options;
     std::string accel;   // the accelerator's name
     double buildMs = 0.0;  // none when the structure was loaded from a file
+    // Of buildMs, the structure's arrays in the kernel's layout (GPU renders and --save-accel).
+    std::optional<double> gpuDataMs;
     std::optional<AccelFileReport> accelFile;
     std::vector<accel::AccelStat> accelStats;
     size_t triangles = 0, materials = 0, lights = 0;
     std::array<double, 3> origin{};  // Scene::origin: where the scene's local floats are measured from
     double loadMs = 0.0, renderMs = 0.0;
+    // GPU renders: how long the scene waited for the Vulkan device, opened on a thread while it
+    // loaded (the loader, the driver and its compiler start; 0 once an earlier scene opened it).
+    std::optional<double> deviceMs;
+    double writeMs = 0.0;  // the image and AOV files
     double totalMs = 0.0;  // the whole command until the images are written: load, build, render, output
     std::optional<gpu::GpuRenderReport> gpu;  // GPU renders only
     bool buildOnly = false;  // --build-only: the structure built and saved, nothing rendered

@@ -76,6 +76,20 @@ add_test(NAME cli.render_cpu
          COMMAND $<TARGET_FILE:vkray> render ${CMAKE_SOURCE_DIR}/scenes/default.scene --size 96x96 --cpu
                  --accel brute -o ${CLI_OUT}/default-cpu.png --aov primid=${CLI_OUT}/primid-cpu.pfm)
 set_tests_properties(cli.render_cpu PROPERTIES TIMEOUT 300 FIXTURES_SETUP default_renders)
+# The summary's render-time line accounts for the whole command: a GPU render names the wait for
+# its device, the CPU reference has none; both name the image's write.
+add_test(NAME cli.render_time_gpu
+         COMMAND ${CLI_DIR}/expect_output.sh
+                 "^render time: [0-9.]+ ms \\(load [0-9.]+ ms, build [0-9.]+ ms, device start [0-9.]+ ms, write [0-9.]+ ms; total [0-9.]+ ms\\)$"
+                 $<TARGET_FILE:vkray> render ${CMAKE_SOURCE_DIR}/scenes/default.scene --size 32x32 -o ${CLI_OUT}/time-gpu.png)
+add_test(NAME cli.render_time_cpu
+         COMMAND ${CLI_DIR}/expect_output.sh
+                 "^render time: [0-9.]+ ms \\(load [0-9.]+ ms, build [0-9.]+ ms, write [0-9.]+ ms; total [0-9.]+ ms\\)$"
+                 $<TARGET_FILE:vkray> render ${CMAKE_SOURCE_DIR}/scenes/default.scene --size 32x32 --cpu -o ${CLI_OUT}/time-cpu.png)
+add_test(NAME cli.render_time_json
+         COMMAND ${CLI_DIR}/expect_output.sh "\"device_ms\": [0-9]"
+                 $<TARGET_FILE:vkray> render ${CMAKE_SOURCE_DIR}/scenes/default.scene --size 32x32 --json -o ${CLI_OUT}/time-json.png)
+set_tests_properties(cli.render_time_gpu cli.render_time_cpu cli.render_time_json PROPERTIES TIMEOUT 300)
 add_test(NAME cli.compare_gpu_cpu
          COMMAND $<TARGET_FILE:vkray> compare ${CLI_OUT}/default-gpu.png ${CLI_OUT}/default-cpu.png
                  --max-rmse 0.02 --max-bad-fraction 0.005 --threshold 0.0314 --diff ${CLI_OUT}/default-diff.png)
