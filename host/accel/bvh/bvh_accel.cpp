@@ -43,14 +43,18 @@ public:
         data.kernel = accel::bvhKernel(config_, stackless_);
         data.triangleOrder = flat_.triangleOrder;
         // Every BVH kernel walks its shadow rays stackless, by the parent links: a box node holds
-        // its own, sphere nodes' are an array beside them.
-        if (spheres()) {
-            const std::vector<gpu::GpuBvhSphereNode> nodes = gpuSphereNodes(flat_);
-            data.indices = accel::asBytes(gpuParentLinks(nodes));
-            data.nodes = accel::asBytes(nodes);
-        } else {
-            data.nodes = accel::asBytes(gpuNodes(flat_));
-        }
+        // its own, sphere nodes' are an array beside them. The nodes are made in parallel, on as
+        // many workers as the build had.
+        tbb::task_arena arena(threads_ > 0 ? threads_ : tbb::task_arena::automatic);
+        arena.execute([&] {
+            if (spheres()) {
+                const std::vector<gpu::GpuBvhSphereNode> nodes = gpuSphereNodes(flat_);
+                data.indices = accel::asBytes(gpuParentLinks(nodes));
+                data.nodes = accel::asBytes(nodes);
+            } else {
+                data.nodes = accel::asBytes(gpuNodes(flat_));
+            }
+        });
         data.maxLeafTriangles = uint32_t(config_.maxLeafSize);
         return data;
     }

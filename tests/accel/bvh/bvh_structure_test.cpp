@@ -174,8 +174,9 @@ TEST(BvhStructure, GpuLayoutHoldsTheSameTree) {
     }
 }
 
-// Built with 1, 2 and 4 worker threads: the flat arrays must be byte-for-byte the same. 150k
-// triangles make the radix sort use several blocks and every builder spawn parallel tasks.
+// Built with 1, 2 and 4 worker threads: the flat arrays, and the GPU nodes quantised from them in
+// parallel, must be byte-for-byte the same. 150k triangles make the radix sort use several blocks,
+// every builder spawn parallel tasks and the quantisation split its nodes between workers.
 TEST(BvhStructure, SameTreeForAnyThreadCount) {
     const Scene big = test::randomSoup(21, 150000, 0.02f);
     for (const NamedConfig& c : testConfigs()) {
@@ -183,6 +184,7 @@ TEST(BvhStructure, SameTreeForAnyThreadCount) {
         if (c.name == "aac_delta1_eps0" || c.name == "aac_hq_reinserted_treelets") continue;
         SCOPED_TRACE(c.name);
         const BuildResult one = buildFlatBvh(big.triangles, c.config, 1);
+        const std::vector<gpu::GpuBvhNode> oneNodes = tbb::task_arena(1).execute([&] { return gpuNodes(one.flat); });
         for (int threads : {2, 4}) {
             const BuildResult r = buildFlatBvh(big.triangles, c.config, threads);
             ASSERT_EQ(r.flat.nodes.size(), one.flat.nodes.size()) << threads << " threads";
@@ -192,6 +194,11 @@ TEST(BvhStructure, SameTreeForAnyThreadCount) {
                 << threads << " threads";
             EXPECT_EQ(r.flat.triangleOrder, one.flat.triangleOrder) << threads << " threads";
             EXPECT_EQ(r.flat.sahCost, one.flat.sahCost);
+            const std::vector<gpu::GpuBvhNode> nodes =
+                tbb::task_arena(threads).execute([&] { return gpuNodes(r.flat); });
+            ASSERT_EQ(nodes.size(), oneNodes.size()) << threads << " threads";
+            EXPECT_EQ(std::memcmp(nodes.data(), oneNodes.data(), nodes.size() * sizeof(gpu::GpuBvhNode)), 0)
+                << threads << " threads";
         }
     }
 }
