@@ -19,6 +19,9 @@ double builtMs(const RenderReport& r) {
     return r.buildMs;
 }
 
+// Whether the render wrote an image or AOV file (and so has a write time to report).
+bool wroteFiles(const RenderReport& r) { return !r.output.empty() || !r.aovs.empty(); }
+
 // A statistic that counts something (nodes, leaves, bytes, a depth, a thread count): a whole number,
 // printed as one, never in scientific notation.
 bool isCount(const accel::AccelStat& st) {
@@ -148,7 +151,7 @@ std::string reportJson(const RenderReport& r) {
     j["load_ms"] = r.loadMs;
     if (r.deviceMs) j["device_ms"] = *r.deviceMs;
     j["render_ms"] = r.renderMs;
-    if (!r.output.empty() || !r.aovs.empty()) j["write_ms"] = r.writeMs;
+    if (wroteFiles(r)) j["write_ms"] = r.writeMs;
     j["total_ms"] = r.totalMs;
     if (r.buildOnly) j["build_only"] = true;
     if (r.output.empty()) j["output"] = nullptr;  // --pixel without -o, --build-only: no image
@@ -169,7 +172,6 @@ void printReport(const RenderReport& r, bool stats) {
     const std::string structure = r.accelFile && r.accelFile->loaded
                                       ? "structure loaded " + formatMs(r.accelFile->ms)
                                       : "build " + formatMs(r.buildMs);
-    const bool wrote = !r.output.empty() || !r.aovs.empty();
     if (r.buildOnly)
         std::printf("build time:  %s (load %s; total %s), nothing rendered\n", formatMs(r.buildMs).c_str(),
                     formatMs(r.loadMs).c_str(), formatMs(r.totalMs).c_str());
@@ -177,7 +179,7 @@ void printReport(const RenderReport& r, bool stats) {
         std::printf("render time: %s (load %s, %s%s%s; total %s)\n", formatMs(r.renderMs).c_str(),
                     formatMs(r.loadMs).c_str(), structure.c_str(),
                     r.deviceMs && *r.deviceMs >= 0.05 ? (", device start " + formatMs(*r.deviceMs)).c_str() : "",
-                    wrote ? (", write " + formatMs(r.writeMs)).c_str() : "", formatMs(r.totalMs).c_str());
+                    wroteFiles(r) ? (", write " + formatMs(r.writeMs)).c_str() : "", formatMs(r.totalMs).c_str());
     if (!r.output.empty()) std::printf("output:      %s\n", r.output.c_str());
     for (const auto& [name, file] : r.aovs) std::printf("aov %-7s  %s\n", name.c_str(), file.c_str());
     if (r.accelFile)

@@ -8,6 +8,7 @@
 #include <tbb/task_arena.h>
 
 #include "core/error.h"
+#include "core/worker_arena.h"
 #include "geometry/brute_force.h"
 #include "cpu/shading.h"
 #include "cpu/whitted.h"
@@ -77,7 +78,7 @@ Frame renderReference(const Scene& scene, const RenderOptions& options, const ge
             }
         }
     };
-    tbb::task_arena arena(options.threads > 0 ? options.threads : tbb::task_arena::automatic);
+    tbb::task_arena arena(arenaThreads(options.threads));
     arena.execute([&] { tbb::parallel_for(tbb::blocked_range<int>(0, frame.height), renderRows); });
     return frame;
 }

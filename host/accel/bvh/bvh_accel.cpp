@@ -14,6 +14,7 @@
 #include "core/error.h"
 #include "core/format.h"
 #include "core/timing.h"
+#include "core/worker_arena.h"
 
 namespace vkray::bvh {
 namespace {
@@ -45,7 +46,7 @@ public:
         // Every BVH kernel walks its shadow rays stackless, by the parent links: a box node holds
         // its own, sphere nodes' are an array beside them. The nodes are made in parallel, on as
         // many workers as the build had.
-        tbb::task_arena arena(threads_ > 0 ? threads_ : tbb::task_arena::automatic);
+        tbb::task_arena arena(arenaThreads(threads_));
         arena.execute([&] {
             if (spheres()) {
                 const std::vector<gpu::GpuBvhSphereNode> nodes = gpuSphereNodes(flat_);
@@ -127,7 +128,7 @@ BuildResult buildFlatBvh(std::span<const Triangle> triangles, const Config& conf
     const Clock::time_point start = Clock::now();
     PhaseLog log(std::move(progress));
     int reinserted = 0;
-    tbb::task_arena arena(threads > 0 ? threads : tbb::task_arena::automatic);
+    tbb::task_arena arena(arenaThreads(threads));
     FlatBvh flat = arena.execute([&] {
         const bool spheres = config.container == Config::Container::Sphere;
         const PrimitiveSet prims = log.run("primitives", 0.05, [&] { return primitivesOf(triangles, spheres); });

@@ -5,6 +5,8 @@
 #include <tbb/parallel_invoke.h>
 #include <tbb/task_arena.h>
 
+#include "core/worker_arena.h"
+
 namespace vkray::accel::kd {
 namespace {
 
@@ -91,7 +93,7 @@ uint32_t ropeOf(const KdTree& tree, const Box& box, int face) {
 std::vector<gpu::KdRopeRecord> buildRopes(const KdTree& tree, int threads) {
     std::vector<gpu::KdRopeRecord> ropes(tree.nodes.size());
     if (tree.nodes.empty()) return ropes;
-    tbb::task_arena arena(threads > 0 ? threads : tbb::task_arena::automatic);
+    tbb::task_arena arena(arenaThreads(threads));
     Ropes none;
     none.fill(VKRAY_KD_NO_ROPE);
     arena.execute([&] { buildSubtree(tree, 0, none, ropes, 0); });

@@ -21,6 +21,7 @@
 
 #include "core/error.h"
 #include "core/fork_join.h"
+#include "core/worker_arena.h"
 #include "core/parallel_alloc.h"
 #include "core/radix_sort.h"
 #include "core/timing.h"
@@ -518,7 +519,7 @@ KdBuildResult buildSahKdTree(const std::vector<Triangle>& triangles, const KdCon
                              const BuildProgress& progress) {
     const Clock::time_point start = Clock::now();
     KdBuildResult result;
-    tbb::task_arena arena(threads > 0 ? threads : tbb::task_arena::automatic);
+    tbb::task_arena arena(arenaThreads(threads));
     arena.execute([&] {
         if (progress) progress("kd-tree: events", 0.0);
         if (triangles.size() > Event::kMaxTriangles)
