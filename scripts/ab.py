@@ -1,0 +1,112 @@
+#!/usr/bin/env python3
+"""Interleaved A/B runs of `vkray render`: two or more vkray binaries, or one binary with several
+kernel folders, alternated render by render (ABAB...), with medians and ratios to the first.
+
+usage: scripts/ab.py [--rounds N] [--warmup N] [--metric M] [--rotate] [--dump FILE]
+                     SPEC SPEC [SPEC...] -- SCENE [vkray render options...]
+
+SPEC      a vkray binary, or BINARY:KERNEL_DIR: that binary reading its kernels from KERNEL_DIR
+          (VKRAY_KERNEL_DIR, one render_<kernel>[_resumable][_split].spv each; docs/architecture.md).
+          The first SPEC is the baseline.
+--rounds  timed rounds (default 7); each runs every SPEC once, in order.
+--warmup  untimed rounds first (default 1): Mesa's disk cache then holds every kernel's machine code.
+--metric  what is compared: a field of `vkray render --json`'s report, dotted (default gpu.gpu_ms,
+          the kernels' time by timestamp queries; gpu.pipeline_ms, render_ms, total_ms, ...), or
+          "wall": the whole process's wall clock.
+--rotate  rotate the order every round (ABC, BCA, CAB, ...), so no SPEC always runs after another.
+--dump    write every measurement as JSON.
+
+Prints, per SPEC, the median and the minimum over the rounds, and against the baseline: the ratio
+of the medians, of the minima, and the median (range) of the ratios within each round. A ratio
+below 1 is faster. On a shared machine trust the minimum and the within-round ratios most; with
+lavapipe, LP_NUM_THREADS=1 in the environment leaves the second core to the neighbours.
+The options after `--` go to `vkray render` as they are, but -o and --json, which this script adds.
+
+example: LP_NUM_THREADS=1 scripts/ab.py /tmp/old/vkray build/vkray -- scenes/cornell.scene --size 320x240
+"""
+import argparse
+import json
+import os
+import statistics
+import subprocess
+import sys
+import tempfile
+import time
+
+
+def parse():
+    if "--" not in sys.argv:
+        sys.exit(__doc__)
+    cut = sys.argv.index("--")
+    p = argparse.ArgumentParser(usage=__doc__, add_help=True)
+    p.add_argument("--rounds", type=int, default=7)
+    p.add_argument("--warmup", type=int, default=1)
+    p.add_argument("--metric", default="gpu.gpu_ms")
+    p.add_argument("--rotate", action="store_true")
+    p.add_argument("--dump")
+    p.add_argument("specs", nargs="+")
+    args = p.parse_args(sys.argv[1:cut])
+    args.render = sys.argv[cut + 1:]
+    if len(args.specs) < 2 or not args.render or args.rounds < 1:
+        p.error("two SPECs or more, a scene after --, and at least one round")
+    for spec in args.specs:
+        binary, _, kernels = spec.partition(":")
+        if not os.access(binary, os.X_OK):
+            p.error(f"{binary}: not an executable")
+        if kernels and not os.path.isdir(kernels):
+            p.error(f"{kernels}: not a folder")
+    return args
+
+
+def run(spec, render_args, metric, image):
+    binary, _, kernels = spec.partition(":")
+    env = dict(os.environ)
+    env.pop("VKRAY_KERNEL_DIR", None)
+    if kernels:
+        env["VKRAY_KERNEL_DIR"] = os.path.abspath(kernels)
+    cmd = [binary, "render", *render_args, "--json", "-o", image]
+    t0 = time.perf_counter()
+    done = subprocess.run(cmd, env=env, capture_output=True, text=True)
+    wall_ms = (time.perf_counter() - t0) * 1e3
+    if done.returncode != 0:
+        sys.exit(f"ab: {spec}: exit {done.returncode}: {done.stderr.strip().splitlines()[-1:]}")
+    if metric == "wall":
+        return wall_ms
+    value = json.loads(done.stdout)
+    for key in metric.split("."):
+        if not isinstance(value, dict) or key not in value:
+            sys.exit(f"ab: the report has no {metric} (at '{key}')")
+        value = value[key]
+    return float(value)
+
+
+def main():
+    args = parse()
+    times = {spec: [] for spec in args.specs}
+    with tempfile.TemporaryDirectory() as tmp:
+        image = os.path.join(tmp, "ab.png")
+        for r in range(-args.warmup, args.rounds):
+            shift = r % len(args.specs) if args.rotate and r >= 0 else 0
+            for spec in args.specs[shift:] + args.specs[:shift]:
+                t = run(spec, args.render, args.metric, image)
+                if r >= 0:
+                    times[spec].append(t)
+            print(f"round {r + 1}/{args.rounds}" if r >= 0 else "warm-up", file=sys.stderr, flush=True)
+    if args.dump:
+        json.dump({"metric": args.metric, "render": args.render, "times": times}, open(args.dump, "w"), indent=1)
+
+    base = times[args.specs[0]]
+    width = max(len(s) for s in args.specs)
+    print(f"{args.metric}, {args.rounds} rounds: {' '.join(args.render)}")
+    for spec in args.specs:
+        t = times[spec]
+        line = f"{spec:<{width}}  median {statistics.median(t):9.2f}  min {min(t):9.2f}"
+        if spec != args.specs[0]:
+            within = [a / b for a, b in zip(t, base)]
+            line += (f"  / baseline: median {statistics.median(t) / statistics.median(base):.3f}"
+                     f"  min {min(t) / min(base):.3f}"
+                     f"  per round {statistics.median(within):.3f} ({min(within):.3f}-{max(within):.3f})")
+        print(line)
+
+
+main()
