@@ -7,7 +7,7 @@
 //  - with --gpu: GPU time per traversal (Vulkan timestamps, median of --runs after a warm-up) of the
 //    whole Whitted render at --size, through the GPU renderer.
 // --ci 10,20,80 repeats everything for several intersection costs (the tuning of docs/kdtree.md).
-// A benchmark prints figures; it asserts nothing (docs/benchmarks.md, "Performance measurements").
+// A benchmark prints figures; it asserts nothing (docs/performance.md, "Method").
 //
 //   vkray_bench_kd [--runs N] [--threads 1,2] [--size WxH] [--ci LIST] [--gpu] SCENE...
 #include <algorithm>

@@ -1,6 +1,6 @@
-// Traversal benchmark across accelerators (the forerunner of `vkray bench`): for
-// each scene and accelerator, the build time, the GPU trace time (Vulkan timestamps, median of
-// --runs after a warm-up, with min-max), and from one extra render with the statistics variant of
+// Traversal benchmark across accelerators, a lighter `vkray bench`: for each scene and
+// accelerator, the build time, the GPU trace time (Vulkan timestamps, median of --runs after a
+// warm-up, with min-max), and from one extra render with the statistics variant of
 // the kernel (--counters) the mean nodes visited, leaves visited, triangle tests and restarts per
 // ray, camera, secondary and shadow rays together. Prints a Markdown table; asserts nothing.
 //
