@@ -7,8 +7,9 @@ example: scripts/scene-times.py build/vkray 5 scenes/*.scene
 
 After one untimed GPU render a scene (Mesa's disk cache then holds the kernel's machine code, as
 it does for a user's second render), each round renders every scene on the GPU path and with
---cpu, alternated; prints a Markdown row a scene with the medians of the JSON report's timings (the whole command's total_ms, not the
-process's wall clock, so the process start and exit are left out on both paths)."""
+--cpu, alternated; prints a Markdown row a scene with the medians of the JSON report's timings
+(the whole command's total_ms, not the process's wall clock, so the process start and exit are
+left out on both paths)."""
 import json, statistics, subprocess, sys
 
 if len(sys.argv) < 4:
