@@ -38,7 +38,8 @@ def parse():
     if "--" not in sys.argv:
         sys.exit(__doc__)
     cut = sys.argv.index("--")
-    p = argparse.ArgumentParser(usage=__doc__, add_help=True)
+    p = argparse.ArgumentParser(usage="scripts/ab.py [options] SPEC SPEC [SPEC...] -- SCENE [vkray render options...]",
+                                description="Interleaved A/B runs of vkray render (see the head of this file).")
     p.add_argument("--rounds", type=int, default=7)
     p.add_argument("--warmup", type=int, default=1)
     p.add_argument("--metric", default="gpu.gpu_ms")
@@ -69,7 +70,8 @@ def run(spec, render_args, metric, image):
     done = subprocess.run(cmd, env=env, capture_output=True, text=True)
     wall_ms = (time.perf_counter() - t0) * 1e3
     if done.returncode != 0:
-        sys.exit(f"ab: {spec}: exit {done.returncode}: {done.stderr.strip().splitlines()[-1:]}")
+        last = (done.stderr.strip().splitlines() or ["(no message)"])[-1]
+        sys.exit(f"ab: {spec}: exit {done.returncode}: {last}")
     if metric == "wall":
         return wall_ms
     value = json.loads(done.stdout)
@@ -82,26 +84,28 @@ def run(spec, render_args, metric, image):
 
 def main():
     args = parse()
-    times = {spec: [] for spec in args.specs}
+    order = list(range(len(args.specs)))
+    times = [[] for _ in args.specs]  # by position: the same SPEC twice is an A/A check
     with tempfile.TemporaryDirectory() as tmp:
         image = os.path.join(tmp, "ab.png")
         for r in range(-args.warmup, args.rounds):
-            shift = r % len(args.specs) if args.rotate and r >= 0 else 0
-            for spec in args.specs[shift:] + args.specs[:shift]:
-                t = run(spec, args.render, args.metric, image)
+            shift = r % len(order) if args.rotate and r >= 0 else 0
+            for i in order[shift:] + order[:shift]:
+                t = run(args.specs[i], args.render, args.metric, image)
                 if r >= 0:
-                    times[spec].append(t)
+                    times[i].append(t)
             print(f"round {r + 1}/{args.rounds}" if r >= 0 else "warm-up", file=sys.stderr, flush=True)
     if args.dump:
-        json.dump({"metric": args.metric, "render": args.render, "times": times}, open(args.dump, "w"), indent=1)
+        json.dump({"metric": args.metric, "render": args.render, "specs": args.specs, "times": times},
+                  open(args.dump, "w"), indent=1)
 
-    base = times[args.specs[0]]
+    base = times[0]
     width = max(len(s) for s in args.specs)
     print(f"{args.metric}, {args.rounds} rounds: {' '.join(args.render)}")
-    for spec in args.specs:
-        t = times[spec]
+    for i, spec in enumerate(args.specs):
+        t = times[i]
         line = f"{spec:<{width}}  median {statistics.median(t):9.2f}  min {min(t):9.2f}"
-        if spec != args.specs[0]:
+        if i > 0:
             within = [a / b for a, b in zip(t, base)]
             line += (f"  / baseline: median {statistics.median(t) / statistics.median(base):.3f}"
                      f"  min {min(t) / min(base):.3f}"

@@ -24,7 +24,7 @@ repeat=${REPEAT:-5}
 device=${DEVICE:-NVIDIA}
 read -r -a cases <<< "${CASES:-spheres-1m:1920x1080 dragon:3840x2160}"
 section() { echo; echo "=== $* ($(date -u +%H:%M:%S))"; }
-label() { echo "$1" | tr '/:' '__'; }
+label() { if [[ $1 == *:* ]]; then echo "${1%%:*}@$(basename "${1#*:}")"; else echo "$1"; fi; }
 
 printf '%s\n' "$@" | while read -r spec; do label "$spec"; done > "$out/labels.txt"
 for r in $(seq "$rounds"); do
@@ -36,8 +36,10 @@ for r in $(seq "$rounds"); do
       scene=${s%%:*}
       VKRAY_KERNEL_DIR=$kernels timeout 120 "$bundle/$bin" bench "scenes/primary/$scene.scene" --view close \
         --size "${s#*:}" --accel "$accels" --deltas none --maxdepths none --repeat "$repeat" \
-        --threads "$(nproc)" --device "$device" --quiet --out "$out/round-$r/$(label "$spec")/$scene" \
-        2>&1 | grep -v "^vkray: kernel" || echo "round $r $spec $scene: exit ${PIPESTATUS[0]}"
+        --threads "$(nproc)" --device "$device" --quiet --out "$out/round-$r/$(label "$spec")/$scene" 2>&1 \
+        | grep -v "^vkray: kernel"
+      rc=${PIPESTATUS[0]}
+      [ "$rc" = 0 ] || echo "round $r $spec $scene: exit $rc"
     done
   done
 done

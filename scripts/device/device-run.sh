@@ -5,8 +5,8 @@
 # primary-ray protocol (`vkray bench`, every accelerator, Embree on all cores in the same repeats)
 # on the three scanned meshes' close-ups and on the 1M sphere grid; 4. the full Whitted render of
 # every hand-made scene, GPU (bvh, kd-stack, kd-backtrack) against --cpu, with the image check.
-# The meshes' frames at 1024x768 last 0.3-4 ms on a data-centre GPU, too short for steady rates:
-# MESH_SIZE=3840x2160 gives frames of 6-12 ms, at ten times the pixels.
+# The meshes' frames at 1024x768 are too short on a data-centre GPU for steady rates:
+# MESH_SIZE=3840x2160 gives frames long enough (docs/performance.md, "NVIDIA H200").
 #
 # usage: scripts/device/device-run.sh BUNDLE OUTDIR     (on the GPU machine, from the repository root)
 #   DEVICE: a substring of the device's name (default NVIDIA).

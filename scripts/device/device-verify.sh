@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
-# What a GPU lease should run first (about four and a half minutes of device time on an H200):
-# whether the kernels as built pass on the device (the GPU division test, docs/stability.md
-# "Division on GPUs"; the degenerate stress case; the whole stress suite; the GPU tests with the
-# validation layer on), then the primary-ray protocol where frames last long enough for steady
+# What a GPU lease should run first (its device time: docs/performance.md, "Tools"): whether the
+# kernels as built pass on the device (the GPU division test, docs/stability.md "Division on GPUs";
+# the degenerate stress case; the whole stress suite; the GPU tests with the validation layer on),
+# then the primary-ray protocol where frames last long enough for steady
 # rates: bvh and every kd walk on the 1M sphere grid at 1920x1080, bvh and kd-ropes on the three
 # meshes' close-ups at 3840x2160 (docs/performance.md, "NVIDIA H200").
 #

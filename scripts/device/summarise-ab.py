@@ -67,7 +67,7 @@ def main():
         for l in labels:
             v = [ms for (lab, _), ms in d.items() if lab == l]
             m = statistics.median(v) if v else None
-            cells.append(f"{m:.3f} ({pixels[(scene, size, accel)] / m / 1e3:.0f})" if m else "")
+            cells.append(f"{m:.3f} ({pixels[(scene, size, accel)] / m / 1e3:.3g})" if m else "")
         for l in labels[1:]:
             ratios = [d[(l, rnd)] / d[(base, rnd)] for (lab, rnd) in d if lab == l and (base, rnd) in d]
             cells.append(f"{statistics.median(ratios):.3f} ({' '.join(f'{x:.3f}' for x in ratios)})" if ratios else "")
