@@ -2,14 +2,14 @@
 // calling oneTBB arena.
 //
 // A fresh multi-megabyte std::vector gets its pages from the kernel on first write; value-
-// initialising it in resize() takes every page fault on one thread, and on the development VM a
-// page fault costs microseconds (64 MB of BinaryNode: about 40 ms, a tenth of an AAC-Fast build at
-// one million triangles, all serial). resizeFirstTouched reserves the storage, has the kernel
+// initialising it in resize() takes every page fault on one thread, and a page fault costs
+// microseconds, so a build's large arrays would fault in serially for a sizeable share of a
+// million-triangle build. resizeFirstTouched reserves the storage, has the kernel
 // populate its pages in parallel (madvise MADV_POPULATE_WRITE, Linux 5.14+) so the faults spread
 // over the workers, and only then constructs the elements.
 //
 // The pages are populated, not written: the storage past size() is the vector's, and writing to it
-// (as an earlier memset did) is outside std::vector's contract; AddressSanitizer with libstdc++'s
+// (a memset, say) is outside std::vector's contract; AddressSanitizer with libstdc++'s
 // vector annotations (-D_GLIBCXX_SANITIZE_VECTOR) reports it as a container overflow.
 //
 // A BuildArray (a std::vector with FirstTouchAllocator) goes further: its elements are
@@ -93,9 +93,8 @@ inline thread_local bool gDeferValueInit = false;
 
 // std::allocator, except that the resize of resizeFirstTouched leaves its new elements to be
 // value-initialised by resizeFirstTouched, in parallel, instead of one by one on the calling thread
-// (that serial pass over a build's large arrays was 23 ms of a 135 ms AAC-Fast build of one million
-// triangles on 2 threads, as long as populating their pages in parallel). Every other construction
-// is std::allocator's.
+// (otherwise a serial pass over every large array of a build). Every other construction is
+// std::allocator's.
 template <class T>
 struct FirstTouchAllocator : std::allocator<T> {
     FirstTouchAllocator() = default;
@@ -150,9 +149,9 @@ void resizeFirstTouched(std::vector<T, Alloc>& v, size_t n) {
 
 // Resizes the empty vector v to n elements that the caller writes, every one, before any is read
 // (C++23's "for overwrite"): the pages are populated in parallel and no element is initialised.
-// Populating costs less than faulting the pages in by touching them (200 MB on the development VM,
-// 2 threads: 27 ms against 40 ms), and the value-initialisation pass it saves was a write of the
-// whole array that the caller's own write then repeats. T must be an implicit-lifetime type
+// Populating costs less than faulting the pages in by touching them (the kernel maps them in bulk),
+// and the value-initialisation pass it saves would be a write of the whole array that the caller's
+// own write then repeats. T must be an implicit-lifetime type
 // (trivially copyable and destructible), whose objects the caller's writes create.
 template <class T>
 void resizeForOverwrite(BuildArray<T>& v, size_t n) {

@@ -20,8 +20,8 @@ struct Hit {
 };
 
 // Work done by a traversal, for the statistics of the BVH and kd-tree comparisons: mean nodes
-// visited, leaves visited and triangles tested per ray (docs/benchmarks.md). Counted only when
-// asked for.
+// visited, leaves visited and triangles tested per ray (docs/performance.md, "Traversal counters and
+// SIMD efficiency"). Counted only when asked for.
 struct TraversalCounters {
     uint64_t nodes = 0;      // nodes visited (inner and leaf)
     uint64_t leaves = 0;     // leaves visited

@@ -3,9 +3,9 @@
 // The loader opens every driver its manifests name before it asks any of them for devices. Mesa's
 // drivers for DRM hardware (anv and hasvk for Intel, radv for AMD, nvk for NVIDIA, venus for
 // virtio-gpu) find their devices only among the render nodes /dev/dri/renderD*; on a machine with
-// none (a CPU-only server, a container, CI) they find nothing, yet loading them cost about 10 ms of
-// every GPU command's start, ahead of the first pipeline (docs/benchmarks.md, "Vulkan drivers that
-// cannot have a device"). Where no render node exists and the user has not chosen drivers, vkray
+// none (a CPU-only server, a container, CI) they find nothing, yet loading them delays every GPU
+// command's start, ahead of the first pipeline (docs/performance.md, "The small-render floor").
+// Where no render node exists and the user has not chosen drivers, vkray
 // asks the loader to skip them (VK_LOADER_DRIVERS_DISABLE, Vulkan loader 1.3.234 and later; older
 // loaders ignore it). The devices the loader lists are the same either way.
 #pragma once

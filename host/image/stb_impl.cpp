@@ -10,8 +10,9 @@
 namespace {
 
 // stb_image_write's hook for a zlib-style compressor (STBIW_ZLIB_COMPRESS): the deflate stream of
-// `data` in a malloc'd buffer stb frees, or null. stb's own deflate took 40% of writing a 640x480
-// PNG; zlib at its default level is faster and its files smaller (docs/benchmarks.md).
+// `data` in a malloc'd buffer stb frees, or null. stb's own deflate is a simple one, most of a PNG
+// write; zlib at its default level is faster and its files smaller (docs/performance.md, "Kept
+// changes and what they measured").
 unsigned char* zlibCompress(unsigned char* data, int size, int* outSize, int /*stb's quality*/) {
     uLongf bound = compressBound(uLong(size));
     auto* out = static_cast<unsigned char*>(std::malloc(bound));

@@ -29,8 +29,8 @@ public:
     unsigned char direct(float c) const;
 
 private:
-    // A pow per channel value was a third of the time of writing a 640x480 PNG. Instead the level
-    // is looked up: threshold_[k] is the least v whose level is k or more, found by bisection over
+    // A pow per channel value would dominate writing an 8-bit image. Instead the level is looked
+    // up: threshold_[k] is the least v whose level is k or more, found by bisection over
     // the doubles with the formula itself; as the formula's levels rise with v, the lookup gives
     // its level exactly (tone_test.cpp checks the floats around every level boundary). bucket_[b]
     // is the level of v = b / kBuckets, from which a step or two reaches v's: sRGB's steepest

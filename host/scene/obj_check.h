@@ -12,8 +12,8 @@
 namespace vkray {
 
 // Corners an OBJ face may have. tinyobjloader triangulates a polygon by ear clipping, quadratic to
-// cubic in its corners: 10,000 corners took a second, 100,000 did not finish in a minute. Real
-// models stay far below (a cylinder cap of 256 sides is a large polygon).
+// cubic in its corners, so a hostile file with one huge polygon would stall the load. Real models
+// stay far below (a cylinder cap of 256 sides is a large polygon).
 inline constexpr size_t kMaxObjFaceCorners = 1024;
 
 struct ObjSummary {

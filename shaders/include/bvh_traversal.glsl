@@ -8,7 +8,8 @@
 // entry distances on a stack in local memory; a popped entry entered beyond the best hit so far is
 // skipped. Leaves test their triangles in the loop of leaf_triangles.glsl. Shadow rays (any hit)
 // take the stackless walk of bvh_stackless.glsl in every BVH kernel: on llvmpipe a walk that stores
-// nothing per ray is the faster one for them (docs/benchmarks.md, "Shadow rays without a stack").
+// nothing per ray is the faster one for them, though it takes more node steps: the stack walk's
+// pushes are per-lane stores, lane by lane there (docs/performance.md, "Stackless BVH").
 #ifndef VKRAY_BVH_TRAVERSAL_GLSL
 #define VKRAY_BVH_TRAVERSAL_GLSL
 
@@ -47,8 +48,9 @@ void sortEntered(bvec4 hit, vec4 tEnter, uvec4 child, out vec4 key, out uvec4 ki
 // A loop over leaves around a loop over the node steps down to the next leaf ("while-while", Aila
 // and Laine, "Understanding the Efficiency of Ray Traversal on GPUs", HPG 2009): llvmpipe runs
 // every statement of a loop body for all SIMD lanes, masked, so with the leaf's triangle loop
-// inside the node loop every node step of every lane paid for a triangle test, about 11 node steps
-// for 2 triangle tests per camera ray here (docs/benchmarks.md, "Node steps apart from leaves").
+// inside the node loop every node step of every lane would pay for a triangle test, and a ray takes
+// several times more node steps than triangle tests (docs/performance.md, "What lavapipe charges
+// for").
 Hit bvhTrace(vec3 origin, vec3 dir, float tmax) {
     Hit best = noHit(tmax);
     if (params.counts.x == 0u) return best;
@@ -98,7 +100,7 @@ Hit bvhTrace(vec3 origin, vec3 dir, float tmax) {
                 // a loop of hits - 1 passes, not three pushes under `if`s. llvmpipe runs an `if`
                 // body for all lanes, and its masked store into a local array reads and writes
                 // back every lane's entry whether or not the lane pushes; a loop stops when no
-                // lane has an entry left (docs/benchmarks.md, "Pushes in a loop").
+                // lane has an entry left (docs/performance.md, "What lavapipe charges for").
                 uvec4 pushRef = kids.yzwx;
                 vec4 pushEnter = key.yzwx;
                 int slot = top + hits - 2;

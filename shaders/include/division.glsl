@@ -2,15 +2,15 @@
 // 2.5 ulp off (the precision table of the spec's SPIR-V environment appendix), and NVIDIA's driver
 // uses that; lavapipe's division is IEEE's (tests/gpu/division_test.cpp). The camera divides with
 // it (camera.glsl): on the ill-conditioned rays of scenes/stress/degenerate.scene (slivers, grazing
-// rays) NVIDIA's camera rays put 32 of 2,961 primary hits on another triangle than the
-// double-precision reference on an H200, beyond the stress test's 1%; with IEEE-rounded camera
-// divisions 21, against lavapipe's 18 (docs/stability.md, "Division on GPUs").
+// rays) NVIDIA's approximate division moves enough camera rays onto another triangle than the
+// double-precision reference's to fail the stress test's limit on an H200; with IEEE-rounded camera
+// divisions the case is within it, as on lavapipe (docs/stability.md, "Division on GPUs").
 //
 // Two steps from the device's quotient q. First Markstein's ("Computation of elementary functions
 // on the IBM RISC System/6000 processor", IBM J. Res. Dev. 34(1), 1990): the residual a - q b,
 // exact, and q1 = q + residual * (1 / b), within an ulp of a / b. Markstein takes the residual from
-// a fused multiply-add, but GLSL's fma() need not be fused (on lavapipe a first version with fma()
-// put 12% of the quotients an ulp off); so q b is taken exactly as p + e by Dekker's product ("A
+// a fused multiply-add, but GLSL's fma() need not be fused (lavapipe splits it into a multiply and
+// an add, and the residual is then not exact); so q b is taken exactly as p + e by Dekker's product ("A
 // floating-point technique for extending the available precision", Numer. Math. 18, 1971) with
 // Veltkamp's split, and a - p is exact for q within a few ulp (Sterbenz). Without a fused last
 // step q1 may still be the wrong one of two floats when a / b lies within rounding of the midpoint

@@ -21,8 +21,8 @@
 // VKRAY_KD_MAX_STEPS, and llvmpipe ends all loops of an invocation after 65535 iterations in total
 // (trace_status.glsl). The leaf's triangle loop stands outside the node-step loop because llvmpipe
 // runs every statement of a loop body for all SIMD lanes, masked: with the leaf test in the step
-// loop, every node step of every lane paid for a triangle test (docs/benchmarks.md, "Node steps
-// apart from leaves").
+// loop, every node step of every lane would pay for a triangle test (Aila and Laine, "Understanding
+// the Efficiency of Ray Traversal on GPUs", HPG 2009: the while-while loop).
 #ifndef VKRAY_KD_COMMON_GLSL
 #define VKRAY_KD_COMMON_GLSL
 
@@ -88,7 +88,7 @@ struct KdPass {
 
 // The 6 tie orders of kd_traversal.cpp's kKdRanks as rank bit fields, 6 bits each: orders 0-4 packed
 // in one constant, order 5 is (2, 1, 0) = 6. Dynamic indexing of an array or vector held per
-// invocation made llvmpipe keep the pass state in memory (the walk ran 2-3x slower).
+// invocation makes llvmpipe keep the pass state in memory, read and written lane by lane.
 uint kdRankBits(uint order) { return order < 5u ? (304449636u >> (6u * order)) & 63u : 6u; }
 uint kdRank(uint ranks, uint axis) { return (ranks >> (2u * axis)) & 3u; }
 const uint kKdHardBound = 3u;  // a segment end on no plane: 0 or the caller's tmax
@@ -230,8 +230,8 @@ int kdStepInner(KdRay r, uvec2 n, uint index, float tmin, uint tminAxis, float t
     // A ray parallel to the plane stays on its origin's side: it takes the step as one whose plane
     // lies behind it (thit = -inf: the second child only, and no tie), with the origin's side as the
     // second child; in the plane, the side of the pass's mask, and other passes take the other.
-    // Selects, no branch and no early return: llvmpipe runs both sides of every branch (measured:
-    // the branch cost kd-stack 8% of its camera-ray time).
+    // Selects, no branch and no early return: llvmpipe runs both sides of every branch, and this
+    // step runs at every node of every walk.
     const bool parallel = r.parallel[axis];
     const float o = r.origin[axis];
     const bool inPlane = parallel && o == split;
@@ -351,7 +351,7 @@ bool kdWalkPass(KdRay r, WatertightRay w, const bool anyHit, float segMin, uint 
 
 // The walk (KdTracer::walk): passes over the tree until every pass the ray needs is walked. Passes
 // are an outer loop: llvmpipe runs every statement of a loop body for all lanes, masked, so pass
-// switching inside the node loop slowed every step (measured 1.5x). With anyHit (a constant at
+// switching inside the node loop would weigh on every step. With anyHit (a constant at
 // both calls below, so the compiler folds it) the first hit found ends the walk.
 Hit kdTrace(vec3 origin, vec3 dir, float tmax, const bool anyHit) {
     Hit best = noHit(tmax);

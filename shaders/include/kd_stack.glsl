@@ -19,8 +19,8 @@
 #include "triangle.glsl"
 
 // A stack entry's node and the axis its segment starts on, in one word: every word of an entry
-// is a store at a per-lane index, a loop over the SIMD lanes on llvmpipe (docs/benchmarks.md, "A
-// third round"). Node indices stay below 2^28: a kd-tree's nodes are read through one texel view of
+// is a store at a per-lane index, a loop over the SIMD lanes on llvmpipe (docs/performance.md,
+// "What lavapipe charges for"). Node indices stay below 2^28: a kd-tree's nodes are read through one texel view of
 // at most maxTexelBufferElements (2^27 on lavapipe) texels, and the host refuses more
 // (VKRAY_KD_MAX_NODES).
 uint kdStackEntry(uint node, uint minAxis, bool emptyLeaf) {
@@ -47,10 +47,10 @@ int kdStackSlot(int i) { return kKdShortStack ? i % kKdStackSlots : i; }
 // leaf (kdOnlyChildEmpty), pops the held entry at once; and a pop that uncovers such a leaf (a far
 // child pushed with VKRAY_KD_STACK_EMPTY_LEAF) goes on with the entry below it, which that pop has
 // read anyway to hold it. On llvmpipe every leaf stepped onto costs a pass of the outer loop, with a
-// masked pass of the triangle loop (kd_common.glsl, "Loops"), and on the scanned meshes about three
-// of a camera ray's four leaves are empty (docs/benchmarks.md, "Empty leaves passed without a
-// visit"). Reading the top entry from the stack arrays in the step instead cost every step their
-// per-lane loads (slower). The hits are those of the CPU twin (KdStackTracer::walkPass), which
+// masked pass of the triangle loop (kd_common.glsl, "Loops"), and the SAH's empty-space bonus makes
+// most of the leaves a camera ray reaches on a scanned mesh empty (docs/kdtree.md, "Empty near
+// children"). Reading the top entry from the stack arrays in the step instead would cost every
+// step their per-lane loads. The hits are those of the CPU twin (KdStackTracer::walkPass), which
 // steps onto those leaves: only the leaf and node counts differ.
 struct KdHeldEntry {
     uint node;

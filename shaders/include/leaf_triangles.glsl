@@ -6,15 +6,14 @@
 // multiplies the scene size it can handle under it. A leaf tests LEAF_SLOTS per iteration, one:
 // llvmpipe runs a loop body at least once wherever the loop is reached, for all SIMD lanes and
 // masked, even when no lane has a triangle to test, and a traversal reaches its leaf loop at every
-// node step, so four slots cost four triangle tests per step (measured: the BVH kernel took 1.6x
-// the time; docs/benchmarks.md, "Faster kernels on lavapipe"). Only the resumable variant tests
+// node step, so four slots would cost four triangle tests per step (docs/performance.md, "What
+// lavapipe charges for"). Only the resumable variant tests
 // four, for a structure with leaves of more than VKRAY_SINGLE_SLOT_LEAF_LIMIT triangles (a burst
 // of overlapping triangles; the host decides: ShaderFeatures::leafSlots()): with one a pass, a
 // tile of such leaves that runs out of llvmpipe's budget in the plain kernel is resumed there. In
-// the plain kernel the four-slot loop was dead code for almost every structure that lavapipe still
-// translated before the specialization constant folded it: a quarter of the SPIR-V, 4-6 ms of
-// every render's pipeline creation (docs/benchmarks.md, "One triangle a leaf-loop pass in the
-// plain kernel").
+// the plain kernel the four-slot loop would be dead code for almost every structure, yet lavapipe
+// translates the whole SPIR-V before a specialization constant folds it, so it would lengthen
+// every render's pipeline creation (docs/performance.md, "What lavapipe charges for").
 #ifndef VKRAY_LEAF_TRIANGLES_GLSL
 #define VKRAY_LEAF_TRIANGLES_GLSL
 

@@ -1,8 +1,8 @@
 // min and max as a compare and a select. GLSL's min() and max() become NIR's fmin and fmax, which
 // must return the other operand when one is a NaN; llvmpipe (lavapipe) pays for that with a NaN
 // compare and a blend besides each vector min or max, where a compare and a select is the one x86
-// instruction. The callers' operands are never NaN, and there the two agree. Measured on the BVH's
-// slab test: docs/benchmarks.md, "min and max without the NaN rule".
+// instruction. The callers' operands are never NaN, and there the two agree (docs/performance.md,
+// "What lavapipe charges for").
 #ifndef VKRAY_MIN_MAX_GLSL
 #define VKRAY_MIN_MAX_GLSL
 

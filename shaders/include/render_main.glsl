@@ -46,8 +46,9 @@ layout(std430, set = 0, binding = VKRAY_BINDING_RESUME_RAYS) buffer ResumeRays {
 // takes a 64-byte cache line a pixel. Where neither AOVs nor counters are read, and not in the
 // resumable variant (which reads its records back), the kernel writes the compact one instead
 // (GpuPixelColor, four pixels a line) and adds its ray counts to the tile's GpuTileCounts, summed
-// over the subgroup first: 0.86-0.98 of the kernel time on lavapipe (docs/benchmarks.md, "Compact
-// pixel records"), and a quarter of the bytes to copy back from a discrete GPU.
+// over the subgroup first: a pixel's first store then does not pay for a cache line of its own
+// on lavapipe (docs/performance.md, "Kept changes and what they measured"), and a discrete GPU
+// copies back a quarter of the bytes.
 const bool COMPACT_PIXELS = !RESUMABLE && !PRIMARY_AOVS && !COUNT_TRAVERSAL;
 layout(std430, set = 0, binding = VKRAY_BINDING_PIXELS) buffer CompactPixels {
     GpuPixelColor compactPixels[];
@@ -59,15 +60,14 @@ uvec3 gInvocationCounts = uvec3(0u);  // compact records: rays, shadow rays, cap
 
 // The pending rays: in registers, or in the resumable variant in this pixel's part of resumeRays
 // (saving them then needs no loop of its own). An entry read or written at a per-lane index is a
-// loop over the SIMD lanes per word on llvmpipe, and a pending ray is ten words (docs/benchmarks.md,
-// "A third round"), so the register stack is only ever indexed by constants:
+// loop over the SIMD lanes per word on llvmpipe, and a pending ray is ten words (docs/performance.md,
+// "What lavapipe charges for"), so the register stack is only ever indexed by constants:
 //  - without refraction a hit spawns one ray at most, so one ray is ever pending: entry 0;
 //  - with refraction and MAX_DEPTH <= kSelectedSlots, entry i is reached through a compare with
-//    each slot's constant index: a store is a masked write of each slot, a load a chain of selects
-//    (kernel time 0.86x on objects.scene, 0.91-0.93x on cornell, default and spheres: docs/benchmarks.md,
-//    "The ray stack through constant indices"). Written out slot by slot rather than as a loop:
-//    lavapipe's translation of the loop took longer than the lines. A slot beyond MAX_DEPTH is
-//    never taken; its index folds to 0 so that every access stays in the array;
+//    each slot's constant index: a store is a masked write of each slot, a load a chain of selects,
+//    which llvmpipe runs as vector blends. Written out slot by slot rather than as a loop: lavapipe
+//    unrolls such a loop during pipeline creation, which the written-out lines spare it. A slot
+//    beyond MAX_DEPTH is never taken; its index folds to 0 so that every access stays in the array;
 //  - deeper stacks are indexed per lane.
 PendingRay gStack[MAX_DEPTH];
 uint gRayBase = 0u;  // first resumeRays entry of this pixel
@@ -156,8 +156,8 @@ void secondaryRays(PendingRay ray, SurfacePoint s, GpuMaterial m, out PendingRay
 // Within a group, llvmpipe runs invocations 8 at a time in SIMD lanes (256-bit vectors), in the
 // order of gl_LocalInvocationIndex, and a vector walks the union of its lanes' paths. So each run
 // of 8 invocations takes a 4x2 block of pixels rather than a row of 8: rays closer together, fewer
-// nodes their union visits (kernel time 0.95-0.97x on camera rays, 0.93-0.98x on full renders:
-// docs/benchmarks.md, "Lanes on 4x2 blocks"). A 32-wide subgroup still covers 8x4 pixels.
+// nodes their union visits (Aila and Laine 2009's SIMD efficiency). A 32-wide subgroup still covers
+// 8x4 pixels.
 #if VKRAY_WORKGROUP_X != 8 || VKRAY_WORKGROUP_Y != 8
 #error "pixelInTile assumes 8x8 workgroups"
 #endif
@@ -278,8 +278,8 @@ uint resumePixel(uint resumeIndex, uint outIndex, uvec2 pixel, uvec2 imageSize, 
 // The pixel's record (GpuPixel). Only what the host reads: the primary-hit AOVs when it saves them,
 // the traversal counters in the statistics variant, everything in the resumable variant, which
 // reads its pixels back. On llvmpipe every word stored at a per-lane address is a loop over the
-// SIMD lanes: the full 16 words were 6% of a camera-ray render (docs/benchmarks.md, "A third
-// round").
+// SIMD lanes, so every word left out saves a loop (docs/performance.md, "What lavapipe charges
+// for").
 void storePixel(uint i, PixelTrace pt, uint flags) {
     if (COMPACT_PIXELS) {
         compactPixels[i] = GpuPixelColor(pt.radiance, flags);
@@ -343,10 +343,9 @@ void renderResumable() {
 // On a CPU device an invocation therefore renders PIXELS_PER_INVOCATION pixels (pixelInTile), in
 // one loop that traces one ray a pass; a lane whose pixel is done waits
 // until every lane of its subgroup is done, then all start their next pixel's camera ray together.
-// (Letting each lane start its next pixel at once kept the lanes busier, but put camera rays and
-// reflection rays of different pixels in one vector, whose walk then covers both: faster on a
-// 250-triangle scene, slower on a 52,000-triangle one; docs/benchmarks.md, "Several pixels an
-// invocation".) On a GPU PIXELS_PER_INVOCATION is 1 and this is the plain loop over one pixel.
+// (Letting each lane start its next pixel at once keeps the lanes busier, but puts camera rays and
+// reflection rays of different pixels in one vector, whose walk then covers both, which large
+// scenes pay for; docs/performance.md, "Tried and dropped".) On a GPU PIXELS_PER_INVOCATION is 1 and this is the plain loop over one pixel.
 void flagIfInImage(uint k) {
     const uvec2 local = pixelInTile(k);
     if (!inImage(local)) return;

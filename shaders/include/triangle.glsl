@@ -108,9 +108,9 @@ bool hitTriangle(WatertightRay r, GpuTriangle tri, out float t, out vec2 uv) {
 // original triangle index (triangle identity, the load order: docs/scene-format.md). The BVH
 // reorders the triangle buffer and the kd-tree lists a triangle in several leaves, so the order a
 // traversal meets triangles must not decide ties: brute force, walking slots in index order with a
-// strict `<`, would agree with itself but not with them. (Measured before this rule: the kernels
-// named another triangle than the brute-force kernel on up to 5% of the camera rays of
-// scenes/stress/, docs/stability.md.) With no hit yet, best.original is 0, which no index is below:
+// strict `<`, would agree with itself but not with them: without this rule the kernels name
+// another triangle than the brute-force kernel wherever scenes/stress/ has exact ties
+// (docs/stability.md). With no hit yet, best.original is 0, which no index is below:
 // a hit at exactly the ray's tmax never wins.
 bool beats(float t, uint original, Hit best) {
     return t < best.t || (t == best.t && original < best.original);
@@ -130,10 +130,9 @@ void closestTriangle(uint slot, WatertightRay ray, inout Hit best) {
 }
 
 // Any hit asks only whether: it records the triangle in `best` and keeps best.t, the ray's tmax, so
-// it neither loads the triangle's identity nor computes uv as the closest-hit update does. (Any
-// hit through closestTriangle, or leaf_triangles.glsl's testSlot written with early returns, made
-// the brute-force kernel, nearly all shadow rays, 4-9% slower on lavapipe; docs/benchmarks.md,
-// "One loop per traversal".)
+// it neither loads the triangle's identity nor computes uv as the closest-hit update does. (Through
+// closestTriangle, any hit would pay for both on every lane on lavapipe, which runs an `if` body for
+// all lanes, and shadow rays are most of a render's rays.)
 void anyTriangle(uint triangle, WatertightRay ray, inout Hit best) {
     float t;
     vec2 uv;

@@ -35,7 +35,7 @@ using uvec4 = glm::uvec4;
 // Texel views: everything the kernels read, as uniform texel buffers. On llvmpipe (Mesa 22) a
 // storage-buffer load at a per-invocation address is a loop over the SIMD lanes with a
 // bounds-checked branch per 32-bit word, while a texel fetch loads one 16-byte texel per lane and
-// transposes (docs/benchmarks.md, "Faster kernels on lavapipe" and "Node steps apart from leaves").
+// transposes (docs/performance.md, "What lavapipe charges for").
 // Being read only through views, an array is bounded by maxTexelBufferElements texels per view (128
 // Mi on lavapipe and most GPUs: 2 GiB of 16-byte texels), not by maxStorageBufferRange (128 MiB on
 // lavapipe), and each binding is an array of VKRAY_TEXEL_VIEWS views, each its own buffer, over

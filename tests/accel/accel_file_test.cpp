@@ -92,8 +92,8 @@ TEST(SceneGeometryHash, SeesPositionsAndCountButNotMaterials) {
 }
 
 // The positions are local to Scene::origin: the same floats at another origin are another scene, so
-// a structure file saved for one cannot be loaded for the other; at origin 0 the hash is what it
-// was before the origin existed.
+// a structure file saved for one cannot be loaded for the other; an origin of 0 (of either sign)
+// enters no bytes into the hash, so it is the positions' hash alone.
 TEST(SceneGeometryHash, SeesTheOrigin) {
     const Scene a = test::smallSoup(100, 1);
     Scene b = a;

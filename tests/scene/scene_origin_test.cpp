@@ -75,7 +75,7 @@ TEST(SceneOrigin, HandMadeScenesStayAtTheWorldsOrigin) {
     }
     const Scene s = test::parseText(std::string(kHeader) + kGeometry);
     EXPECT_EQ(s.origin, glm::dvec3(0.0));
-    EXPECT_EQ(s.camera.eye, glm::vec3(0.5f, 2.2f, 4.6f));  // each number rounded to float once, as before
+    EXPECT_EQ(s.camera.eye, glm::vec3(0.5f, 2.2f, 4.6f));  // each number rounded to float once
     EXPECT_EQ(s.lights[0].vector, glm::vec3(1.5f, 2.5f, 1.5f));
 }
 

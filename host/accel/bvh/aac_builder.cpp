@@ -21,9 +21,9 @@ namespace vkray::bvh {
 namespace {
 
 // Ranges at least this large split their halves into parallel tasks; smaller ones recurse on the
-// calling thread. A task costs about a microsecond; a range of 1024 primitives about 0.25 ms with
-// AAC-Fast (more with AAC-HQ). 4096 left too few tasks to balance two threads on meshes of 20-90k
-// triangles, whose Morton splits are uneven near the root.
+// calling thread. A range of 1024 primitives is hundreds of times a task's overhead in clustering
+// work, and a larger threshold leaves too few tasks to balance two threads on meshes of tens of
+// thousands of triangles, whose Morton splits are uneven near the root.
 constexpr size_t kParallelRange = 1024;
 
 // Per-thread working arrays of CombineClusters, reused across calls (one call per range). The

@@ -25,7 +25,7 @@
 //    passes exactly through an edge or corner where leaves meet) is ordered by the pass's ranks
 //    (PassState), and further passes take the other orders of the axes that tied, so the leaves
 //    touched only at that edge or corner are visited too. Masks and orders: at most 8 passes.
-//    A ray that meets no in-plane node and no tie walks once, exactly as before.
+//    A ray that meets no in-plane node and no tie walks once, as a plain walk would.
 //  - Every plane is hit at t = (plane - origin) / direction, the same expression for splits and box
 //    faces, so "the leaf's exit" and "the plane's hit" compare equal exactly when they are the same
 //    plane; kd-restart and kd-backtrack rely on it to step past a leaf exactly once.

@@ -35,9 +35,9 @@ namespace vkray::accel::kd {
 // emptyBonusMinFraction of the node along the split axis. With the bonus for any empty side,
 // cutting a sliver of empty space off a node is always cheaper than a real split (1 + Ci/2 n
 // against about 0.6 Ci n), so every node first peels up to six such slabs, each a level of the
-// depth limit, which then ends the tree with big leaves (the bunny: up to 71 triangles, 11 triangle
-// tests per camera ray; the 1M sphere grid: up to 3,050, 844 tests per ray). With the 10% rule: 2.9
-// and 1.7 (docs/kdtree.md, "The empty-space bonus").
+// depth limit, which then ends the tree with big leaves and many triangle tests a ray; the 10%
+// rule keeps the bonus for empty space worth a level (docs/kdtree.md, "The empty-space bonus", has
+// the counts).
 struct KdConfig {
     double traversalCost = 1.0;     // Ct: one inner-node step
     double intersectionCost = 20.0; // Ci: one ray-triangle test

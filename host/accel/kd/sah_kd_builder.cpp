@@ -96,8 +96,8 @@ struct SplitChoice {
 };
 
 // A leaf's triangle list. The tree's millions of nodes and leaf lists come from oneTBB's scalable
-// allocator: from glibc's, their frees piled up and the next large free merged them all on one
-// thread (malloc_consolidate: 0.2 s at the end of a 1M-triangle build).
+// allocator: from glibc's, their frees pile up until the next large free merges them all on one
+// thread (malloc_consolidate), a serial pause at the end of every large build.
 using TriangleList = std::vector<uint32_t, tbb::scalable_allocator<uint32_t>>;
 
 struct BuildNode {
@@ -209,8 +209,8 @@ void appendEvents(uint32_t triangle, const Box& b, NodeEvents& out) {
 // The root's events, unsorted, and its box (left as it is when every triangle is degenerate, which
 // have no events), made in parallel: each block of triangles counts its events, a prefix over the
 // blocks places them, and each block writes its own in triangle order, so every axis's list
-// ascends by triangle as one thread's appends made it (with those appends and their page faults
-// on one thread, the event phase of a 1M-triangle build took about 100 ms at 2 threads; now 80).
+// ascends by triangle as one thread's appends would make it, while the appends and their page
+// faults are spread over the workers.
 NodeEvents rootEvents(const std::vector<Triangle>& tris, const std::vector<uint8_t>& degenerate, Box& root) {
     constexpr size_t kBlock = size_t(1) << 14;
     const size_t blocks = (tris.size() + kBlock - 1) / kBlock;
@@ -494,8 +494,8 @@ std::unique_ptr<BuildNode> Builder::build(NodeEvents ev, const Box& box, int dep
 // Depth-first layout (kd_layout.h): below child next, above child by index; parent links and boxes
 // for kd-backtrack in `extra`. Writes the subtree of `n` at node `index` and index-list entry
 // `first` onwards, whose places its subtree sizes give, so the subtrees near the root are written
-// as parallel tasks; it consumes the tree, which is then freed in parallel too (freeing millions
-// of nodes and leaf lists one by one took a fifth of a 1M-triangle build).
+// as parallel tasks; it consumes the tree, which is then freed in parallel too (millions of nodes
+// and leaf lists freed one by one would be a serial tail of the build).
 void flatten(std::unique_ptr<BuildNode> n, uint32_t index, uint64_t first, uint32_t parent, const Box& box,
              KdTree& out, int depth) {
     out.extra[index] = gpu::KdNodeExtra{box.lo, parent, box.hi, 0};
