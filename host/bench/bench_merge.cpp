@@ -204,7 +204,8 @@ ShardInfo shardInfo(const Shard& s) {
     size_t count = 0;
     for (const SceneResult& scene : r.scenes) count += scene.configurations.size();
     return {r.shard, r.node, r.device, r.driver, r.deviceType, r.vulkanApi, r.hardwareThreads,
-            r.commandLine, r.startedAt, r.elapsedSeconds, count, s.file.string()};
+            r.commandLine, r.startedAt, r.elapsedSeconds, count, s.file.string(), r.loadAverageStart,
+            r.loadAverageEnd};
 }
 
 BenchResults mergedRun(const std::vector<const Shard*>& byIndex, const std::string& commandLine) {
