@@ -87,8 +87,8 @@ public:
         if (!pixels.is_object() || !pixels.contains(role) || !pixels[role].is_string()) return {};
         return readImage(dir_ / pixels[role].get<std::string>());
     }
-    std::vector<uint32_t> counts(const Json& names) const {
-        const Image im = image(names, "heatmap");
+    std::vector<uint32_t> counts(const Json& names, const char* role) const {
+        const Image im = image(names, role);
         std::vector<uint32_t> out;
         if (im.channels != 1) return out;
         for (float v : im.data) out.push_back(std::isfinite(v) && v > 0.0f ? uint32_t(v) : 0u);
@@ -142,7 +142,8 @@ AccelResult accelResult(const Json& j, const std::string& w, const Pictures& pic
     const Json names = j.contains("images") ? j["images"] : Json::object();
     a.image = pictures.image(names, "render");
     a.diff = pictures.image(names, "difference");
-    a.nodesPerPixel = pictures.counts(names);
+    a.nodesPerPixel = pictures.counts(names, "heatmap");
+    a.primaryNodesPerPixel = pictures.counts(names, "primary_heatmap");
     return a;
 }
 
@@ -225,6 +226,14 @@ SceneResult sceneResult(const Json& j, const std::string& w, const Pictures& pic
     return s;
 }
 
+// "load_average": {"start", "end"}, absent from reports written before it was recorded.
+void loadAverage(const Json& j, const std::string& w, std::optional<double>& start, std::optional<double>& end) {
+    if (!j.contains("load_average")) return;
+    const Json& l = at(j, "load_average", w);
+    start = optNum(l, "start", path(w, "load_average"));
+    end = optNum(l, "end", path(w, "load_average"));
+}
+
 ShardInfo shardInfo(const Json& j, const std::string& w) {
     ShardInfo s;
     s.shard = {get<int>(j, "index", w), get<int>(j, "count", w)};
@@ -235,6 +244,7 @@ ShardInfo shardInfo(const Json& j, const std::string& w) {
     s.driver = str(d, "driver", w);
     s.vulkanApi = str(d, "vulkan", w);
     s.hardwareThreads = get<int>(j, "hardware_threads", w);
+    loadAverage(j, w, s.loadAverageStart, s.loadAverageEnd);
     s.commandLine = str(j, "command_line", w);
     s.startedAt = str(j, "started_at", w);
     s.elapsedSeconds = num(j, "elapsed_s", w);
@@ -257,6 +267,7 @@ BenchResults benchResults(const Json& j, const Pictures& pictures) {
     r.vulkanApi = str(d, "vulkan", "device");
     r.hardwareThreads = get<int>(at(j, "host", ""), "hardware_threads", "host");
     r.node = str(at(j, "host", ""), "node", "host");
+    loadAverage(at(j, "host", ""), "host", r.loadAverageStart, r.loadAverageEnd);
     const Json& method = at(j, "method", "");
     r.repeat = get<int>(method, "repeat", "method");
     r.threadCounts = get<std::vector<int>>(method, "build_threads", "method");

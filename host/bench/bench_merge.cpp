@@ -155,8 +155,11 @@ private:
             merged_.embree.note.clear();
             merged_.embree.threads = s.embree.threads;
             merged_.embree.agreement = s.embree.agreement;
-            singles_.insert(singles_.end(), s.embree.singleSamples.begin(), s.embree.singleSamples.end());
-            packets_.insert(packets_.end(), s.embree.packetSamples.begin(), s.embree.packetSamples.end());
+            // A shard's samples hold the runs of all its accelerators of the scene: taken once.
+            if (pooled_.insert(&from).second) {
+                singles_.insert(singles_.end(), s.embree.singleSamples.begin(), s.embree.singleSamples.end());
+                packets_.insert(packets_.end(), s.embree.packetSamples.begin(), s.embree.packetSamples.end());
+            }
         } else if (merged_.embree.version.empty() && merged_.embree.note.empty()) {
             merged_.embree.note = s.embree.note;
         }
@@ -183,6 +186,7 @@ private:
     // delta sweep, the maxdepth sweep, the CPU reference.
     std::vector<ErrorPoint> deltaPoints_, depthPoints_, cpuPoints_;
     std::vector<double> singles_, packets_;
+    std::set<const Shard*> pooled_;  // the shards whose Embree samples are in singles_, packets_
 };
 
 // "A" when every shard says A, else "A; B" in shard order.
@@ -200,7 +204,8 @@ ShardInfo shardInfo(const Shard& s) {
     size_t count = 0;
     for (const SceneResult& scene : r.scenes) count += scene.configurations.size();
     return {r.shard, r.node, r.device, r.driver, r.deviceType, r.vulkanApi, r.hardwareThreads,
-            r.commandLine, r.startedAt, r.elapsedSeconds, count, s.file.string()};
+            r.commandLine, r.startedAt, r.elapsedSeconds, count, s.file.string(), r.loadAverageStart,
+            r.loadAverageEnd};
 }
 
 BenchResults mergedRun(const std::vector<const Shard*>& byIndex, const std::string& commandLine) {

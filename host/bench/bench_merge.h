@@ -18,7 +18,9 @@ namespace vkray::bench {
 // without a configuration it should have measured.
 //
 // What is not one shard's figure: the Pareto front is marked again over all the points of a scene,
-// and the scene's Embree summary is the median (min-max) of every shard's Embree samples together.
+// and the scene's Embree summary is the median (min-max) of every shard's Embree samples together,
+// so every accelerator's ratio to Embree divides by that one merged figure, whichever shard measured
+// the accelerator.
 BenchResults mergeBenchReports(const std::vector<std::filesystem::path>& dirs, const std::string& commandLine);
 
 }  // namespace vkray::bench

@@ -56,8 +56,10 @@ struct AccelResult {
     Spread traceMs;                     // full Whitted render, GPU timestamps
     Spread primaryOnlyMs;               // camera rays only (maxdepth 1, no lights)
     Spread depthOneMs;                  // camera rays and their shadow rays (maxdepth 1)
-    // Embree on the same camera rays, timed in the same repeats as primaryOnlyMs (interleaved), so
-    // the ratio below is measured under the same machine load; empty without Embree.
+    // Embree on the same camera rays, timed in the same repeats as primaryOnlyMs (interleaved), so a
+    // change of the machine's load along the run shows beside the accelerator it touched; the ratios
+    // use the scene's one Embree figure (primaryVsEmbree), of which these runs are a part. Empty
+    // without Embree.
     std::optional<Spread> embreeSingleMs, embreePacketMs;  // rtcIntersect1, rtcIntersect16
     std::vector<RayKindFigures> rayKinds;  // primary, shadow, secondary
     double mraysPerSecond = 0.0;        // all rays of the full render / its median time
@@ -80,17 +82,16 @@ struct AccelResult {
             if (k.kind == "primary") return k.mraysPerSecond;
         return std::nullopt;
     }
-    // Primary-ray rate over Embree rtcIntersect1's on the same rays: embreeSingleMs / primaryOnlyMs.
-    std::optional<double> primaryVsEmbree() const {
-        if (!embreeSingleMs || !(primaryOnlyMs.median > 0.0)) return std::nullopt;
-        return embreeSingleMs->median / primaryOnlyMs.median;
-    }
     uint64_t cappedRays = 0;            // rays a traversal ended at its iteration cap
 
     ImageError error;                   // the full render against the reference
     Image image;                        // the full render, 3 channels, linear RGB
     Image diff;                         // makeDiffImage(image, reference, 2/255)
     std::vector<uint32_t> nodesPerPixel;  // nodes visited by all rays of each pixel, top row first
+    // The same for the camera ray alone (the primary-only statistics render): a reflective or
+    // refractive object, whose pixels trace many rays, does not hide what the walk of a camera
+    // ray costs. Empty in a report from before they were kept.
+    std::vector<uint32_t> primaryNodesPerPixel;
 };
 
 // One point of the error-against-time plot.
@@ -131,7 +132,9 @@ struct EmbreeResult {
     std::string version;               // "Embree 3.13.5"; empty when there is no baseline
     std::string note;                  // why there is none
     int threads = 0;
-    Spread singleMs, packetMs;         // over every repeat of every accelerator
+    // Over every interleaved repeat of every accelerator of the scene: the one figure every
+    // accelerator's ratio to Embree divides by (primaryVsEmbree).
+    Spread singleMs, packetMs;
     // The timings those spreads summarise, so that `vkray bench --merge` summarises the samples of
     // every shard as one run would.
     std::vector<double> singleSamples, packetSamples;
@@ -169,17 +172,24 @@ struct SceneResult {
     std::vector<ConfigurationRun> configurations;  // what of this scene the run measured, in run order
 };
 
-// Accelerator a's camera-ray rate over `bvh`'s in the same scene (the kd walks' yardstick): the two
-// ratios to Embree rtcIntersect1 where both have one (each against the Embree times of its own
-// repeats, so a change of the machine's load between the two cancels), else the camera-ray times.
-// Empty when the scene has no `bvh` or either time is missing.
+// Accelerator a's camera-ray rate over Embree rtcIntersect1's on the same rays: the scene's one
+// Embree figure (EmbreeResult::singleMs, the median of every interleaved Embree run of the scene) over
+// a's camera-ray median. One divisor for every accelerator, so the ratios order the accelerators as
+// their rates do. Empty without Embree or without a camera-ray time.
+inline std::optional<double> primaryVsEmbree(const SceneResult& scene, const AccelResult& a) {
+    if (scene.embree.version.empty() || !(scene.embree.singleMs.median > 0.0) || !(a.primaryOnlyMs.median > 0.0))
+        return std::nullopt;
+    return scene.embree.singleMs.median / a.primaryOnlyMs.median;
+}
+
+// Accelerator a's camera-ray rate over `bvh`'s in the same scene (the kd walks' yardstick): bvh's
+// camera-ray median over a's, which is also the quotient of the two ratios to Embree. Empty when the
+// scene has no `bvh` or either time is missing.
 inline std::optional<double> primaryVsBvh(const SceneResult& scene, const AccelResult& a) {
     const AccelResult* bvh = nullptr;
     for (const AccelResult& b : scene.accels)
         if (b.accel == "bvh") bvh = &b;
-    if (!bvh) return std::nullopt;
-    if (a.primaryVsEmbree() && bvh->primaryVsEmbree()) return *a.primaryVsEmbree() / *bvh->primaryVsEmbree();
-    if (!(a.primaryOnlyMs.median > 0.0) || !(bvh->primaryOnlyMs.median > 0.0)) return std::nullopt;
+    if (!bvh || !(a.primaryOnlyMs.median > 0.0) || !(bvh->primaryOnlyMs.median > 0.0)) return std::nullopt;
     return bvh->primaryOnlyMs.median / a.primaryOnlyMs.median;
 }
 
@@ -208,6 +218,7 @@ struct ShardInfo {
     double elapsedSeconds = 0.0;
     size_t configurations = 0;        // how many this shard measured
     std::string source;               // the bench.json it was read from
+    std::optional<double> loadAverageStart, loadAverageEnd;  // as BenchResults has them
 };
 
 struct BenchResults {
@@ -217,6 +228,10 @@ struct BenchResults {
     double elapsedSeconds = 0.0;
     std::string device, driver, deviceType, vulkanApi;
     int hardwareThreads = 0;
+    // The machine's 1-minute load average (getloadavg) when the run started and when it ended, for
+    // the warning about a machine busy with other work (runWarnings, report.h); empty where the
+    // system does not give it, and in a merged report (its shards have theirs).
+    std::optional<double> loadAverageStart, loadAverageEnd;
     int repeat = 0;                       // timed repeats after one warm-up
     std::vector<int> threadCounts;        // build-scaling thread counts
     std::vector<SceneResult> scenes;

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <ctime>
 #include <cmath>
+#include <cstdlib>
 #include <filesystem>
 #include <map>
 #include <memory>
@@ -354,11 +355,12 @@ private:
         RenderOptions counting = render;
         counting.countTraversal = true;
         counting.maxDepth = 1;
-        const GpuRun p = this->render(dark, counting, data);
+        GpuRun p = this->render(dark, counting, data);
         a.primaryNodesPerRay = double(p.report.nodesVisited) / double(std::max<uint64_t>(pixels, 1));
         a.primaryTrianglesPerRay = double(p.report.trianglesTested) / double(std::max<uint64_t>(pixels, 1));
         a.primaryLockstepNodesPerRay = double(p.report.lockstepNodes) / double(std::max<uint64_t>(pixels, 1));
         a.simdLanes = p.report.lockstepLanes;
+        a.primaryNodesPerPixel = std::move(p.report.nodesPerPixel);
         return a;
     }
 
@@ -522,6 +524,13 @@ std::string isoTimeUtc() {
     return text;
 }
 
+// The machine's 1-minute load average, for the warning about other work competing with the run.
+std::optional<double> loadAverage() {
+    double load[1];
+    if (getloadavg(load, 1) != 1) return std::nullopt;
+    return load[0];
+}
+
 std::string hostName() {
     char name[256] = {};
     if (gethostname(name, sizeof name - 1) != 0) return "unknown";
@@ -569,6 +578,7 @@ BenchResults runBench(const gpu::VulkanContext& ctx, const BenchOptions& options
     results.deviceType = ctx.info().type;
     results.vulkanApi = ctx.info().apiVersion;
     results.hardwareThreads = int(std::thread::hardware_concurrency());
+    results.loadAverageStart = loadAverage();
     results.repeat = options.repeat;
     results.node = hostName();
     results.settings = benchSettings(options);
@@ -586,6 +596,7 @@ BenchResults runBench(const gpu::VulkanContext& ctx, const BenchOptions& options
         for (const std::string& label : work[i].labels) scene.configurations.push_back({label, options.shard.index});
         results.scenes.push_back(std::move(scene));
     }
+    results.loadAverageEnd = loadAverage();
     results.elapsedSeconds = msSince(start) / 1000.0;
     return results;
 }

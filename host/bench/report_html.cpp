@@ -3,6 +3,7 @@
 // no script and no URL, so the page works offline, attached to a mail or opened from a CI artifact.
 #include <algorithm>
 #include <cctype>
+#include <optional>
 #include <string>
 
 #include "bench/report.h"
@@ -15,7 +16,7 @@ namespace vkray::bench {
 namespace {
 
 constexpr const char* kStyle = R"(
-body { font: 14px/1.45 system-ui, -apple-system, "Segoe UI", sans-serif; color: #222; max-width: 1320px;
+body { font: 14px/1.45 system-ui, -apple-system, "Segoe UI", sans-serif; color: #222; max-width: 1360px;
        margin: 1.5em auto; padding: 0 1em; }
 h1 { font-size: 1.7em; margin-bottom: .3em; }
 h2 { margin-top: 2.2em; border-bottom: 2px solid #ddd; padding-bottom: .2em; }
@@ -40,10 +41,13 @@ table.facts td { overflow-wrap: anywhere; }
 .plots { display: flex; flex-wrap: wrap; gap: 14px; }
 .notes { color: #555; font-size: 12px; margin: .3em 0 1em; padding-left: 1.2em; }
 .verdict { background: #eef4fc; border-left: 4px solid #3b7dd8; padding: .5em .9em; }
+.warning { background: #fdf0e6; border-left: 4px solid #d55e00; padding: .5em .9em; margin: .5em 0; }
 .missing { color: #777; font-style: italic; }
 .images { display: flex; flex-wrap: wrap; gap: 14px; align-items: flex-start; }
+.pair { display: flex; gap: 14px; align-items: flex-start; }
 figure { margin: 0; }
 figcaption { font-size: 12px; color: #444; }
+figure.scale { max-width: 360px; }
 img.px { image-rendering: crisp-edges; image-rendering: pixelated; max-width: 100%; height: auto;
          border: 1px solid #ccc; display: block; }
 svg.plot { max-width: 100%; height: auto; border: 1px solid #e4e4e4; }
@@ -100,30 +104,42 @@ std::string figure(const ReportImage* im, const std::string& caption, const std:
            std::to_string(im->width) + "x" + std::to_string(im->height) + ")</figcaption></figure>\n";
 }
 
+// The colour bar of one kind of heatmap with its caption; empty when no accelerator has its counts.
+std::string colourBar(const SceneResult& s, HeatmapRays rays, const std::string& what) {
+    const HeatmapScale scale = heatmapScale(s, rays);
+    if (!scale.any) return "";
+    return "<figure class=\"scale\">" + colourBarSvg(scale) + "<figcaption>Nodes visited per pixel by " + what +
+           ", one scale for every accelerator of this scene: 0 to " + formatTick(scale.max) +
+           ", the 99th percentile of all their pixels (largest: " + std::to_string(scale.largest) +
+           "); brighter pixels share the top colour.</figcaption></figure>\n";
+}
+
 std::string imagesSection(const SceneResult& s, size_t si, const std::vector<ReportImage>& images) {
     std::string out = "<h3>Images</h3>\n";
     out += "<p>Each accelerator's render, its difference from the reference (dark grey: identical; blue: within "
-           "2/255; red to yellow: larger errors, yellow the largest), and the nodes its rays visited per pixel "
-           "(all rays of the pixel).</p>\n";
+           "2/255; red to yellow: larger errors, yellow the largest), and two heatmaps side by side: the nodes "
+           "visited by all rays of each pixel (camera, shadow, reflected and refracted rays: a mirror or glass "
+           "object lights up where its pixels trace many rays), and by the camera ray alone (the walk the "
+           "camera-ray rates above time). Each kind of heatmap has a scale of its own.</p>\n";
+    // The colour bars beside the reference, above the heatmaps they read.
     out += "<div class=\"images\">" +
            figure(findImage(images, si, "", ImageRole::Reference),
                   "reference: CPU, double precision (" + s.referenceAccel + ")", "no reference image") +
-           "</div>\n";
+           colourBar(s, HeatmapRays::All, "all rays") + colourBar(s, HeatmapRays::Camera, "camera rays") + "</div>\n";
     for (const AccelResult& a : s.accels) {
-        out += "<h4>" + escapeXml(a.accel) + "</h4>\n<div class=\"images\">\n";
+        // Two pairs, each in a box of its own: a window too narrow for all four wraps between the
+        // pairs, so the render stays beside its difference and the two heatmaps side by side.
+        out += "<h4>" + escapeXml(a.accel) + "</h4>\n<div class=\"images\">\n<div class=\"pair\">\n";
         out += figure(findImage(images, si, a.accel, ImageRole::Render), a.accel + ": render", "no render");
         out += figure(findImage(images, si, a.accel, ImageRole::Difference), a.accel + ": difference",
                       "no difference image");
-        out += figure(findImage(images, si, a.accel, ImageRole::Heatmap), a.accel + ": nodes per pixel",
+        out += "</div>\n<div class=\"pair\">\n";
+        out += figure(findImage(images, si, a.accel, ImageRole::Heatmap), a.accel + ": nodes per pixel, all rays",
                       "no per-pixel counts");
-        out += "</div>\n";
+        out += figure(findImage(images, si, a.accel, ImageRole::PrimaryHeatmap),
+                      a.accel + ": nodes per pixel, camera rays", "no per-pixel counts of camera rays");
+        out += "</div></div>\n";
     }
-    const HeatmapScale scale = heatmapScale(s);
-    if (scale.any)
-        out += "<figure>" + colourBarSvg(scale) +
-               "<figcaption>Nodes visited per pixel, one scale for every accelerator of this scene: 0 to " +
-               formatTick(scale.max) + ", the 99th percentile of all their pixels (largest: " +
-               std::to_string(scale.largest) + "); brighter pixels share the top colour.</figcaption></figure>\n";
     return out;
 }
 
@@ -144,6 +160,8 @@ std::string sceneSection(const SceneResult& s, size_t si, const std::vector<Repo
     out += factTable(sceneFacts(s));
     out += "<p class=\"verdict\"><strong>Who wins:</strong> " + escapeXml(whoWins(s)) + "</p>\n";
     out += htmlTable(acceleratorTable(s));
+    out += htmlTable(embreeTable(s));
+    out += plotOrReason(cameraRayChartSvg(s), "No camera-ray chart: no accelerator has a camera-ray rate.");
     out += imagesSection(s, si, images);
     out += htmlTable(buildScalingTable(s));
     out += plotOrReason(scalingPlotSvg(s), scalingReason(s));
@@ -159,9 +177,25 @@ std::string sceneSection(const SceneResult& s, size_t si, const std::vector<Repo
     return out + "</section>\n";
 }
 
+std::string warnings(const BenchResults& r) {
+    std::string out;
+    for (const std::string& w : runWarnings(r))
+        out += "<p class=\"warning\"><strong>Warning:</strong> " + escapeXml(w) + "</p>\n";
+    return out;
+}
+
+// The summary across scenes, when the run has one (report_tables.h).
+std::string summarySection(const BenchResults& r) {
+    const std::optional<Table> t = summaryTable(r);
+    if (!t) return "";
+    return "<section id=\"summary\">\n<h2>Summary</h2>\n" + htmlTable(*t) + "</section>\n";
+}
+
 std::string sceneLinks(const BenchResults& r) {
     if (r.scenes.size() < 2) return "";
-    std::string out = "<nav>Scenes: ";
+    std::string out = "<nav>";
+    if (summaryTable(r)) out += "<a href=\"#summary\">Summary</a> ";
+    out += "Scenes: ";
     for (size_t i = 0; i < r.scenes.size(); ++i)
         out += "<a href=\"#scene-" + std::to_string(i + 1) + "\">" + escapeXml(r.scenes[i].name) + "</a>";
     return out + "</nav>\n";
@@ -198,8 +232,10 @@ std::string benchHtml(const BenchResults& results, const std::vector<ReportImage
                       "<title>vkray bench: " + escapeXml(results.device) + "</title>\n<style>" + kStyle +
                       "</style>\n</head>\n<body>\n<h1>vkray bench</h1>\n";
     out += factTable(runFacts(results));
+    out += warnings(results);
     out += shardsHtml(results);  // a merged report's shards, right after the run's facts
     out += sceneLinks(results);
+    out += summarySection(results);
     if (results.scenes.empty()) out += "<p class=\"missing\">No scene was run.</p>\n";
     for (size_t i = 0; i < results.scenes.size(); ++i) out += sceneSection(results.scenes[i], i, images);
     return out + "</body>\n</html>\n";

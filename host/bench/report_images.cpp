@@ -41,10 +41,11 @@ bool isDrawable(const Image& im) {
 
 // The size of an accelerator's per-pixel counts: its render's size, else the scene's; none when
 // the counts fit neither (a runner that recorded no counters).
-bool heatmapSize(const SceneResult& s, const AccelResult& a, int& w, int& h) {
-    if (a.nodesPerPixel.empty()) return false;
+bool heatmapSize(const SceneResult& s, const AccelResult& a, HeatmapRays rays, int& w, int& h) {
+    const std::vector<uint32_t>& counts = heatmapCounts(a, rays);
+    if (counts.empty()) return false;
     for (auto [cw, ch] : {std::pair{a.image.width, a.image.height}, std::pair{s.width, s.height}})
-        if (cw > 0 && ch > 0 && a.nodesPerPixel.size() == size_t(cw) * size_t(ch)) {
+        if (cw > 0 && ch > 0 && counts.size() == size_t(cw) * size_t(ch)) {
             w = cw;
             h = ch;
             return true;
@@ -70,11 +71,16 @@ uint32_t percentile(std::vector<uint32_t> values, double p) {
     return values[k];
 }
 
-HeatmapScale heatmapScale(const SceneResult& s) {
+const std::vector<uint32_t>& heatmapCounts(const AccelResult& a, HeatmapRays rays) {
+    return rays == HeatmapRays::Camera ? a.primaryNodesPerPixel : a.nodesPerPixel;
+}
+
+HeatmapScale heatmapScale(const SceneResult& s, HeatmapRays rays) {
     std::vector<uint32_t> all;
     for (const AccelResult& a : s.accels) {
         int w = 0, h = 0;
-        if (heatmapSize(s, a, w, h)) all.insert(all.end(), a.nodesPerPixel.begin(), a.nodesPerPixel.end());
+        const std::vector<uint32_t>& counts = heatmapCounts(a, rays);
+        if (heatmapSize(s, a, rays, w, h)) all.insert(all.end(), counts.begin(), counts.end());
     }
     HeatmapScale scale;
     if (all.empty()) return scale;
@@ -94,7 +100,8 @@ std::vector<ReportImage> reportImages(const BenchResults& results) {
         const std::string stem = safeName(s.name);
         if (isDrawable(s.reference))
             out.push_back(encoded(si, "", ImageRole::Reference, names.claim(stem + "_reference"), s.reference));
-        const HeatmapScale scale = heatmapScale(s);
+        const HeatmapScale scale = heatmapScale(s, HeatmapRays::All);
+        const HeatmapScale cameraScale = heatmapScale(s, HeatmapRays::Camera);
         for (const AccelResult& a : s.accels) {
             const std::string accelStem = stem + "_" + safeName(a.accel);
             if (isDrawable(a.image))
@@ -102,9 +109,12 @@ std::vector<ReportImage> reportImages(const BenchResults& results) {
             if (isDrawable(a.diff))
                 out.push_back(encoded(si, a.accel, ImageRole::Difference, names.claim(accelStem + "_diff"), a.diff));
             int w = 0, h = 0;
-            if (heatmapSize(s, a, w, h))
+            if (heatmapSize(s, a, HeatmapRays::All, w, h))
                 out.push_back(encoded(si, a.accel, ImageRole::Heatmap, names.claim(accelStem + "_nodes"),
                                       heatmapImage(a.nodesPerPixel, w, h, scale.max)));
+            if (heatmapSize(s, a, HeatmapRays::Camera, w, h))
+                out.push_back(encoded(si, a.accel, ImageRole::PrimaryHeatmap, names.claim(accelStem + "_primary_nodes"),
+                                      heatmapImage(a.primaryNodesPerPixel, w, h, cameraScale.max)));
         }
     }
     return out;

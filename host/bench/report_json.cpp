@@ -50,6 +50,7 @@ private:
         case ImageRole::Render: return "render";
         case ImageRole::Difference: return "difference";
         case ImageRole::Heatmap: return "heatmap";
+        case ImageRole::PrimaryHeatmap: return "primary_heatmap";
         }
         return "image";
     }
@@ -79,7 +80,7 @@ Json accelResult(const SceneResult& scene, const AccelResult& a, const ImageName
             {"depth_one_ms", spread(a.depthOneMs)},
             {"embree_interleaved", a.embreeSingleMs ? Json{{"intersect1_ms", spread(*a.embreeSingleMs)},
                                                            {"intersect16_ms", spread(*a.embreePacketMs)},
-                                                           {"primary_vs_intersect1", number(a.primaryVsEmbree())}}
+                                                           {"primary_vs_intersect1", number(primaryVsEmbree(scene, a))}}
                                                      : Json(nullptr)},
             {"primary_vs_bvh", number(primaryVsBvh(scene, a))},
             {"mrays_per_s", number(a.mraysPerSecond)},
@@ -172,12 +173,18 @@ Json sceneResult(const SceneResult& s, const ImageNames& names) {
     return j;
 }
 
+// The 1-minute load averages of a run, null where the system gave none.
+Json loadAverage(const std::optional<double>& start, const std::optional<double>& end) {
+    return {{"start", number(start)}, {"end", number(end)}};
+}
+
 Json shardInfo(const ShardInfo& s) {
     return {{"index", s.shard.index},
             {"count", s.shard.count},
             {"node", s.node},
             {"device", {{"name", s.device}, {"type", s.deviceType}, {"driver", s.driver}, {"vulkan", s.vulkanApi}}},
             {"hardware_threads", s.hardwareThreads},
+            {"load_average", loadAverage(s.loadAverageStart, s.loadAverageEnd)},
             {"command_line", s.commandLine},
             {"started_at", s.startedAt},
             {"elapsed_s", number(s.elapsedSeconds)},
@@ -205,7 +212,9 @@ std::string benchJson(const BenchResults& r, const std::vector<ReportImage>& ima
                     {"started_at", r.startedAt},
                     {"elapsed_s", number(r.elapsedSeconds)},
                     {"device", {{"name", r.device}, {"type", r.deviceType}, {"driver", r.driver}, {"vulkan", r.vulkanApi}}},
-                    {"host", {{"hardware_threads", r.hardwareThreads}, {"node", r.node}}},
+                    {"host", {{"hardware_threads", r.hardwareThreads},
+                              {"node", r.node},
+                              {"load_average", loadAverage(r.loadAverageStart, r.loadAverageEnd)}}},
                     {"settings", settingsJson(r.settings)},
                     {"shard", {{"index", r.shard.index}, {"count", r.shard.count}}},
                     {"configurations", {{"count", r.configurationCount}, {"hash", r.configurationHash}}},
@@ -215,6 +224,7 @@ std::string benchJson(const BenchResults& r, const std::vector<ReportImage>& ima
                                 {"statistic", "median with min-max"},
                                 {"gpu_clock", "Vulkan timestamp queries"},
                                 {"build_threads", r.threadCounts}}},
+                    {"warnings", runWarnings(r)},
                     {"scenes", scenes}};
     return j.dump(2) + "\n";
 }

@@ -1,5 +1,6 @@
-// bench.md: the run, then per scene the verdict and the tables of report_tables.h as GitHub
-// Markdown (pipe tables), ready to paste into docs/benchmarks.md.
+// bench.md: the run with its warnings, the summary across scenes, then per scene the verdict and the
+// tables of report_tables.h as GitHub Markdown (pipe tables), ready to paste into docs/benchmarks.md.
+#include <optional>
 #include <string>
 
 #include "bench/report.h"
@@ -56,7 +57,10 @@ std::string markdownTable(const Table& t) {
 
 std::string benchMarkdown(const BenchResults& results) {
     // A merged report lists its shards right after the run's facts.
-    std::string out = "# vkray bench\n\n" + factList(runFacts(results)) + shardsMarkdown(results);
+    std::string out = "# vkray bench\n\n" + factList(runFacts(results));
+    for (const std::string& w : runWarnings(results)) out += "> **Warning:** " + cell(w) + "\n\n";
+    out += shardsMarkdown(results);
+    if (const std::optional<Table> summary = summaryTable(results)) out += "## Summary\n\n" + markdownTable(*summary);
     if (results.scenes.empty()) out += "No scene was run.\n";
     for (const SceneResult& scene : results.scenes) out += sceneSection(scene);
     return out;

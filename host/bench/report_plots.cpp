@@ -9,6 +9,7 @@
 
 #include "bench/colormap.h"
 #include "bench/report_tables.h"
+#include "bench/svg_bar_chart.h"
 #include "bench/svg_plot.h"
 
 namespace vkray::bench {
@@ -148,6 +149,67 @@ std::string deltaPlotSvg(const SceneResult& scene) {
     std::sort(deltas.begin(), deltas.end(), [](const DeltaResult& a, const DeltaResult& b) { return a.delta < b.delta; });
     return deltaPanel(deltas, "build", &DeltaResult::buildMs, 0, Marker::Circle) +
            deltaPanel(deltas, "trace", &DeltaResult::traceMs, 1, Marker::Square);
+}
+
+namespace {
+
+// Camera-ray Mrays/s of `rays` traced in the median of `ms`, with the spread of the rates: the
+// fastest run gives the highest rate.
+Bar rateBar(double rays, const Spread& ms) {
+    Bar b;
+    b.value = mraysPerSecond(rays, ms.median).value_or(0.0);
+    b.low = mraysPerSecond(rays, ms.max).value_or(b.value);
+    b.high = mraysPerSecond(rays, ms.min).value_or(b.value);
+    return b;
+}
+
+std::string rateSpreadText(const Bar& b) {
+    return formatNumber(b.value) + " Mrays/s (" + formatNumber(b.low) + "–" + formatNumber(b.high) + ")";
+}
+
+ReferenceLine embreeLine(const std::string& name, double rays, const Spread& ms, std::string color, bool dashed) {
+    const Bar b = rateBar(rays, ms);
+    return {name + ": " + rateSpreadText(b), b.value, b.low, b.high, std::move(color), dashed};
+}
+
+}  // namespace
+
+std::string cameraRayChartSvg(const SceneResult& scene) {
+    const double rays = double(scene.width) * double(scene.height);
+    const std::string bvhColour = paletteColor(0), kdColour = paletteColor(1), otherColour = "#999999";
+    std::vector<Bar> bars;
+    bool bvh = false, kd = false, other = false;
+    for (const AccelResult& a : scene.accels) {
+        if (!a.primaryMrays()) continue;
+        Bar b = rateBar(rays, a.primaryOnlyMs);
+        b.value = *a.primaryMrays();
+        b.label = a.accel;
+        const std::optional<double> overEmbree = primaryVsEmbree(scene, a);
+        b.valueText = formatNumber(b.value) + (overEmbree ? " · " + formatRatio(*overEmbree) + " Embree" : "");
+        b.tooltip = a.accel + ": camera rays " + rateSpreadText(b) + ", " + formatSpread(a.primaryOnlyMs) + " ms" +
+                    (overEmbree ? ", " + formatRatio(*overEmbree) + " Embree rtcIntersect1" : "");
+        const std::optional<accel::Family> family = familyOf(a.accel);
+        b.color = family == accel::Family::Bvh ? bvhColour : family == accel::Family::Kd ? kdColour : otherColour;
+        bvh = bvh || b.color == bvhColour;
+        kd = kd || b.color == kdColour;
+        other = other || b.color == otherColour;
+        bars.push_back(std::move(b));
+    }
+    if (bars.empty()) return "";
+    BarChartOptions o;
+    o.title = "Camera rays: Mrays/s per accelerator";
+    o.xTitle = "camera rays, Mrays/s (bars and lines: medians; error bars and whiskers: min–max of the runs)";
+    o.width = 900;
+    if (bvh) o.swatches.emplace_back("BVH", bvhColour);
+    if (kd) o.swatches.emplace_back("kd-tree", kdColour);
+    if (other) o.swatches.emplace_back("other", otherColour);
+    std::vector<ReferenceLine> refs;
+    const EmbreeResult& e = scene.embree;
+    if (!e.version.empty()) {
+        refs.push_back(embreeLine(e.version + " rtcIntersect1", rays, e.singleMs, "#222222", true));
+        refs.push_back(embreeLine(e.version + " rtcIntersect16", rays, e.packetMs, "#009E73", true));
+    }
+    return svgBarChart(o, bars, refs);
 }
 
 std::string colourBarSvg(const HeatmapScale& scale) {

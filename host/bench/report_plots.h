@@ -25,6 +25,12 @@ std::string scalingPlotSvg(const SceneResult& scene);
 // it would lie flat on zero). Empty without a sweep.
 std::string deltaPlotSvg(const SceneResult& scene);
 
+// Camera rays per accelerator: one bar per accelerator of its camera-ray Mrays/s (median, the min–max
+// of its runs as an error bar, the rate and its ratio to Embree written beside it), BVHs and kd
+// traversals in colours of their own, and Embree rtcIntersect1 and rtcIntersect16 on the same rays
+// as reference lines with their spreads as whiskers above the bars. Empty when no accelerator has a camera-ray rate.
+std::string cameraRayChartSvg(const SceneResult& scene);
+
 // The heatmap's colour bar with its numbers, 0 to scale.max.
 std::string colourBarSvg(const HeatmapScale& scale);
 

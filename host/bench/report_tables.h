@@ -9,6 +9,7 @@
 #include <utility>
 #include <vector>
 
+#include "accel/accel_spec.h"
 #include "bench/bench_results.h"
 
 namespace vkray::bench {
@@ -56,6 +57,15 @@ Table concurrentBuildTable(const SceneResult& scene);
 Table deltaSweepTable(const SceneResult& scene);
 Table errorTable(const SceneResult& scene);
 std::vector<Table> sceneTables(const SceneResult& scene);
+
+// The camera rays of every scene side by side, when the run has two or more scenes with accelerators
+// (report_summary.cpp): one row per accelerator, a column per scene with its camera-ray rate over
+// the scene's Embree rtcIntersect1 figure (over bvh's when a scene has no Embree figure but every
+// scene ran bvh), and the geometric mean of those ratios; the highest mean marked.
+std::optional<Table> summaryTable(const BenchResults& results);
+
+// The family of an accelerator's name (tuning included); empty for a name this build does not know.
+std::optional<accel::Family> familyOf(const std::string& accelName);
 
 // Which traversal traces fastest, from the median trace times: the fastest BVH against the fastest
 // kd traversal with their ratio, then the kd traversals among themselves; says what is missing

@@ -35,8 +35,10 @@ void writePixels(const BenchResults& results, const std::vector<ReportImage>& im
             if (a.accel != im.accel) continue;
             if (im.role == ImageRole::Render) writeImage(path, a.image);
             if (im.role == ImageRole::Difference) writeImage(path, a.diff);
-            if (im.role == ImageRole::Heatmap) {
-                const std::vector<float> counts(a.nodesPerPixel.begin(), a.nodesPerPixel.end());
+            if (im.role == ImageRole::Heatmap || im.role == ImageRole::PrimaryHeatmap) {
+                const std::vector<uint32_t>& n =
+                    heatmapCounts(a, im.role == ImageRole::Heatmap ? HeatmapRays::All : HeatmapRays::Camera);
+                const std::vector<float> counts(n.begin(), n.end());
                 writePfm(path, im.width, im.height, 1, counts.data());
             }
         }

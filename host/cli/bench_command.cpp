@@ -99,41 +99,15 @@ private:
 };
 
 void printSummary(const bench::BenchResults& r, const std::filesystem::path& dir) {
-    std::printf("device: %s (%s)\n", r.device.c_str(), r.driver.c_str());
-    size_t measured = 0;
-    for (const bench::SceneResult& s : r.scenes) measured += s.configurations.size();
-    if (r.shard.count > 1)
-        std::printf("shard %s on %s: %zu of %zu configurations\n", bench::shardText(r.shard).c_str(), r.node.c_str(),
-                    measured, r.configurationCount);
-    if (!r.shards.empty())
-        std::printf("merged %zu shards: %zu of %zu configurations\n", r.shards.size(), measured, r.configurationCount);
-    for (const bench::SceneResult& s : r.scenes) {
-        std::printf("%s (%llu triangles, %dx%d):\n", s.file.c_str(), (unsigned long long)s.triangles, s.width,
-                    s.height);
-        const double pixels = double(s.width) * double(s.height);
-        if (const auto single = bench::mraysPerSecond(pixels, s.embree.singleMs.median); !s.embree.version.empty() && single)
-            std::printf("  %-14s camera rays %7.2f Mrays/s (rtcIntersect1), %7.2f Mrays/s (rtcIntersect16)\n",
-                        "Embree", *single, bench::mraysPerSecond(pixels, s.embree.packetMs.median).value_or(0.0));
-        else if (!s.embree.note.empty())
-            std::printf("  %-14s %s\n", "Embree", s.embree.note.c_str());
-        for (const bench::AccelResult& a : s.accels) {
-            std::printf("  %-14s build %9.1f ms  trace %9.1f ms  %7.2f Mrays/s  %6.1f nodes/ray  RMSE %.4f",
-                        a.accel.c_str(), a.build.back().ms.median, a.traceMs.median, a.mraysPerSecond,
-                        a.nodesPerRay, a.error.rmse);
-            if (const auto camera = a.primaryMrays()) std::printf("  camera rays %7.2f Mrays/s", *camera);
-            const auto overEmbree = a.primaryVsEmbree();
-            const auto overBvh = a.accel != "bvh" ? bench::primaryVsBvh(s, a) : std::nullopt;
-            if (overEmbree || overBvh) {
-                std::printf(" (");
-                if (overEmbree) std::printf("%.3fx Embree%s", *overEmbree, overBvh ? ", " : "");
-                if (overBvh) std::printf("%.2fx bvh", *overBvh);
-                std::printf(")");
-            }
-            std::printf("\n");
-        }
-    }
+    std::fputs(bench::benchSummary(r).c_str(), stdout);
     std::printf("wrote %s, %s, %s and %s in %.1f s\n", (dir / "bench.json").c_str(), (dir / "bench.md").c_str(),
                 (dir / "report.html").c_str(), (dir / "images").c_str(), r.elapsedSeconds);
+}
+
+// Printed even with --quiet, as render's warnings are: the figures may mislead without them.
+void printWarnings(const bench::BenchResults& r) {
+    std::fflush(stdout);  // after the summary, in a terminal that shows both streams
+    for (const std::string& w : bench::runWarnings(r)) std::fprintf(stderr, "warning: %s\n", w.c_str());
 }
 
 // The output folder must be usable before minutes of measuring.
@@ -153,6 +127,7 @@ void mergeReports(const BenchArgs& args, const std::string& commandLine) {
     prepareOutputDir(dir);
     bench::writeBenchReport(merged, dir);
     if (!args.quiet) printSummary(merged, dir);
+    printWarnings(merged);
 }
 
 }  // namespace
@@ -209,6 +184,7 @@ void registerBenchCommand(CLI::App& app, int& exitCode, int argc, const char* co
         progress.finish();
         bench::writeBenchReport(results, dir);
         if (!args->quiet) printSummary(results, dir);
+        printWarnings(results);
         exitCode = 0;
     });
 }

@@ -35,6 +35,11 @@ add_test(NAME bench.cli.quiet
          COMMAND bash -c "out=$(\"$0\" bench \"$1\" --size 16x12 --repeat 1 --threads 1 --accel bvh --deltas none --maxdepths none --quiet --out \"$2\") && test -z \"$out\" && test -s \"$2/bench.json\""
                  $<TARGET_FILE:vkray> ${CMAKE_SOURCE_DIR}/tests/cli/data/one_triangle.scene ${BENCH_OUT}/quiet)
 set_tests_properties(bench.cli.quiet PROPERTIES TIMEOUT 300 ENVIRONMENT "VKRAY_VALIDATION=1")
+# Too few repeats for a spread: a warning on stderr, also with --quiet.
+add_test(NAME bench.cli.warns_repeat_one
+         COMMAND bash -c "err=$(\"$0\" bench \"$1\" --size 16x12 --repeat 1 --threads 1 --accel bvh --deltas none --maxdepths none --quiet --out \"$2\" 2>&1 >/dev/null) && grep -q '^warning: --repeat 1: spreads of fewer than 3 runs are noise' <<< \"$err\""
+                 $<TARGET_FILE:vkray> ${CMAKE_SOURCE_DIR}/tests/cli/data/one_triangle.scene ${BENCH_OUT}/repeat-one)
+set_tests_properties(bench.cli.warns_repeat_one PROPERTIES TIMEOUT 300 ENVIRONMENT "VKRAY_VALIDATION=1")
 # A preset and a tuned variant of it in one run: both measured, each under the name as written, the
 # variant's build with its own options (its reinsertion phase in the report).
 add_test(NAME bench.cli.tuned_variant

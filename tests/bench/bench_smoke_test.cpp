@@ -154,9 +154,17 @@ TEST(BenchSmoke, ReportOnLavapipeIsComplete) {
         const Json& e = s["embree"];
         for (const char* key : {"intersect1_mrays_per_s", "intersect16_mrays_per_s"}) expectPositive(e, key, "embree");
         EXPECT_GE(e["agreement_with_reference"].get<double>(), 0.98);
+        // One figure, the median of every interleaved run of every accelerator, divides every ratio.
+        const std::vector<double> runs = e["intersect1_samples_ms"].get<std::vector<double>>();
+        ASSERT_EQ(runs.size(), size_t(o.repeat) * o.accels.size());
+        const double median = spreadOf(runs).median;
+        EXPECT_EQ(e["intersect1_ms"]["median"].get<double>(), median);
         for (const Json& a : s["accelerators"]) {
             expectPositiveSpread(a["embree_interleaved"], "intersect1_ms", "embree_interleaved");
             expectPositive(a["embree_interleaved"], "primary_vs_intersect1", a["accel"]);
+            EXPECT_DOUBLE_EQ(a["embree_interleaved"]["primary_vs_intersect1"].get<double>(),
+                             median / a["primary_only_ms"]["median"].get<double>())
+                << a["accel"];
         }
     } else {
         EXPECT_FALSE(s["embree"]["note"].get<std::string>().empty());
@@ -191,14 +199,28 @@ TEST(BenchSmoke, ReportOnLavapipeIsComplete) {
     for (const std::string& a : o.accels) EXPECT_NE(md.find("| " + a + " |"), std::string::npos) << a;
 
     // report.html: self-contained, with the reference and per accelerator its image, difference
-    // and heatmap, and the plots.
+    // and two heatmaps (all rays, camera rays), and the plots.
     const std::string html = readText(dir / "report.html");
     EXPECT_EQ(countOf(html, "http://") + countOf(html, "https://"), 0u);
-    EXPECT_GE(countOf(html, "data:image/png;base64,"), 1 + 3 * o.accels.size());
+    EXPECT_EQ(countOf(html, "data:image/png;base64,"), 1 + 4 * o.accels.size());
     EXPECT_GE(countOf(html, "<svg"), 3u);
+    EXPECT_EQ(countOf(html, "<svg class=\"plot bar-chart\""), 1u);
     size_t pngs = 0;
     for (const auto& e : fs::directory_iterator(dir / "images")) pngs += e.path().extension() == ".png";
-    EXPECT_GE(pngs, 1 + 3 * o.accels.size());
+    EXPECT_EQ(pngs, 1 + 4 * o.accels.size());
+    // Camera rays alone visit fewer nodes a pixel than all the rays of a pixel of cornell (mirrors,
+    // glass and shadow rays).
+    for (const AccelResult& a : results.scenes[0].accels) {
+        ASSERT_EQ(a.primaryNodesPerPixel.size(), size_t(o.width) * size_t(o.height)) << a.accel;
+        uint64_t camera = 0, all = 0;
+        for (size_t i = 0; i < a.nodesPerPixel.size(); ++i) {
+            EXPECT_LE(a.primaryNodesPerPixel[i], a.nodesPerPixel[i]) << a.accel << " pixel " << i;
+            camera += a.primaryNodesPerPixel[i];
+            all += a.nodesPerPixel[i];
+        }
+        EXPECT_GT(camera, 0u) << a.accel;
+        EXPECT_LT(camera, all) << a.accel;
+    }
 }
 
 }  // namespace

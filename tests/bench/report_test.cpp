@@ -1,9 +1,7 @@
-// The report writers on a synthetic BenchResults: one full scene (five accelerators, a delta sweep,
-// a concurrent build, error points with an identical image) and one minimal scene (one
-// accelerator, one thread count, nothing else). Checks what a reader relies on: every image
-// embedded, nothing fetched from the network, every error point plotted, the Pareto front and the
-// best delta marked, one table row per accelerator, the right winner with the right ratio, and the
-// files writeBenchReport leaves behind.
+// The report writers on the synthetic BenchResults of report_fixture.h. Checks what a reader relies
+// on: every image embedded, nothing fetched from the network, every error point plotted, the Pareto
+// front and the best delta marked, one table row per accelerator, the right winner with the right
+// ratio, and the files writeBenchReport leaves behind.
 #include <algorithm>
 #include <cctype>
 #include <cmath>
@@ -24,133 +22,14 @@
 #include "bench/report_tables.h"
 #include "core/error.h"
 #include "image/image_io.h"
+#include "report_fixture.h"
 
 namespace fs = std::filesystem;
 using namespace vkray;
 using namespace vkray::bench;
+using namespace vkray::bench::fixture;
 
 namespace {
-
-Image gradient(int w, int h, float shift) {
-    Image im(w, h, 3);
-    for (int y = 0; y < h; ++y)
-        for (int x = 0; x < w; ++x)
-            for (int c = 0; c < 3; ++c) im.at(x, y, c) = std::min(1.0f, shift + 0.1f * float(x + y + c));
-    return im;
-}
-
-Spread around(double median) { return {median, 0.9 * median, 1.2 * median}; }
-
-AccelResult accel(const std::string& name, double traceMs, std::vector<ThreadTiming> build, int w, int h,
-                  uint32_t nodeBase) {
-    AccelResult a;
-    a.accel = name;
-    a.kernel = name;
-    a.build = std::move(build);
-    a.structureBytes = 123456;
-    a.traceMs = around(traceMs);
-    a.rayKinds = {{"primary", uint64_t(w * h), 40.0, ""},
-                  {"shadow", uint64_t(2 * w * h), std::nullopt, "within the noise"},
-                  {"secondary", 0, std::nullopt, "no reflective or refractive surfaces"}};
-    a.mraysPerSecond = 12.5;
-    a.nodesPerRay = 31.25;
-    a.leavesPerRay = 3.5;
-    a.trianglesPerRay = 7.25;
-    a.error = {.rmse = 0.01, .psnr = 40.0, .maxError = 0.1, .primaryMismatch = 0.002};
-    a.image = gradient(w, h, 0.1f);
-    a.diff = gradient(w, h, 0.0f);
-    for (int i = 0; i < w * h; ++i) a.nodesPerPixel.push_back(nodeBase + uint32_t(i % 7));
-    return a;
-}
-
-std::vector<ThreadTiming> oneAndTwoThreads(double oneMs, double twoMs) { return {{1, around(oneMs)}, {2, around(twoMs)}}; }
-
-ErrorPoint errorPoint(const std::string& label, const std::string& group, double buildMs, double traceMs, double rmse) {
-    ErrorPoint p;
-    p.label = label;
-    p.group = group;
-    p.accel = "bvh-hq";
-    p.maxDepth = 5;
-    p.precision = group == "cpu-reference" ? "double (CPU)" : "float (GPU)";
-    p.buildMs = buildMs;
-    p.traceMs = traceMs;
-    p.error.rmse = rmse;
-    if (rmse > 0.0) p.error.psnr = 20.0 * std::log10(1.0 / rmse);
-    return p;
-}
-
-SceneResult fullScene() {
-    SceneResult s;
-    s.file = "scenes/alpha.scene";
-    s.name = "alpha";
-    s.triangles = 69668;
-    s.width = 8;
-    s.height = 6;
-    s.maxDepth = 5;
-    s.referenceAccel = "bvh-hq";
-    s.referenceBuildMs = 5.0;
-    s.referenceRenderMs = 400.0;
-    s.reference = gradient(8, 6, 0.1f);
-    s.accels = {accel("bvh-hq", 1.0, oneAndTwoThreads(16.0, 9.0), 8, 6, 10),
-                accel("bvh-fast", 1.5, oneAndTwoThreads(8.0, 5.0), 8, 6, 12),
-                accel("kd-stack", 2.4, oneAndTwoThreads(36.0, 20.0), 8, 6, 30),
-                accel("kd-restart", 3.0, oneAndTwoThreads(36.0, 20.0), 8, 6, 40),
-                accel("kd-backtrack", 2.8, oneAndTwoThreads(36.0, 20.0), 8, 6, 35)};
-    s.deltas = {{4, 0.1, around(10.0), around(3.0), 40.0, 8.0, 70.0},
-                {8, 0.1, around(8.0), around(3.5), 42.0, 9.0, 72.0},
-                {20, 0.1, around(12.0), around(3.2), 38.0, 7.5, 68.0}};
-    s.errorPoints = {errorPoint("bvh-hq", "accelerator", 9.0, 1.0, 0.01),
-                     errorPoint("kd-stack", "accelerator", 20.0, 2.4, 0.01),
-                     errorPoint("aac delta 8", "aac-delta", 8.0, 3.5, 0.008),
-                     errorPoint("bvh maxdepth 1", "maxdepth", 9.0, 0.4, 0.2),
-                     errorPoint("CPU double", "cpu-reference", 5.0, 400.0, 0.0)};
-    markParetoFront(s.errorPoints);
-    s.concurrent = ConcurrentBuild{"bvh-hq", "kd-stack", around(9.0), around(20.0), around(22.0)};
-    return s;
-}
-
-// One accelerator, built at one thread count; no sweep, no concurrent build; a name to escape.
-SceneResult minimalScene() {
-    SceneResult s;
-    s.file = "scenes/beta.scene";
-    s.name = "beta<&>";
-    s.triangles = 12;
-    s.width = 4;
-    s.height = 3;
-    s.maxDepth = 2;
-    s.referenceAccel = "kd-restart";
-    s.reference = gradient(4, 3, 0.2f);
-    s.accels = {accel("kd-restart", 5.0, {{2, around(1.0)}}, 4, 3, 3)};
-    s.errorPoints = {errorPoint("kd-restart", "accelerator", 1.0, 5.0, 0.03)};
-    markParetoFront(s.errorPoints);
-    return s;
-}
-
-BenchResults results() {
-    BenchResults r;
-    r.vkrayVersion = "0.1.0";
-    r.revision = "abc1234";
-    r.commandLine = "vkray bench scenes/alpha.scene scenes/beta.scene --repeat 3";
-    r.startedAt = "2026-11-02T10:00:00Z";
-    r.elapsedSeconds = 42.0;
-    r.device = "llvmpipe (LLVM 15.0.6, 256 bits)";
-    r.driver = "Mesa 22.3.6";
-    r.deviceType = "cpu";
-    r.vulkanApi = "1.3.230";
-    r.hardwareThreads = 2;
-    r.repeat = 3;
-    r.threadCounts = {1, 2};
-    r.scenes = {fullScene(), minimalScene()};
-    return r;
-}
-
-constexpr size_t kExpectedImages = (1 + 5 * 3) + (1 + 1 * 3);  // per scene: reference, then 3 per accelerator
-
-size_t count(const std::string& haystack, const std::string& needle) {
-    size_t n = 0;
-    for (size_t at = haystack.find(needle); at != std::string::npos; at = haystack.find(needle, at + needle.size())) ++n;
-    return n;
-}
 
 // The text from `heading` to the next heading of the same level or above.
 std::string section(const std::string& text, const std::string& heading) {
@@ -280,8 +159,8 @@ TEST(BenchReport, AcceleratorTableExplainsEmptyRates) {
     EXPECT_NE(std::find(t.notes.begin(), t.notes.end(), "² no reflective or refractive surfaces"), t.notes.end());
 }
 
-// The kd walks' yardstick: each tracer's camera-ray rate over bvh's, from the two ratios to Embree
-// where there are both (each timed against its own Embree repeats), else from the camera-ray times.
+// The kd walks' yardstick: each tracer's camera-ray rate over bvh's, which is also the quotient of
+// the two ratios to the scene's one Embree figure.
 TEST(BenchReport, EmbreeTableGivesEachTracerOverBvh) {
     SceneResult scene = fullScene();
     scene.embree.version = "Embree 3.13.5";
@@ -289,21 +168,24 @@ TEST(BenchReport, EmbreeTableGivesEachTracerOverBvh) {
     scene.embree.singleMs = around(10.0);
     scene.embree.packetMs = around(8.0);
     scene.accels[0].accel = "bvh";
-    scene.accels[0].primaryOnlyMs = around(20.0);
-    scene.accels[0].embreeSingleMs = around(10.0);  // 0.5x Embree
-    scene.accels[0].embreePacketMs = around(8.0);
-    scene.accels[2].primaryOnlyMs = around(36.0);
-    scene.accels[2].embreeSingleMs = around(12.0);  // kd-stack 0.333x Embree in its own repeats: 0.67x bvh
-    scene.accels[2].embreePacketMs = around(9.0);
-    scene.accels[3].primaryOnlyMs = around(40.0);  // kd-restart without Embree times: 20 / 40 ms
+    scene.accels[0].primaryOnlyMs = around(20.0);   // 0.5x Embree
+    scene.accels[0].embreeSingleMs = around(9.0);   // its own interleaved runs: not the divisor
+    scene.accels[2].primaryOnlyMs = around(30.0);   // kd-stack: 0.33x Embree, 0.67x bvh
+    scene.accels[2].embreeSingleMs = around(14.0);
+    scene.accels[3].primaryOnlyMs = around(40.0);   // kd-restart, without interleaved Embree times
     const Table t = embreeTable(scene);
     ASSERT_EQ(t.rows.size(), 2 + scene.accels.size());
-    const size_t overBvh = 4;
+    const size_t overEmbree = 3, overBvh = 4;
+    ASSERT_EQ(t.columns.at(overEmbree), "vs Embree rtcIntersect1");
     ASSERT_EQ(t.columns.at(overBvh), "vs bvh");
     EXPECT_EQ(t.rows[0][overBvh], "—");  // Embree's own rows
+    EXPECT_EQ(t.rows[2][overEmbree], "0.50x");
     EXPECT_EQ(t.rows[2][overBvh], "1.00x");
-    EXPECT_EQ(t.rows[3][overBvh], "—");  // bvh-fast: no camera-ray time
+    EXPECT_EQ(t.rows[3][overEmbree], "—");  // bvh-fast: no camera-ray time
+    EXPECT_EQ(t.rows[3][overBvh], "—");
+    EXPECT_EQ(t.rows[4][overEmbree], "0.33x");
     EXPECT_EQ(t.rows[4][overBvh], "0.67x");
+    EXPECT_EQ(t.rows[5][overEmbree], "0.25x");  // the same divisor, with or without its own runs
     EXPECT_EQ(t.rows[5][overBvh], "0.50x");
     EXPECT_FALSE(primaryVsBvh(fullScene(), fullScene().accels[2]));  // no bvh in the run
 }
@@ -394,7 +276,7 @@ TEST(BenchReport, HtmlHasTheTablesPlotsAndVerdicts) {
     EXPECT_NE(html.find("one thread count only (2 threads)"), std::string::npos);
     EXPECT_EQ(count(html, "<svg class=\"plot delta-plot delta-build\""), 1u);
     EXPECT_EQ(count(html, "<svg class=\"plot delta-plot delta-trace\""), 1u);
-    EXPECT_EQ(count(html, "<svg class=\"colour-bar\""), 2u);
+    EXPECT_EQ(count(html, "<svg class=\"colour-bar\""), 4u);  // per scene: all rays, camera rays
     EXPECT_EQ(count(html, "<tr class=\"marked\">"), 4u + 1u + 1u + 1u);  // fronts (4 and 1), best delta, saving
     EXPECT_NE(html.find("image-rendering: pixelated"), std::string::npos);
     EXPECT_NE(html.find("width=\"256\""), std::string::npos);  // 8 px wide, shown 32 times larger

@@ -4,13 +4,15 @@
 def nopareto: del(.pareto);
 def points($sc; f): [$sc.error_vs_time[] | select(f) | nopareto];
 # The figures of one configuration in one scene's report (images are named per report: left out;
-# so is an accelerator's primary_vs_bvh, a figure of two configurations that a shard holding only
-# one of them cannot give).
+# so are an accelerator's primary_vs_bvh, a figure of two configurations that a shard holding only
+# one of them cannot give, and its primary_vs_intersect1, whose divisor is the scene's Embree
+# figure over every shard: checked on its own below).
 def figures($sc; $name):
   if $name == "reference" then
     {reference: ($sc.reference | del(.images)), points: points($sc; .group == "cpu-reference")}
   elif ($name | startswith("accel ")) then ($name[6:]) as $a |
-    {accel: [$sc.accelerators[] | select(.accel == $a) | del(.images, .primary_vs_bvh)],
+    {accel: [$sc.accelerators[] | select(.accel == $a)
+             | del(.images, .primary_vs_bvh, .embree_interleaved.primary_vs_intersect1)],
      points: points($sc; .group == "accelerator" and .label == $a)}
   elif ($name | startswith("concurrent ")) then {concurrent: $sc.concurrent_build}
   elif ($name | startswith("aac-delta ")) then ($name[10:] | tonumber) as $d |
@@ -36,4 +38,11 @@ def listing: [.scenes[] | {index, configurations: [.configurations[].label],
     "\($sc.name): \($c.label): merged figures differ from shard \($c.shard)'s"
   elif ($c.label | startswith("accel ")) and (figures($sc; $c.label).accel | length) != 1 then
     "\($sc.name): \($c.label): not one row in the merged report"
+  else empty end),
+# Every ratio to Embree divides by the scene's one Embree figure, the median of every shard's runs.
+($m.scenes[] as $sc | select($sc.embree.version != null) | $sc.accelerators[] |
+  select(.embree_interleaved != null) |
+  ($sc.embree.intersect1_ms.median / .primary_only_ms.median) as $want |
+  if ((.embree_interleaved.primary_vs_intersect1 - $want) | fabs) > 1e-9 * $want then
+    "\($sc.name): \(.accel): primary_vs_intersect1 \(.embree_interleaved.primary_vs_intersect1), expected \($want)"
   else empty end)
