@@ -9,8 +9,8 @@
 #include <vector>
 
 #include "accel/accel.h"
+#include "frame/render_options.h"
 #include "gpu/gpu_renderer.h"
-#include "render/render_options.h"
 
 namespace vkray::cli {
 

@@ -12,11 +12,11 @@
 #include <vector>
 
 #include "accel/accel.h"
+#include "frame/frame.h"
+#include "frame/render_options.h"
 #include "gpu/compute_kernel.h"
 #include "gpu/shader_features.h"
 #include "gpu/vulkan_context.h"
-#include "render/frame.h"
-#include "render/render_options.h"
 #include "scene/scene.h"
 
 namespace vkray::gpu {

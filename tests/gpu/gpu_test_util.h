@@ -12,13 +12,13 @@
 #include <gtest/gtest.h>
 
 #include "accel/accel_spec.h"
+#include "frame/frame.h"
 #include "geometry/ray.h"
 #include "geometry/ray_triangle.h"
 #include "gpu/gpu_renderer.h"
 #include "gpu/vulkan_context.h"
 #include "image/compare.h"
 #include "image/image.h"
-#include "render/frame.h"
 #include "scene/camera.h"
 #include "scene/scene.h"
 
