@@ -25,7 +25,7 @@
 
 namespace vkray::accel {
 
-// The GPU render kernels, one per shaders/render_<kernelName()>.comp. gpu/gpu_renderer.cpp checks
+// The GPU render kernels, one per shaders/render_<kernelName()>.comp. gpu/kernel_registry.cpp checks
 // at compile time that each has its SPIR-V, so a kernel named here and missing there fails the
 // build, not a render.
 enum class Kernel { Brute, Bvh, BvhStackless, BvhSphere, KdStack, KdRestart, KdBacktrack, KdPushDown, KdShortStack, KdRopes };

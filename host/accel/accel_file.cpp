@@ -158,15 +158,15 @@ std::span<const std::byte> byteSpan(const std::vector<T>& v) {
     return std::as_bytes(std::span<const T>(v));
 }
 
-Header headerFor(const AccelSpec& spec, const Scene& scene, const GpuAccelData& data,
+Header headerFor(const AccelSpec& spec, const SceneGeometry& scene, const GpuAccelData& data,
                  const std::vector<AccelStat>& stats) {
     Header h;
     h.layoutHash = kLayoutHash;
     h.kernel = std::string(kernelName(data.kernel));
     h.specName = spec.name;
     h.structureKey = structureKey(spec);
-    h.triangles = scene.triangles.size();
-    h.sceneHash = sceneGeometryHash(scene);
+    h.triangles = scene.triangles;
+    h.sceneHash = scene.hash;
     h.nodeTexelBytes = data.nodeTexelBytes;
     h.maxLeafTriangles = data.maxLeafTriangles;
     h.orderCount = data.triangleOrder.size();
@@ -220,6 +220,8 @@ uint64_t sceneGeometryHash(const Scene& scene) {
     return hash.digest();
 }
 
+SceneGeometry::SceneGeometry(const Scene& scene) : triangles(scene.triangles.size()), hash(sceneGeometryHash(scene)) {}
+
 bool isBuildTiming(const AccelStat& stat) {
     return stat.key == "threads" || (stat.key.size() > 3 && stat.key.ends_with("_ms"));
 }
@@ -235,7 +237,7 @@ void checkAccelFileTarget(const fs::path& path) {
     StreamedFileWriter probe(path);
 }
 
-void saveAccelFile(const fs::path& path, const AccelSpec& spec, const Scene& scene, const GpuAccelData& data,
+void saveAccelFile(const fs::path& path, const AccelSpec& spec, const SceneGeometry& scene, const GpuAccelData& data,
                    const std::vector<AccelStat>& stats) {
     checkAccelFileTarget(path);
     const std::string meta = encodeMeta(headerFor(spec, scene, data, stats));
@@ -305,12 +307,12 @@ void AccelFileReader::checkSpec(const AccelSpec& spec) {
                                "; this render: " + key + ")" + std::string(kRebuild));
 }
 
-void AccelFileReader::checkScene(const Scene& scene) {
+void AccelFileReader::checkScene(const SceneGeometry& scene) {
     const Header& h = *header_;
-    if (h.triangles != scene.triangles.size())
+    if (h.triangles != scene.triangles)
         throw fileError(path_, "built for another scene (" + std::to_string(h.triangles) + " triangles, this one has " +
-                                   std::to_string(scene.triangles.size()) + ")" + std::string(kRebuild));
-    if (h.sceneHash != sceneGeometryHash(scene))
+                                   std::to_string(scene.triangles) + ")" + std::string(kRebuild));
+    if (h.sceneHash != scene.hash)
         throw fileError(path_, "built for another scene (geometry hash differs)" + std::string(kRebuild));
     if (h.orderCount != 0 && h.orderCount != h.triangles)
         throw fileError(path_, "damaged: its triangle order has " + std::to_string(h.orderCount) + " entries for " +
@@ -352,7 +354,7 @@ void AccelFileReader::readHashed(void* data, size_t size, Hash64& hash) {
     }
 }
 
-LoadedAccel AccelFileReader::read(const Scene& scene) {
+LoadedAccel AccelFileReader::read(const SceneGeometry& scene) {
     checkScene(scene);
     return readArrays();
 }
@@ -388,7 +390,7 @@ LoadedAccel AccelFileReader::readArrays() {
     return loaded;
 }
 
-LoadedAccel loadAccelFile(const fs::path& path, const AccelSpec& spec, const Scene& scene) {
+LoadedAccel loadAccelFile(const fs::path& path, const AccelSpec& spec, const SceneGeometry& scene) {
     AccelFileReader reader(path);
     reader.checkSpec(spec);
     return reader.read(scene);

@@ -34,6 +34,14 @@ inline constexpr uint32_t kAccelFileVersion = 1;
 // another scene; a file saved before the origin existed (always 0) still matches.
 uint64_t sceneGeometryHash(const Scene& scene);
 
+// What a structure depends on of its scene: the triangle count and sceneGeometryHash(). Made once a
+// scene where several things are checked against it (a structure file read or written, the
+// metadata of an EXR output); made from the Scene where a call passes one, hashing it there.
+struct SceneGeometry {
+    uint64_t triangles = 0, hash = 0;
+    SceneGeometry(const Scene& scene);  // not explicit: a Scene passes for its geometry
+};
+
 // Whether a build figure is a time or a setting of the build (threads) rather than a property of
 // the structure: those are not stored, so that a file says nothing stale and the same build always
 // writes the same bytes.
@@ -46,7 +54,7 @@ void checkAccelFileTarget(const std::filesystem::path& path);
 // Writes `data` (built by `spec` over `scene`) and the structural figures of `stats` to `path`:
 // first to PATH.tmp, renamed over `path` once complete, so an interrupted write never leaves a
 // partial file under the name. Throws vkray::Error naming `path` on any failure.
-void saveAccelFile(const std::filesystem::path& path, const AccelSpec& spec, const Scene& scene,
+void saveAccelFile(const std::filesystem::path& path, const AccelSpec& spec, const SceneGeometry& scene,
                    const GpuAccelData& data, const std::vector<AccelStat>& stats);
 
 struct LoadedAccel {
@@ -70,12 +78,12 @@ public:
     // spec sets in the kernel but not in the structure (kd-shortstack's stack size) for readArrays().
     void checkSpec(const AccelSpec& spec);
     // Refuses a file built for other geometry.
-    void checkScene(const Scene& scene);
+    void checkScene(const SceneGeometry& scene);
     // Reads the arrays, checking the file's size and the payload's checksum; after checkScene(),
     // once.
     LoadedAccel readArrays();
     // checkScene(), then readArrays().
-    LoadedAccel read(const Scene& scene);
+    LoadedAccel read(const SceneGeometry& scene);
 
     const std::filesystem::path& path() const { return path_; }
 
@@ -94,6 +102,6 @@ private:
 };
 
 // The three steps at once.
-LoadedAccel loadAccelFile(const std::filesystem::path& path, const AccelSpec& spec, const Scene& scene);
+LoadedAccel loadAccelFile(const std::filesystem::path& path, const AccelSpec& spec, const SceneGeometry& scene);
 
 }  // namespace vkray::accel

@@ -21,6 +21,8 @@
 #include "gpu/gpu_renderer.h"
 #include "gpu/scene_buffers.h"
 #include "image/compare.h"
+#include "render/scene_checks.h"
+#include "render/structure.h"
 #include "scene/camera.h"
 #include "scene/scene_parser.h"
 #include "vkray_revision.h"  // generated at build time by scripts/revision.cmake
@@ -83,6 +85,7 @@ public:
         sceneName_ = std::filesystem::path(file).stem().string();
         step("load");
         Scene scene = loadScene(file);
+        vkray::render::checkRenderable(scene, file);
         scene.camera = viewCamera(scene, options_.view);
         gpu::checkSceneFits(ctx_, scene);
         SceneResult result;
@@ -133,16 +136,15 @@ private:
     Frame renderReferenceImage(const Scene& scene, const RenderOptions& render, SceneResult& result) {
         result.referenceAccel = "bvh";
         step("reference: build bvh");
-        auto t0 = Clock::now();
-        const auto built = accel::buildAccel(scene, accel::resolveAccel("bvh"), {});
-        const auto tracer = built->makeTracer(scene);
-        result.referenceBuildMs = msSince(t0);
+        const vkray::render::Structure structure =
+            vkray::render::buildStructure(scene, accel::resolveAccel("bvh"), {.tracer = true});
+        result.referenceBuildMs = structure.buildMs;
         Frame frame;
         std::vector<double> ms;
         for (int r = 0; r <= options_.repeat; ++r) {  // run 0 warms up and gives the image
             step("reference: CPU render (double)", r, options_.repeat);
-            t0 = Clock::now();
-            frame = renderReference(scene, render, *tracer);
+            const auto t0 = Clock::now();
+            frame = renderReference(scene, render, *structure.tracer);
             if (r > 0) ms.push_back(msSince(t0));
         }
         result.referenceRenderMs = spreadOf(ms).median;

@@ -8,7 +8,7 @@
 #include <CLI/CLI.hpp>
 #include <glm/glm.hpp>
 
-#include "render/render_options.h"
+#include "frame/render_options.h"
 #include "scene/text_input.h"
 
 namespace vkray::cli {

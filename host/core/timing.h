@@ -1,5 +1,5 @@
 // Wall-clock time on the host, for build phases, uploads and the figures of --stats and `vkray bench`
-// (GPU time comes from timestamp queries instead: gpu/gpu_renderer.cpp).
+// (GPU time comes from timestamp queries instead: gpu/batch_timer.h).
 #pragma once
 
 #include <chrono>

@@ -6,9 +6,9 @@
 #include <string>
 #include <vector>
 
+#include "frame/frame.h"
+#include "frame/render_options.h"
 #include "geometry/tracer.h"
-#include "render/frame.h"
-#include "render/render_options.h"
 #include "scene/scene.h"
 
 namespace vkray {

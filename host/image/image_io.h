@@ -9,9 +9,9 @@
 
 #include <glm/glm.hpp>
 
+#include "frame/frame.h"
 #include "image/image.h"
 #include "image/image_meta.h"
-#include "render/frame.h"
 
 namespace vkray {
 

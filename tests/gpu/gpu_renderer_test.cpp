@@ -249,13 +249,13 @@ TEST(GpuRenderer, PixelsPerInvocationChangeNoPixel) {
     for (const char* accel : {"bvh", "kd-restart", "brute"}) {
         SCOPED_TRACE(accel);
         gpu::GpuRenderReport one;
-        const Frame reference = gpu::renderOnGpu(*contexts[0], scene, o, accel::resolveAccel(accel), &one);
+        const Frame reference = test::renderGpu(*contexts[0], scene, o, &one, accel);
         EXPECT_EQ(one.features.pixelsPerInvocation, 1);
         EXPECT_GT(one.shadowRays, 0u);
         for (uint32_t n = 2; n <= VKRAY_MAX_PIXELS_PER_INVOCATION; ++n) {
             SCOPED_TRACE(n);
             gpu::GpuRenderReport rep;
-            const Frame f = gpu::renderOnGpu(*contexts[n - 1], scene, o, accel::resolveAccel(accel), &rep);
+            const Frame f = test::renderGpu(*contexts[n - 1], scene, o, &rep, accel);
             EXPECT_EQ(rep.features.pixelsPerInvocation, int(n));
             test::expectSamePixels(reference, f, PixelWindow{0, 0, o.width, o.height});
             EXPECT_EQ(rep.raysTraced, one.raysTraced);

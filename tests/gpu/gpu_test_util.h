@@ -11,14 +11,15 @@
 
 #include <gtest/gtest.h>
 
+#include "accel/accel.h"
 #include "accel/accel_spec.h"
+#include "frame/frame.h"
 #include "geometry/ray.h"
 #include "geometry/ray_triangle.h"
 #include "gpu/gpu_renderer.h"
 #include "gpu/vulkan_context.h"
 #include "image/compare.h"
 #include "image/image.h"
-#include "render/frame.h"
 #include "scene/camera.h"
 #include "scene/scene.h"
 
@@ -36,11 +37,24 @@ inline const gpu::VulkanContext& gpuContext() {
     return *ctx;
 }
 
-// Builds the accelerator named `accel` (`brute`, the reference the GPU tests compare with, unless
-// told) and renders on the test device.
+// Builds `spec`'s structure with options.threads workers and renders it on ctx's device.
+inline Frame renderGpu(const gpu::VulkanContext& ctx, const Scene& scene, const RenderOptions& options,
+                       const accel::AccelSpec& spec, gpu::GpuRenderReport* report = nullptr) {
+    const auto built = accel::buildAccel(scene, spec, {.threads = options.threads, .progress = {}});
+    return gpu::renderOnGpu(ctx, scene, options, built->gpuData(), report);
+}
+
+// The same with the accelerator named `accel` (`brute`, the reference the GPU tests compare with,
+// unless told).
+inline Frame renderGpu(const gpu::VulkanContext& ctx, const Scene& scene, const RenderOptions& options,
+                       gpu::GpuRenderReport* report = nullptr, std::string_view accel = "brute") {
+    return renderGpu(ctx, scene, options, accel::resolveAccel(accel), report);
+}
+
+// The same on the test device.
 inline Frame renderGpu(const Scene& scene, const RenderOptions& options, gpu::GpuRenderReport* report = nullptr,
                        std::string_view accel = "brute") {
-    return gpu::renderOnGpu(gpuContext(), scene, options, accel::resolveAccel(accel), report);
+    return renderGpu(gpuContext(), scene, options, report, accel);
 }
 
 // The colour of a Frame as it would be written to an 8-bit file (clamped, quantised).

@@ -121,10 +121,10 @@ TEST(KdGpuShortStack, AnySizeWalksTheSameLeaves) {
                                 .countTraversal = true};
     gpu::GpuRenderReport stack, one, deep;
     const Frame fStack = test::renderGpu(ref.scene, options, &stack, "kd-stack");
-    const Frame fOne = gpu::renderOnGpu(test::gpuContext(), ref.scene, options,
-                                        accel::resolveAccel("kd-shortstack", {{"--kd-short-stack", 1.0}}), &one);
-    const Frame fDeep = gpu::renderOnGpu(test::gpuContext(), ref.scene, options,
-                                         accel::resolveAccel("kd-shortstack", {{"--kd-short-stack", 56.0}}), &deep);
+    const Frame fOne = test::renderGpu(test::gpuContext(), ref.scene, options,
+                                       accel::resolveAccel("kd-shortstack", {{"--kd-short-stack", 1.0}}), &one);
+    const Frame fDeep = test::renderGpu(test::gpuContext(), ref.scene, options,
+                                        accel::resolveAccel("kd-shortstack", {{"--kd-short-stack", 56.0}}), &deep);
     EXPECT_EQ(fOne.primId, fStack.primId);
     EXPECT_EQ(fDeep.primId, fStack.primId);
     EXPECT_EQ(one.trianglesTested, stack.trianglesTested);

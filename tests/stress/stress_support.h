@@ -14,10 +14,10 @@
 
 #include "../gpu/gpu_test_util.h"
 #include "core/error.h"
+#include "frame/frame.h"
 #include "geometry/ray.h"
 #include "geometry/ray_triangle.h"
 #include "image/compare.h"
-#include "render/frame.h"
 #include "scene/camera.h"
 #include "scene/scene.h"
 #include "scene/scene_builder.h"

@@ -4,8 +4,8 @@
 
 #include <gtest/gtest.h>
 
-#include "render/frame.h"
-#include "render/render_options.h"
+#include "frame/frame.h"
+#include "frame/render_options.h"
 
 namespace vkray::test {
 

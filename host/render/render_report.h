@@ -1,18 +1,19 @@
-// What `vkray render` did: filled as the render goes, then printed for people (a few lines, more with
-// --stats) or as JSON for scripts (--json; the keys are stable).
+// What one scene of a render session did: filled as the render goes; the CLI prints it for people
+// or as JSON for scripts (cli/report_printing.h).
 #pragma once
 
 #include <array>
+#include <cstddef>
 #include <map>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include "accel/accel.h"
-#include "gpu/gpu_renderer.h"
-#include "render/render_options.h"
+#include "frame/render_options.h"
+#include "gpu/gpu_render_report.h"
 
-namespace vkray::cli {
+namespace vkray::render {
 
 // A structure file the render read (--load-accel) or wrote (--save-accel), and how long that took.
 struct AccelFileReport {
@@ -40,15 +41,9 @@ struct RenderReport {
     // loaded (the loader, the driver and its compiler start; 0 once an earlier scene opened it).
     std::optional<double> deviceMs;
     double writeMs = 0.0;  // the image and AOV files
-    double totalMs = 0.0;  // the whole command until the images are written: load, build, render, output
+    double totalMs = 0.0;  // the whole scene until the images are written: load, build, render, output
     std::optional<gpu::GpuRenderReport> gpu;  // GPU renders only
-    bool buildOnly = false;  // --build-only: the structure built and saved, nothing rendered
+    bool buildOnly = false;  // the structure built and saved, nothing rendered
 };
 
-// The whole report as one JSON object (--json).
-std::string reportJson(const RenderReport& report);
-
-// The summary on stdout; with `stats`, the scene, the build, the kernel and the timings too.
-void printReport(const RenderReport& report, bool stats);
-
-}  // namespace vkray::cli
+}  // namespace vkray::render

@@ -1,4 +1,4 @@
-#include "cli/render_report.h"
+#include "cli/render_printing.h"
 
 #include <algorithm>
 #include <cmath>
@@ -202,6 +202,57 @@ void printReport(const RenderReport& r, bool stats) {
         if (st.key == "sah_cost") std::printf("  %-24s %s\n", "", sahNote(st.unit).c_str());
     }
     if (r.gpu) printGpuStats(*r.gpu);
+}
+
+namespace {
+
+void printTileProgress(uint32_t done, uint32_t total) {
+    std::fprintf(stderr, "\rrendering: tile %u/%u", done, total);
+    if (done == total) std::fprintf(stderr, "\r%*s\r", 40, "");
+}
+
+void printBuildProgress(const std::string& phase, double fraction) {
+    std::fprintf(stderr, "\rbuilding: %-24s %3d%%", phase.c_str(), int(fraction * 100.0 + 0.5));
+}
+
+void clearProgressLine() { std::fprintf(stderr, "\r%*s\r", 48, ""); }
+
+void printLoadProgress(const std::string& step) {
+    clearProgressLine();
+    std::fprintf(stderr, "loading: %s", step.c_str());
+}
+
+void printRowProgress(int done, int total) {
+    if (done % 16 != 0 && done != total) return;
+    std::fprintf(stderr, "\rrendering: row %d/%d", done, total);
+    if (done == total) std::fprintf(stderr, "\r%*s\r", 40, "");
+}
+
+}  // namespace
+
+void printPixel(const Frame& frame, const RenderReport& report) {
+    const glm::vec3 c = frame.color[0], n = frame.normal[0];
+    std::printf("pixel %d,%d of %dx%d: colour %.6g %.6g %.6g", frame.x0, frame.y0, report.options.width,
+                report.options.height, c.x, c.y, c.z);
+    if (frame.primId[0] < 0) std::printf(", no hit");
+    else std::printf(", depth %.6g, triangle %d, normal %.4f %.4f %.4f", frame.depth[0], frame.primId[0], n.x, n.y, n.z);
+    if (report.gpu && report.options.countTraversal) {  // over every ray of the pixel
+        const auto count = [](uint64_t n, const char* one, const char* many) {
+            std::printf(", %llu %s", (unsigned long long)n, n == 1 ? one : many);
+        };
+        count(report.gpu->nodesVisited, "node", "nodes");
+        count(report.gpu->leavesVisited, "leaf", "leaves");
+        count(report.gpu->trianglesTested, "triangle test", "triangle tests");
+    }
+    std::printf("\n");
+}
+
+render::Progress progressLine() {
+    return render::Progress{.load = printLoadProgress,
+                            .build = printBuildProgress,
+                            .tiles = printTileProgress,
+                            .rows = printRowProgress,
+                            .lineDone = clearProgressLine};
 }
 
 }  // namespace vkray::cli

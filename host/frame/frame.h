@@ -8,7 +8,7 @@
 
 #include <glm/glm.hpp>
 
-#include "render/render_options.h"
+#include "frame/render_options.h"
 
 namespace vkray {
 

@@ -1,0 +1,48 @@
+#include "gpu/kernel_cache.h"
+
+#include "core/timing.h"
+#include "gpu/kernel_bindings.h"
+#include "gpu/kernel_registry.h"
+#include "shared/gpu_layout.h"
+
+namespace vkray::gpu {
+
+KernelCache::KernelCache(const VulkanContext& ctx) : ctx_(ctx) {}
+KernelCache::~KernelCache() = default;
+
+std::span<const uint32_t> KernelCache::spirv(accel::Kernel kernel, KernelVariant variant) {
+    const std::pair key{kernel, variant.index()};
+    auto it = spirvFromFiles_.find(key);
+    if (it == spirvFromFiles_.end()) it = spirvFromFiles_.emplace(key, kernelFromDir(kernel, variant)).first;
+    if (!it->second.empty()) return it->second;
+    return builtInKernel(kernel, variant);
+}
+
+ComputeKernel& KernelCache::kernel(accel::Kernel kernel, const ShaderFeatures& features) {
+    const Specialization spec = features.specialization();
+    const KernelVariant variant = features.variant();
+    auto& slot = kernels_[{{kernel, variant.index()}, spec.values}];
+    if (!slot)
+        slot = std::make_unique<ComputeKernel>(ctx_, spirv(kernel, variant), renderKernelBindings(),
+                                               sizeof(GpuFrameParams), spec);
+    return *slot;
+}
+
+ShaderFeatures renderFeatures(const VulkanContext& ctx, const Scene& scene, const RenderOptions& options,
+                              uint32_t maxLeafTriangles, uint32_t kdShortStack) {
+    ShaderFeatures f = ShaderFeatures::forScene(scene, options.maxDepth);
+    f.pixelsPerInvocation = int(ctx.info().pixelsPerInvocation);
+    f.countTraversal = options.countTraversal;
+    f.primaryAovs = options.primaryAovs;
+    f.setMaxLeafTriangles(maxLeafTriangles);
+    f.setKdShortStack(kdShortStack);
+    return f;
+}
+
+double prepareKernel(const Scene& scene, const RenderOptions& options, accel::Kernel kernel, KernelCache& kernels) {
+    const auto start = Clock::now();
+    kernels.kernel(kernel, renderFeatures(kernels.context(), scene, options, 1));
+    return msSince(start);
+}
+
+}  // namespace vkray::gpu
