@@ -1,5 +1,5 @@
-// `vkray bench`: every accelerator on every scene, measured the same way (docs/benchmarks.md,
-// "Performance measurements"): CPU build time over thread counts, GPU trace time from timestamp
+// `vkray bench`: every accelerator on every scene, measured the same way (docs/performance.md,
+// "Method"): CPU build time over thread counts, GPU trace time from timestamp
 // queries split by ray kind, traversal work per ray from the statistics variant of the kernels,
 // and the image error of each configuration against a double-precision CPU reference, so time can
 // be weighed against error. The results go to report.h's writers.

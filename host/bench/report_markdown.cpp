@@ -1,5 +1,5 @@
 // bench.md: the run with its warnings, the summary across scenes, then per scene the verdict and the
-// tables of report_tables.h as GitHub Markdown (pipe tables), ready to paste into docs/benchmarks.md.
+// tables of report_tables.h as GitHub Markdown (pipe tables), ready to paste into docs/performance.md.
 #include <optional>
 #include <string>
 

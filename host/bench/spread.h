@@ -1,5 +1,5 @@
-// The summary every benchmark prints for repeated measurements (docs/benchmarks.md,
-// "Performance measurements"): the median with the spread as min-max.
+// The summary every benchmark prints for repeated measurements (docs/performance.md,
+// "Method"): the median with the spread as min-max.
 #pragma once
 
 #include <algorithm>

@@ -1,6 +1,6 @@
 // The render kernels' pipelines, each created once per (kernel, variant, specialization) and kept
 // from one render to the next: creating one costs the driver a translation and optimisation of the
-// whole SPIR-V (docs/benchmarks.md, "Pipeline creation"), as much as a small render, so the scenes
+// whole SPIR-V (docs/performance.md, "What lavapipe charges for"), as much as a small render, so the scenes
 // of one call and the repeats of a benchmark share them.
 #pragma once
 
