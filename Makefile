@@ -1,7 +1,9 @@
 # The two commands of the README:
-#   make demo   install what is missing, build (Release), render scenes/default.scene to default.png
-#   make test   the same install and build, the real meshes (scripts/fetch-scenes.sh), then the
-#               whole test suite with CTest (on lavapipe when the machine has no GPU)
+#   make demo   install what is missing, build the vkray binary alone (Release; its shaders with
+#               it), render scenes/default.scene to default.png
+#   make test   the same install, the whole build (every test binary), the real meshes
+#               (scripts/fetch-scenes.sh), then the whole test suite with CTest (on lavapipe when
+#               the machine has no GPU)
 # More checks (CI runs them after `make test`), each in its own build directory:
 #   make sanitize   the unit and GPU tests built with AddressSanitizer + UndefinedBehaviorSanitizer (g++)
 #   make fuzz       the scene-parser fuzzer (clang, libFuzzer) on its seed corpus for FUZZ_SECONDS
@@ -10,7 +12,7 @@ JOBS ?= $(shell nproc)
 SCENE ?= scenes/default.scene
 OUT ?= default.png
 
-.PHONY: all deps configure build meshes demo test sanitize fuzz clean
+.PHONY: all deps configure build vkray meshes demo test sanitize fuzz clean
 all: build
 
 deps:
@@ -22,11 +24,15 @@ configure: deps
 build: configure
 	@cmake --build $(BUILD) -j $(JOBS)
 
+# What the demo needs: the binary and the SPIR-V it embeds, none of the tests or benchmark programs.
+vkray: configure
+	@cmake --build $(BUILD) -j $(JOBS) --target vkray
+
 # The real meshes of scenes/*.scene, from Debian packages (verified only, once fetched).
 meshes:
 	@scripts/fetch-scenes.sh
 
-demo: build
+demo: vkray
 	$(BUILD)/vkray render $(SCENE) -o $(OUT)
 
 test: build meshes
@@ -37,8 +43,7 @@ ASAN_BUILD ?= build-asan
 # Every GoogleTest binary: the unit tests, the GPU tests on lavapipe, the stress scenes through every
 # accelerator and the bench pipeline (lavapipe's JIT-compiled shaders run uninstrumented; the
 # validation layer loads), then the sanitized vkray binary through CTest's tests/cli (every bad
-# input of the command line), tests/bench and tests/golden. About 5 minutes of tests after the
-# build on 2 cores.
+# input of the command line), tests/bench and tests/golden.
 SANITIZE_TESTS = vkray_scene_tests vkray_image_tests vkray_geometry_tests vkray_cpu_tests vkray_accel_tests \
                  vkray_accel_bvh_tests vkray_accel_kd_tests vkray_gpu_tests vkray_stress_tests \
                  vkray_bench_tests vkray_cli_tests

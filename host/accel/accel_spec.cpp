@@ -2,9 +2,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <functional>
+#include <map>
 
 #include "core/error.h"
 #include "core/format.h"
+#include "core/suggest.h"
 #include "scene/text_input.h"
 
 namespace vkray::accel {
@@ -21,8 +25,8 @@ struct AccelEntry {
 };
 
 // Plain `bvh` is AAC-HQ with two passes of treelet restructuring (Karras and Aila 2013): camera
-// rays take 4-11% fewer node steps than in AAC-HQ's tree, for about twice its build time, and a
-// render traces far more rays than the build touches primitives (docs/bvh.md, "Default preset").
+// rays take fewer node steps than in AAC-HQ's tree for a longer build, and a render traces far more
+// rays than the build touches primitives (docs/bvh.md, "Default preset", has the figures).
 // bvh-fast and bvh-hq are the two presets of Gu, He, Fatahalian and Blelloch, "Efficient BVH
 // Construction via Approximate Agglomerative Clustering", HPG 2013, as published.
 const AccelEntry kAccels[] = {
@@ -58,38 +62,37 @@ bool isBoxBvh(const AccelSpec& s) { return isBvh(s) && s.bvh.container == bvh::C
 // A leaf range is clustered by an all-pairs search, O(delta^2) per merge: the bound keeps a typo from
 // turning a build into hours. The kd costs' bound keeps their products finite.
 const TuningOption kTuning[] = {
-    {"--aac-delta", "AAC: leaf-range size delta (overrides the preset)", isAac, 1, bvh::Config::kMaxDelta,
-     false, true, "", [](AccelSpec& s, double v) { s.bvh.delta = int(v); }},
-    {"--aac-epsilon", "AAC: reduction exponent epsilon, alpha = 1/2 - epsilon (overrides the preset)", isAac,
-     0.0, 0.5, true, false, "--aac-epsilon must be in [0, 0.5) (alpha = 1/2 - epsilon must stay positive)",
+    {"aac-delta", "AAC: leaf-range size delta", isAac, 1, bvh::Config::kMaxDelta, false, true, "",
+     [](AccelSpec& s, double v) { s.bvh.delta = int(v); }},
+    {"aac-epsilon", "AAC: reduction exponent, alpha = 1/2 - epsilon", isAac, 0.0, 0.5, true, false,
+     "aac-epsilon must be in [0, 0.5) (alpha = 1/2 - epsilon must stay positive)",
      [](AccelSpec& s, double v) { s.bvh.epsilon = v; }},
-    {"--bvh-treelet-passes", "BVH: treelet restructuring passes after the build, 0 = none (overrides the preset)",
-     isBoxBvh, 0, 16, false, true, "", [](AccelSpec& s, double v) { s.bvh.treeletPasses = int(v); }},
-    {"--bvh-treelet-min", "BVH: smallest subtree, in triangles, whose root is restructured (overrides the preset)",
-     isBoxBvh, 1, 1e9, false, true, "", [](AccelSpec& s, double v) { s.bvh.treeletMinPrimitives = int(v); }},
-    {"--bvh-reinsert-iterations", "BVH: insertion-based optimisation iterations after the build, 0 = none (overrides the preset)",
-     isBoxBvh, 0, 1000, false, true, "", [](AccelSpec& s, double v) { s.bvh.reinsertIterations = int(v); }},
-    {"--bvh-reinsert-batch", "BVH: share of the inner nodes reinserted an iteration (overrides the preset)",
-     isBoxBvh, 0.001, 1.0, false, false, "--bvh-reinsert-batch must be in [0.001, 1]",
+    {"bvh-treelet-passes", "BVH: treelet restructuring passes after the build (bvh: 2)", isBoxBvh, 0, 16, false,
+     true, "", [](AccelSpec& s, double v) { s.bvh.treeletPasses = int(v); }},
+    {"bvh-treelet-min", "BVH: smallest subtree restructured, in triangles (bvh: 8)", isBoxBvh, 1, 1e9, false, true,
+     "", [](AccelSpec& s, double v) { s.bvh.treeletMinPrimitives = int(v); }},
+    {"bvh-reinsert-iterations", "BVH: insertion-based optimisation iterations (default 0)", isBoxBvh, 0, 1000,
+     false, true, "", [](AccelSpec& s, double v) { s.bvh.reinsertIterations = int(v); }},
+    {"bvh-reinsert-batch", "BVH: share of inner nodes moved an iteration (default 0.05)", isBoxBvh, 0.001, 1.0,
+     false, false, "bvh-reinsert-batch must be in [0.001, 1]",
      [](AccelSpec& s, double v) { s.bvh.reinsertBatch = v; }},
-    {"--kd-traversal-cost", "kd-tree SAH: cost of a traversal step (overrides the default)", isKd, 0.0, 1e9,
-     true, false, "--kd-traversal-cost and --kd-intersection-cost must be finite and not negative",
+    {"kd-traversal-cost", "kd-tree SAH: cost of a traversal step", isKd, 0.0, 1e9, true, false,
+     "kd-traversal-cost and kd-intersection-cost must be finite and not negative",
      [](AccelSpec& s, double v) { s.kd.traversalCost = v; }},
-    {"--kd-intersection-cost", "kd-tree SAH: cost of a triangle test (overrides the default)", isKd, 0.0,
-     1e9, true, false, "--kd-traversal-cost and --kd-intersection-cost must be finite and not negative",
+    {"kd-intersection-cost", "kd-tree SAH: cost of a triangle test", isKd, 0.0, 1e9, true, false,
+     "kd-traversal-cost and kd-intersection-cost must be finite and not negative",
      [](AccelSpec& s, double v) { s.kd.intersectionCost = v; }},
-    {"--kd-empty-bonus", "kd-tree SAH: bonus for cutting off empty space, 0..1 (overrides the default)",
-     isKd, 0.0, 1.0, false, false, "--kd-empty-bonus must be in [0, 1]",
-     [](AccelSpec& s, double v) { s.kd.emptyBonus = v; }},
-    {"--kd-empty-min", "kd-tree SAH: smallest empty side, as a fraction of the node, that earns the bonus (default 0.1)",
-     isKd, 0.0, 1.0, false, false, "--kd-empty-min must be in [0, 1]",
+    {"kd-empty-bonus", "kd-tree SAH: bonus for cutting off empty space", isKd, 0.0, 1.0, false, false,
+     "kd-empty-bonus must be in [0, 1]", [](AccelSpec& s, double v) { s.kd.emptyBonus = v; }},
+    {"kd-empty-min", "kd-tree SAH: least empty share for the bonus (default 0.1)",
+     isKd, 0.0, 1.0, false, false, "kd-empty-min must be in [0, 1]",
      [](AccelSpec& s, double v) { s.kd.emptyBonusMinFraction = v; }},
-    {"--kd-max-depth", "kd-tree: maximum depth (default 8 + 1.3 log2 N)", isKd, 1, kd::KdConfig::kMaxDepthLimit,
+    {"kd-max-depth", "kd-tree: maximum depth (default 8 + 1.3 log2 N)", isKd, 1, kd::KdConfig::kMaxDepthLimit,
      false, true, "", [](AccelSpec& s, double v) { s.kd.maxDepth = int(v); }},
-    {"--kd-max-duplication", "kd-tree: most references per triangle in the whole tree (default 8)", isKd, 1.0,
-     1e9, false, false, "--kd-max-duplication must be a number of references per triangle, 1 or more",
+    {"kd-max-duplication", "kd-tree: most references a triangle (default 8)", isKd, 1.0, 1e9,
+     false, false, "kd-max-duplication must be a number of references per triangle, 1 or more",
      [](AccelSpec& s, double v) { s.kd.maxDuplication = v; }},
-    {"--kd-short-stack", "kd-shortstack: entries of its stack (default 4)", isKdShortStack, 1, VKRAY_KD_STACK_SIZE,
+    {"kd-short-stack", "kd-shortstack: entries of its stack (default 4)", isKdShortStack, 1, VKRAY_KD_STACK_SIZE,
      false, true, "", [](AccelSpec& s, double v) { s.kdShortStack = int(v); }},
 };
 
@@ -115,24 +118,29 @@ AccelSpec specOf(const AccelEntry& e) {
     return spec;
 }
 
-// "--kd-max-depth applies to kd-restart, kd-pushdown, kd-backtrack, kd-stack, kd-shortstack only (--accel bvh)".
-Error notApplicable(const TuningOption& o, const AccelSpec& spec) {
+// "kd-max-depth applies to kd-restart, kd-pushdown, kd-backtrack, kd-stack, kd-shortstack only".
+std::string notApplicable(const TuningOption& o) {
     std::vector<std::string> names;
     for (const AccelEntry& e : kAccels)
         if (o.appliesTo(specOf(e))) names.push_back(std::string(e.name));
-    return Error(std::string(o.flag) + " applies to " + joined(names) + " only (--accel " + spec.name + ")");
+    return std::string(o.name) + " applies to " + joined(names) + " only";
 }
 
-std::string knownTuningKeys() {
-    std::vector<std::string> keys;
-    for (const TuningOption& o : kTuning) keys.push_back(std::string(o.flag.substr(2)));
-    return joined(keys);
+std::vector<std::string> tuningNames() {
+    std::vector<std::string> names;
+    for (const TuningOption& o : kTuning) names.push_back(std::string(o.name));
+    return names;
 }
 
-// `given` and the tuning written into the name after its first ':' ("bvh:aac-delta=8:...").
-Tuning withNamedTuning(std::string_view text, const Tuning& given) {
-    Tuning tuning = given;
-    const auto fail = [&](const std::string& why) { return Error("--accel " + std::string(text) + ": " + why); };
+// " (did you mean 'kd-ropes'?)" when a known name is near `typed`, else " (known: a, b, ...)".
+std::string nearestOrKnown(std::string_view typed, const std::vector<std::string>& known) {
+    if (const std::optional<std::string> near = closestName(typed, known)) return " (did you mean '" + *near + "'?)";
+    return " (known: " + joined(known) + "; see --accel help)";
+}
+
+// The tuning written into the name after its first ':' ("bvh:aac-delta=8:..."), by option.
+std::map<const TuningOption*, double> namedTuning(std::string_view text, const std::function<Error(std::string)>& fail) {
+    std::map<const TuningOption*, double> tuning;
     for (size_t at = text.find(':'); at != std::string_view::npos;) {
         const size_t end = text.find(':', at + 1);
         const std::string_view item = text.substr(at + 1, end == std::string_view::npos ? end : end - at - 1);
@@ -142,17 +150,23 @@ Tuning withNamedTuning(std::string_view text, const Tuning& given) {
         if (key.starts_with("--")) key.remove_prefix(2);
         if (eq == std::string_view::npos || key.empty())
             throw fail("expected OPTION=VALUE after ':', got '" + std::string(item) + "'");
-        const std::string flag = "--" + std::string(key);
-        if (std::none_of(std::begin(kTuning), std::end(kTuning), [&](const TuningOption& o) { return o.flag == flag; }))
-            throw fail("unknown tuning option '" + flag.substr(2) + "' (known: " + knownTuningKeys() + ")");
+        const auto option = std::find_if(std::begin(kTuning), std::end(kTuning),
+                                         [&](const TuningOption& o) { return o.name == key; });
+        if (option == std::end(kTuning))
+            throw fail("unknown tuning option '" + std::string(key) + "'" + nearestOrKnown(key, tuningNames()));
         double v = 0.0;  // the scene files' number rule: whole token, locale-independent, finite
         if (parseReal(item.substr(eq + 1), v) != NumberStatus::Ok)
             throw fail("'" + std::string(item) + "': the value is not a number");
-        std::optional<double>& slot = tuning[flag];
-        if (slot) throw fail(flag + " is given twice");
-        slot = v;
+        if (!tuning.emplace(&*option, v).second) throw fail(std::string(key) + " is given twice");
     }
     return tuning;
+}
+
+// "1..1024", "[0, 0.5)", ">= 1": what accepts() lets through, for `--accel help`.
+std::string valueRange(const TuningOption& o) {
+    if (o.hi >= 1e9) return std::string(o.integer ? "INT" : "X") + " >= " + shortNumber(o.lo);
+    if (o.integer) return shortNumber(o.lo) + ".." + shortNumber(o.hi);
+    return "[" + shortNumber(o.lo) + ", " + shortNumber(o.hi) + (o.hiOpen ? ")" : "]");
 }
 
 }  // namespace
@@ -168,32 +182,44 @@ const std::vector<std::string>& accelNames() {
 
 std::span<const TuningOption> tuningOptions() { return kTuning; }
 
-AccelSpec resolveAccel(std::string_view text, const Tuning& given) {
+AccelSpec resolveAccel(std::string_view text) {
+    const auto fail = [&](const std::string& why) { return Error("--accel " + std::string(text) + ": " + why); };
     const std::string_view name = text.substr(0, text.find(':'));
     const auto entry = std::find_if(std::begin(kAccels), std::end(kAccels),
                                     [&](const AccelEntry& e) { return e.name == name; });
     if (entry == std::end(kAccels))
-        throw Error("--accel " + std::string(text) + ": unknown accelerator '" + std::string(name) +
-                    "' (known: " + joined(accelNames()) + ")");
+        throw fail("unknown accelerator '" + std::string(name) + "'" + nearestOrKnown(name, accelNames()));
     AccelSpec spec = specOf(*entry);
     spec.name = std::string(text);
-    const Tuning tuning = withNamedTuning(text, given);
-
-    for (const auto& [flag, value] : tuning) {
-        if (!value) continue;
-        const auto option = std::find_if(std::begin(kTuning), std::end(kTuning),
-                                         [&](const TuningOption& o) { return o.flag == flag; });
-        if (option == std::end(kTuning)) throw Error("internal: no tuning option " + flag);
-        if (!accepts(*option, *value)) {
-            const std::string rule =
-                option->rule.empty() ? flag + " must be " + shortNumber(option->lo) + ".." + shortNumber(option->hi)
-                                     : std::string(option->rule);
-            throw Error(rule + " (got " + shortNumber(*value) + ")");
+    // In the table's order, whatever the text's: the options touch separate fields.
+    for (const auto& [option, value] : namedTuning(text, fail)) {
+        if (!accepts(*option, value)) {
+            const std::string rule = option->rule.empty() ? std::string(option->name) + " must be " +
+                                                                shortNumber(option->lo) + ".." + shortNumber(option->hi)
+                                                          : std::string(option->rule);
+            throw fail(rule + " (got " + shortNumber(value) + ")");
         }
-        if (!option->appliesTo(spec)) throw notApplicable(*option, spec);
-        option->apply(spec, *value);
+        if (!option->appliesTo(spec)) throw fail(notApplicable(*option));
+        option->apply(spec, value);
     }
     return spec;
+}
+
+std::string accelHelp() {
+    std::string text = "accelerators (--accel NAME, default " + std::string(kDefaultAccel) + "):\n", line = " ";
+    for (const std::string& name : accelNames()) {
+        if (line.size() + name.size() > 94) text += line + "\n", line = " ";
+        line += " " + name;
+    }
+    text += line + "\ntuning follows the name: --accel NAME:OPTION=VALUE[:OPTION=VALUE...], "
+                   "e.g. --accel bvh:aac-delta=8\n";
+    for (const TuningOption& o : kTuning) {
+        char row[256];
+        std::snprintf(row, sizeof row, "  %-24s %-12s %s\n", std::string(o.name).c_str(), valueRange(o).c_str(),
+                      std::string(o.help).c_str());
+        text += row;
+    }
+    return text;
 }
 
 std::string structureKey(const AccelSpec& spec) {

@@ -1,13 +1,12 @@
-// Which acceleration structure a render uses, and how it is built: `--accel NAME` and the tuning
-// options resolved once, in resolveAccel(), into a typed AccelSpec whose configs are validated.
+// Which acceleration structure a render uses, and how it is built: `--accel NAME[:OPTION=VALUE...]`
+// resolved once, in resolveAccel(), into a typed AccelSpec whose configs are validated.
 //
 // accel_spec.cpp holds the only two tables: the accelerators (name, family, preset) and the tuning
-// options (flag, help, the accelerators it applies to, accepted range, the config field it sets).
+// options (name, help, the accelerators it applies to, accepted range, the config field it sets).
 // A new accelerator is a row of the first (plus its builder and kernel), a new tuning option a row
-// of the second (plus the config field); the command line, its help and its errors follow.
+// of the second (plus the config field); `--accel help`, the errors and their suggestions follow.
 #pragma once
 
-#include <map>
 #include <optional>
 #include <span>
 #include <string>
@@ -40,33 +39,34 @@ struct AccelSpec {
 // Every accelerator name vkray accepts, in the order `--help` lists them.
 const std::vector<std::string>& accelNames();
 
-// One tuning option of the command line (for example --aac-delta), as accel_spec.cpp defines it.
+// One tuning option (for example aac-delta in `--accel bvh:aac-delta=8`), as accel_spec.cpp defines it.
 struct TuningOption {
-    std::string_view flag;  // "--aac-delta"
-    std::string_view help;  // for --help
+    std::string_view name;  // "aac-delta"
+    std::string_view help;  // for `--accel help`
     // Whether it changes the structure `spec` builds, or how its kernel walks it; given for one it does
     // not, it is an error.
     bool (*appliesTo)(const AccelSpec& spec);
     // Accepted values: lo <= v <= hi (v < hi when hiOpen), whole numbers only when `integer`.
     double lo, hi;
     bool hiOpen, integer;
-    // The error, in a sentence ("--aac-epsilon must be in [0, 0.5)"); empty: "FLAG must be LO..HI".
+    // The error, in a sentence ("aac-epsilon must be in [0, 0.5)"); empty: "NAME must be LO..HI".
     std::string_view rule;
     void (*apply)(AccelSpec& spec, double value);
 };
 
 std::span<const TuningOption> tuningOptions();
 
-// Tuning values by flag ("--aac-delta" -> 8); a flag that is absent or empty keeps the preset.
-using Tuning = std::map<std::string, std::optional<double>, std::less<>>;
+// The spec for an accelerator's name, with the tuning that may follow it, so that one list compares
+// a preset with variants of it: "bvh:bvh-reinsert-iterations=20:bvh-reinsert-batch=0.1" is bvh with
+// those two options (each a tuning option's name, '=', a number); the spec keeps the whole text as
+// its name. Throws vkray::Error naming the text for an unknown name or option (with the nearest
+// known one, core/suggest.h, else the list), a malformed option, an option given twice, a value out
+// of range, or an option that does not apply to the accelerator (say kd-max-depth with bvh).
+AccelSpec resolveAccel(std::string_view text);
 
-// The spec for a name with the tuning applied. The name may carry tuning of its own, so that one
-// list compares a preset with variants of it: "bvh:bvh-reinsert-iterations=20:bvh-reinsert-batch=0.1"
-// is bvh with those two options (each a tuning flag without its dashes, '=', a number); the spec
-// keeps the whole text as its name. Throws vkray::Error naming the option for an unknown name
-// (listing the known ones), an unknown or malformed option in the name, an option given twice, a
-// value out of range, or an option that does not apply to the accelerator (say --kd-max-depth with bvh).
-AccelSpec resolveAccel(std::string_view name, const Tuning& tuning = {});
+// What `--accel help` prints: the accelerators, the syntax, and each tuning option with its values
+// and the accelerators it applies to, one line each.
+std::string accelHelp();
 
 // What two specs share when they build the same structure (bvh and bvh-hq; the three kd
 // traversals): equal keys mean one build serves both.

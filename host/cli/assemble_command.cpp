@@ -24,6 +24,7 @@ struct AssembleArgs {
 };
 
 void run(const AssembleArgs& args) {
+    checkExtensionGiven(args.output, "-o");
     checkColorImagePath(args.output);
     const Encoding encoding = parseEncoding(args.encoding, args.exposure);
     const std::vector<std::filesystem::path> paths(args.tiles.begin(), args.tiles.end());

@@ -135,27 +135,40 @@ void mergeReports(const BenchArgs& args, const std::string& commandLine) {
 void registerBenchCommand(CLI::App& app, int& exitCode, int argc, const char* const* argv) {
     auto* cmd = app.add_subcommand("bench", "Compare accelerators: build and trace time, work per ray, error against run time");
     auto args = std::make_shared<BenchArgs>();
-    auto* scenes = cmd->add_option("scenes", args->scenes, "Scene files (required unless --merge)");
-    cmd->add_option("--accel", args->accels,
-                    "Comma-separated accelerators (default bvh,bvh-fast,bvh-hq,bvh-stackless,kd-stack,kd-shortstack,kd-restart,kd-pushdown,kd-ropes,"
-                    "kd-backtrack); each may carry tuning, NAME:OPTION=VALUE[:OPTION=VALUE...], "
-                    "e.g. bvh:bvh-reinsert-iterations=20 (the options of `vkray render`, without their dashes)");
-    cmd->add_option("--device", args->device, "Vulkan device: index or name substring (see `vkray devices`)");
-    cmd->add_option("--size", args->size, "Image size WIDTHxHEIGHT (default: each scene's 'size')");
+    auto* scenes = cmd->add_option("scenes", args->scenes, "Scene or mesh files (required unless --merge)");
+    std::string defaults = "--accel's default:", line;
+    for (const std::string& a : bench::BenchOptions{}.accels) {
+        if (line.size() + a.size() > 90) defaults += "\n " + line, line.clear();
+        line += " " + a;
+    }
+    cmd->footer(defaults + "\n " + line + "\n`--accel help` lists the names and tuning options.");
+    addAccelOption(*cmd, args->accels, "Accelerators, NAME[:OPTION=VALUE...],...; default below")
+        ->type_name("LIST");
+    cmd->add_option("--device", args->device, "Vulkan device: index or name substring (`vkray devices`)")
+        ->type_name("N|NAME");
+    cmd->add_option("--size", args->size, "Image size, e.g. 640x480 (default: each scene's)")->type_name("WxH");
     addViewOption(*cmd, args->view);
-    cmd->add_option("--repeat", args->repeat, "Timed runs after one warm-up; medians with min-max")->default_str("3");
-    cmd->add_option("--out", args->out, "Output folder for bench.json, bench.md, report.html, images/")
+    cmd->add_option("--repeat", args->repeat, "Timed runs after one warm-up; medians with min-max")
+        ->type_name("N")
+        ->default_str("3");
+    cmd->add_option("--out", args->out, "Folder for bench.json, bench.md, report.html, images/")
+        ->type_name("DIR")
         ->default_str(args->out);
     cmd->add_option("--threads", args->threads,
-                    "Build-scaling thread counts, e.g. 1,2; 0 = all cores (default 1, 2, 4, ... all cores)");
-    cmd->add_option("--deltas", args->deltas, "AAC delta sweep (as in Table 5.5 of A. F. Mahmuda's 2017 AAC thesis), e.g. 4,6,8,...,50, or none (default 4,8,12,20,30,50)");
-    cmd->add_option("--maxdepths", args->maxDepths, "maxdepth sweep below the scene's, e.g. 1,2, or none (default: every depth below the scene's)");
+                    "Build thread counts, e.g. 1,2 (0 = all cores; default 1,2,4,...,all)")
+        ->type_name("LIST");
+    cmd->add_option("--deltas", args->deltas, "AAC delta sweep, or none (default 4,8,12,20,30,50; Mahmuda 2017)")
+        ->type_name("LIST");
+    cmd->add_option("--maxdepths", args->maxDepths, "maxdepth sweep, e.g. 1,2, or none (default: each below the scene's)")
+        ->type_name("LIST");
     cmd->add_option("--shard", args->shard,
-                    "Measure only shard I of N (0-based) of the configurations, round-robin (docs/cluster.md)");
-    cmd->add_option("--merge", args->merge, "Merge the reports of every shard of one run, one folder each, into --out")
+                    "Measure shard I (from 0) of N of the configurations (docs/cluster.md)")
+        ->type_name("I/N");
+    cmd->add_option("--merge", args->merge, "Merge the shards' reports of one run, a folder each, into --out")
+        ->type_name("DIR")
         ->expected(1, -1)
         ->excludes(scenes);
-    cmd->add_flag("--quiet", args->quiet, "No progress line and no summary: errors and warnings only (as render's)");
+    cmd->add_flag("--quiet", args->quiet, "No progress line and no summary: errors and warnings only");
     const std::string commandLine = joinCommandLine(argc, argv);
     cmd->callback([args, commandLine, &exitCode] {
         if (!args->merge.empty()) {

@@ -3,9 +3,11 @@
 #include <algorithm>
 #include <charconv>
 #include <cmath>
+#include <cstdio>
 #include <regex>
 #include <sstream>
 
+#include "accel/accel_spec.h"
 #include "core/error.h"
 #include "scene/scene.h"
 #include "scene/text_input.h"
@@ -24,10 +26,42 @@ std::pair<int, int> parseSize(const std::string& text, const std::string& option
 
 void addViewOption(CLI::App& cmd, std::string& view) {
     cmd.add_option("--view,--camera", view,
-                   "Camera: scene (its own), close (a close-up of its triangles, where most camera rays hit), "
-                   "EX,EY,EZ,CX,CY,CZ[,FOVY] (eye, look-at centre, fovy; up from the scene) or "
-                   "EX,EY,EZ,CX,CY,CZ,UX,UY,UZ,FOVY (as the scene's camera line)")
+                   "scene, fit (all in view), close, or EX,EY,EZ,CX,CY,CZ[,FOVY]")
+        ->type_name("V")
         ->default_str("scene");
+}
+
+CLI::Option* addAccelOption(CLI::App& cmd, std::string& accel, const std::string& description) {
+    // Checked as it is parsed, so that `vkray render --accel help` needs no scene.
+    return cmd
+        .add_option_function<std::string>(
+            "--accel",
+            [&accel](const std::string& value) {
+                if (value == "help") {
+                    std::fputs(accel::accelHelp().c_str(), stdout);
+                    throw CLI::Success();
+                }
+                accel = value;
+            },
+            description)
+        ->trigger_on_parse()
+        ->type_name("NAME");
+}
+
+CLI::Option* addFourNumberOption(CLI::App& cmd, const std::string& name, std::string& text,
+                                 const std::string& description) {
+    return cmd
+        .add_option_function<std::vector<std::string>>(
+            name,
+            [&text](const std::vector<std::string>& values) {
+                text.clear();
+                for (const std::string& v : values) text += (text.empty() ? "" : ",") + v;
+            },
+            description)
+        ->expected(1, 4)
+        ->allow_extra_args(false)
+        ->delimiter(',')  // so that X0,X1,Y0,Y1 counts four and the scene after it stays a scene
+        ->type_name("X0,X1,Y0,Y1");
 }
 
 glm::vec3 parseColour(const std::string& text, const std::string& option) {

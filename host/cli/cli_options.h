@@ -22,6 +22,15 @@ std::vector<int> parseIntList(const std::string& text, const std::string& option
 // --view, as render and bench take it (scene/camera.h, viewCamera, checks the value).
 void addViewOption(CLI::App& cmd, std::string& view);
 
+// --accel, as render (one accelerator) and bench (a comma-separated list) take it: `help` as its value
+// prints accel::accelHelp() and ends the command successfully, before any other check.
+CLI::Option* addAccelOption(CLI::App& cmd, std::string& accel, const std::string& description);
+
+// A flag of four numbers, --NAME X0,X1,Y0,Y1 or pbrt-v3's --NAME X0 X1 Y0 Y1 (four arguments): `text`
+// gets them joined by commas, for the parse* functions below to check.
+CLI::Option* addFourNumberOption(CLI::App& cmd, const std::string& name, std::string& text,
+                                 const std::string& description);
+
 // "0.2,0.3,0.5" -> an RGB colour of three finite, non-negative numbers; `option` names the flag.
 glm::vec3 parseColour(const std::string& text, const std::string& option);
 

@@ -21,6 +21,7 @@ struct ConvertArgs {
 };
 
 void run(const ConvertArgs& args, bool encodingGiven) {
+    checkExtensionGiven(args.output, "OUT");
     checkColorImagePath(args.output);  // a bad name is refused before anything is read
     const ImageFormat inFormat = readImageFormat(args.input);
     // An 8-bit input holds encoded levels already: by default they are copied as they are.

@@ -2,12 +2,14 @@
 // "error: " line on stderr, exit 2 for a wrong command line (usage), 1 for everything else.
 #include <cstdio>
 #include <exception>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include <CLI/CLI.hpp>
 
+#include "accel/accel_spec.h"
 #include "cli/commands.h"
 #include "core/error.h"
 #include "core/suggest.h"
@@ -16,6 +18,26 @@
 namespace {
 
 constexpr int kUsageExit = 2;
+
+// --help as CLI11 writes it, less its "Needs:" and "Excludes:" lists, which would push the
+// descriptions off the line: a wrong combination is refused with its reason anyway.
+class HelpFormatter : public CLI::Formatter {
+public:
+    std::string make_option_opts(const CLI::Option* opt) const override {
+        if (opt->get_type_size() == 0) return "";
+        std::string text = " " + get_label(opt->get_type_name());
+        if (!opt->get_default_str().empty()) text += "=" + opt->get_default_str();
+        if (opt->get_expected_max() == CLI::detail::expected_max_vector_size) text += " ...";
+        if (opt->get_required()) text += " " + get_label("REQUIRED");
+        return text;
+    }
+};
+
+bool isTuningOption(std::string_view name) {
+    for (const vkray::accel::TuningOption& o : vkray::accel::tuningOptions())
+        if (o.name == name) return true;
+    return false;
+}
 
 // CLI11's message for a wrong command line, as one line with where to look. Unexpected arguments
 // are listed in the order given (CLI11 2.1's message reverses them).
@@ -39,6 +61,8 @@ std::string usageMessage(const CLI::App& app, const CLI::ParseError& e) {
                 for (const CLI::Option* o : parsed.back()->get_options())
                     for (const std::string& l : o->get_lnames()) flags.push_back(l);
                 if (const auto near = vkray::closestName(a.substr(2), flags)) hint = "; did you mean --" + *near + "?";
+                if (isTuningOption(a.substr(2)))
+                    hint = "; tuning follows the accelerator's name: --accel NAME:" + a.substr(2) + "=VALUE";
             }
         }
         message = "unexpected argument" + std::string(extras.size() > 1 ? "s" : "") + ": " + list + hint;
@@ -54,6 +78,7 @@ int main(int argc, char** argv) {
     CLI::App app{"vkray: a Vulkan compute ray tracer for studying acceleration structures"};
     app.set_version_flag("--version", VKRAY_VERSION);
     app.require_subcommand(1);
+    app.formatter(std::make_shared<HelpFormatter>());  // before the subcommands, which copy it
     int exitCode = 0;
     vkray::cli::registerRenderCommand(app, exitCode);
     vkray::cli::registerDevicesCommand(app, exitCode);

@@ -31,8 +31,7 @@ struct RenderArgs {
     std::vector<std::string> scenes;
     std::string output;
     std::string outDir;  // several scenes: each image into this folder under its own name
-    std::string accel{accel::kDefaultAccel};
-    accel::Tuning tuning;  // --aac-delta, --kd-max-depth, ... (accel/accel_spec.cpp)
+    std::string accel{accel::kDefaultAccel};  // NAME[:OPTION=VALUE...] (accel/accel_spec.h)
     bool counters = false;
     bool cpu = false;
     std::string device;
@@ -70,9 +69,9 @@ std::map<std::string, std::string> parseAovs(const std::vector<std::string>& spe
     return out;
 }
 
-// The colour image's file: -o, else the scene's `output`, else SCENE.png; a name without an
-// extension, from either, gets .png. With --out-dir, the scene's name (its `output` or SCENE.png)
-// in that folder. Empty for --pixel without -o: the pixel's values are the output.
+// The colour image's file: -o, which must name its format's extension, else the scene's `output`,
+// which gets .png without one (CSE167's rule), else SCENE.png. With --out-dir, the scene's name (its
+// `output` or SCENE.png) in that folder. Empty for --pixel without -o: the pixel's values are the output.
 std::filesystem::path outputPath(const RenderArgs& args, const std::string& sceneFile, const Scene& scene) {
     const auto withPng = [](std::filesystem::path p) {
         if (!p.has_extension()) p += ".png";
@@ -82,7 +81,8 @@ std::filesystem::path outputPath(const RenderArgs& args, const std::string& scen
         if (args.output == "-") throw Error("-o -: the image goes to a file, not to standard output: name one");
         if (!std::filesystem::path(args.output).has_filename() || std::filesystem::is_directory(args.output))
             throw Error("-o " + args.output + ": names a directory; name the image file");
-        return withPng(args.output);
+        checkExtensionGiven(args.output, "-o");
+        return args.output;
     }
     if (!args.pixel.empty() || args.buildOnly) return {};
     const std::filesystem::path name =
@@ -138,7 +138,7 @@ void checkSceneList(const RenderArgs& args) {
 render::RenderRequest makeRequest(const RenderArgs& args) {
     render::RenderRequest r;
     r.aovs = parseAovs(args.aovs);
-    r.accel = accel::resolveAccel(args.accel, args.tuning);
+    r.accel = accel::resolveAccel(args.accel);
     r.view = args.view;
     r.cpu = args.cpu;
     r.device = args.device;
@@ -191,78 +191,64 @@ void runRender(const RenderArgs& args) {
 
 void registerRenderCommand(CLI::App& app, int& exitCode) {
     auto args = std::make_shared<RenderArgs>();
-    auto* cmd = app.add_subcommand("render", "Render a .scene file to an image");
-    cmd->add_option("scenes", args->scenes, "Scene files (.scene, or CSE167 .test files), rendered one after the other")
-        ->required();
-    CLI::Option* output = cmd->add_option(
-        "-o,--output", args->output,
-        "Output image (.png, .bmp, .exr or .pfm); default: the scene's 'output' or SCENE.png");
-    CLI::Option* outDir = cmd->add_option("--out-dir", args->outDir,
-                    "Folder for the images (each scene's 'output' name or SCENE.png): for several scenes a call")
-        ->type_name("DIR")
-        ->excludes(output);
-    cmd->add_option("--encoding", args->encoding,
-                    "8-bit outputs (PNG, BMP): srgb, linear (round(255 c), as CSE167's reference images), or auto: "
-                    "srgb, but linear for .test files; EXR and PFM keep linear floats")
-        ->check(CLI::IsMember({"auto", "srgb", "linear"}))
-        ->default_str("auto");
-    cmd->add_option("--exposure", args->exposure, "8-bit outputs: multiply the colour by 2^EV before encoding")
-        ->type_name("EV")
-        ->default_str("0");
-    std::string accelList;
-    for (const std::string& n : accel::accelNames()) accelList += (accelList.empty() ? "" : ", ") + n;
-    cmd->add_option("--accel", args->accel,
-                    "Acceleration structure: " + accelList +
-                        "; tuning may follow the name, NAME:OPTION=VALUE[:...] (the options below without their dashes)")
-        ->default_str(args->accel);
-    for (const accel::TuningOption& o : accel::tuningOptions())
-        cmd->add_option(std::string(o.flag), args->tuning[std::string(o.flag)], std::string(o.help))
-            ->type_name(o.integer ? "INT" : "FLOAT");
-    CLI::Option* counters = cmd->add_flag("--counters", args->counters,
-                                          "GPU: compile traversal counters in and report nodes, leaves and triangle tests per ray (slower)");
-    CLI::Option* cpu = cmd->add_flag("--cpu", args->cpu, "Render with the CPU reference renderer (double precision)");
-    CLI::Option* device = cmd->add_option("--device", args->device, "Vulkan device: index or name substring (see `vkray devices`)");
-    // GPU-only flags with --cpu would be silently ignored: refused instead.
-    cpu->excludes(counters);
-    cpu->excludes(device);
-    cmd->add_option("--size", args->size, "Image size WIDTHxHEIGHT (overrides the scene's 'size')");
+    auto* cmd = app.add_subcommand("render", "Render scenes or meshes to images");
+    cmd->footer("Flags that override the scene say so; docs/outputs.md describes the outputs, README.md the rest.");
+    cmd->add_option("scenes", args->scenes, "Scene files (.scene, CSE167 .test) or meshes (.obj, .off)")->required();
+    CLI::Option* output = cmd->add_option("-o,--output", args->output,
+                                          "Image: .png, .bmp (8-bit), .exr, .pfm (float); default SCENE.png")
+                              ->type_name("FILE");
+    CLI::Option* outDir =
+        cmd->add_option("--out-dir", args->outDir, "Folder for the images of several scenes, each under its name")
+            ->type_name("DIR")
+            ->excludes(output);
+    cmd->add_option("--size", args->size, "Image size, e.g. 640x480 (overrides the scene's)")->type_name("WxH");
     addViewOption(*cmd, args->view);
+    cmd->add_option("--maxdepth", args->maxDepth, "Ray depth, primary rays count as 1 (overrides the scene's)")
+        ->type_name("N");
+    cmd->add_option("--spp", args->spp, "Camera rays per pixel, averaged (overrides the scene's; default 1)")
+        ->type_name("N");
+    cmd->add_option("--background", args->background, "Radiance of rays that hit nothing (overrides the scene's)")
+        ->type_name("R,G,B");
     std::vector<CLI::Option*> windows = {
-        cmd->add_option("--crop", args->crop,
-                        "Render only X0,X1,Y0,Y1 of the image, as fractions in [0, 1] (pbrt's crop window); the "
-                        "image written holds just those pixels (an EXR records where they lie)"),
-        cmd->add_option("--pixel-bounds", args->pixelBounds,
-                        "Render only pixel columns [X0, X1) and rows [Y0, Y1): X0,X1,Y0,Y1"),
-        cmd->add_option("--pixel", args->pixel,
-                        "Render the one pixel X,Y and print its colour, depth, triangle and normal (and traversal "
-                        "counts with --counters); no image unless -o"),
-        cmd->add_option("--tile", args->tile,
-                        "Render band I of N bands of rows (I from 0), for `vkray assemble` to join: I/N")};
+        addFourNumberOption(*cmd, "--crop", args->crop, "Render only this part, fractions in [0,1] (pbrt's crop window)"),
+        addFourNumberOption(*cmd, "--pixel-bounds", args->pixelBounds, "Render only pixel columns [X0,X1), rows [Y0,Y1)"),
+        cmd->add_option("--pixel", args->pixel, "Render one pixel, print its values and trace its centre ray")
+            ->type_name("X,Y"),
+        cmd->add_option("--tile", args->tile, "Render band I (from 0) of N bands of rows, for `vkray assemble`")
+            ->type_name("I/N")};
     for (CLI::Option* a : windows)
         for (CLI::Option* b : windows)
             if (a != b) a->excludes(b);
-    cmd->add_option("--spp", args->spp,
-                    "Camera rays per pixel, averaged (overrides the scene's 'spp'; default 1, the pixel centre)");
-    cmd->add_option("--background", args->background,
-                    "R,G,B: the radiance of rays that hit nothing (overrides the scene's 'background'; default black)");
-    cmd->add_option("--maxdepth", args->maxDepth, "Ray depth, primary rays count as 1 (overrides the scene's)");
-    cmd->add_option("--threads", args->threads, "CPU threads (0 = all cores)");
-    CLI::Option* aov = cmd->add_option("--aov", args->aovs, "Write an AOV: depth=F.pfm, primid=F.pfm, normal=F.pfm (repeatable)");
+    cmd->add_option("--encoding", args->encoding, "8-bit outputs: srgb, linear, or auto (linear for .test scenes)")
+        ->check(CLI::IsMember({"auto", "srgb", "linear"}).description(""))  // the description names them
+        ->type_name("E");
+    cmd->add_option("--exposure", args->exposure, "8-bit outputs: multiply by 2^EV before encoding")->type_name("EV");
+    addAccelOption(*cmd, args->accel,
+                   "Structure[:OPTION=VALUE...], default " + args->accel + "; `--accel help` lists them");
+    CLI::Option* cpu = cmd->add_flag("--cpu", args->cpu, "Render with the CPU reference renderer (double precision)");
+    CLI::Option* device =
+        cmd->add_option("--device", args->device, "Vulkan device: index or name substring (`vkray devices`)")
+            ->type_name("N|NAME");
+    CLI::Option* counters =
+        cmd->add_flag("--counters", args->counters, "GPU: count nodes, leaves, triangle tests a ray (slower kernel)");
+    // GPU-only flags with --cpu would be silently ignored: refused instead.
+    cpu->excludes(counters);
+    cpu->excludes(device);
+    cmd->add_option("--threads", args->threads, "CPU threads for the build and --cpu (0 = all cores)")->type_name("N");
+    CLI::Option* aov =
+        cmd->add_option("--aov", args->aovs, "Write an AOV: depth, primid or normal, to a .pfm or .exr (repeatable)")
+            ->type_name("NAME=FILE");
     CLI::Option* saveAccel =
-        cmd->add_option("--save-accel", args->saveAccel,
-                        "Write the built structure to FILE, for --load-accel in later renders of the same scene")
+        cmd->add_option("--save-accel", args->saveAccel, "Write the built structure to FILE, for --load-accel")
             ->type_name("FILE");
-    CLI::Option* buildOnly = cmd->add_flag(
-        "--build-only", args->buildOnly,
-        "Build the structure and write it with --save-accel, render nothing (the first step of a tiled render)");
+    CLI::Option* buildOnly =
+        cmd->add_flag("--build-only", args->buildOnly, "With --save-accel: build and save the structure, render nothing");
     buildOnly->needs(saveAccel);
     for (CLI::Option* o : {output, outDir, aov, cpu, counters}) buildOnly->excludes(o);
     for (CLI::Option* o : windows) buildOnly->excludes(o);
-    cmd->add_option("--load-accel", args->loadAccel,
-                    "Read the structure from FILE (written by --save-accel for this scene and --accel) "
-                    "instead of building it; GPU only")
+    cmd->add_option("--load-accel", args->loadAccel, "Read the structure from FILE instead of building it (GPU)")
         ->type_name("FILE");
-    CLI::Option* stats = cmd->add_flag("--stats", args->stats, "Print scene, kernel-feature and timing statistics");
+    CLI::Option* stats = cmd->add_flag("--stats", args->stats, "Print scene, structure, kernel and timing statistics");
     CLI::Option* json = cmd->add_flag("--json", args->json, "Print the report as JSON");
     cmd->add_flag("--quiet", args->quiet, "No progress line and no summary: errors and warnings only")
         ->excludes(json)

@@ -161,25 +161,27 @@ std::string reportJson(const RenderReport& r) {
 }
 
 void printReport(const RenderReport& r, bool stats) {
-    std::printf("device:      %s\n", r.device.c_str());
-    std::printf("resolution:  %dx%d, maxdepth %d, %d sample%s a pixel, accel %s\n", r.options.width, r.options.height,
-                r.options.maxDepth, r.options.spp, r.options.spp == 1 ? "" : "s", r.accel.c_str());
-    if (const auto& w = r.options.window)
-        std::printf("window:      columns %d-%d, rows %d-%d (%dx%d pixels)\n", w->x0, w->x1 - 1, w->y0, w->y1 - 1,
-                    w->width(), w->height());
-    // The render, and beside it what else the command spent: a big scene's load and build can
-    // take longer than its render.
-    const std::string structure = r.accelFile && r.accelFile->loaded
-                                      ? "structure loaded " + formatMs(r.accelFile->ms)
-                                      : "build " + formatMs(r.buildMs);
-    if (r.buildOnly)
-        std::printf("build time:  %s (load %s; total %s), nothing rendered\n", formatMs(r.buildMs).c_str(),
+    if (r.buildOnly) {  // no device, no image: what was built, from what, and where it went
+        std::printf("built:       %s structure of %s (%zu triangle%s) in %s (load %s; total %s); nothing rendered\n",
+                    r.accel.c_str(), r.scene.c_str(), r.triangles, r.triangles == 1 ? "" : "s", formatMs(r.buildMs).c_str(),
                     formatMs(r.loadMs).c_str(), formatMs(r.totalMs).c_str());
-    else
+    } else {
+        std::printf("device:      %s\n", r.device.c_str());
+        std::printf("resolution:  %dx%d, maxdepth %d, %d sample%s a pixel, accel %s\n", r.options.width,
+                    r.options.height, r.options.maxDepth, r.options.spp, r.options.spp == 1 ? "" : "s", r.accel.c_str());
+        if (const auto& w = r.options.window)
+            std::printf("window:      columns %d-%d, rows %d-%d (%dx%d pixels)\n", w->x0, w->x1 - 1, w->y0, w->y1 - 1,
+                        w->width(), w->height());
+        // The render, and beside it what else the command spent: a big scene's load and build can
+        // take longer than its render.
+        const std::string structure = r.accelFile && r.accelFile->loaded
+                                          ? "structure loaded " + formatMs(r.accelFile->ms)
+                                          : "build " + formatMs(r.buildMs);
         std::printf("render time: %s (load %s, %s%s%s; total %s)\n", formatMs(r.renderMs).c_str(),
                     formatMs(r.loadMs).c_str(), structure.c_str(),
                     r.deviceMs && *r.deviceMs >= 0.05 ? (", device start " + formatMs(*r.deviceMs)).c_str() : "",
                     wroteFiles(r) ? (", write " + formatMs(r.writeMs)).c_str() : "", formatMs(r.totalMs).c_str());
+    }
     if (!r.output.empty()) std::printf("output:      %s\n", r.output.c_str());
     for (const auto& [name, file] : r.aovs) std::printf("aov %-7s  %s\n", name.c_str(), file.c_str());
     if (r.accelFile)

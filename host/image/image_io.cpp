@@ -30,6 +30,9 @@ namespace {
 
 Error fileError(const fs::path& path, const std::string& what) { return Error(FileLoc{path.string()}, what); }
 
+// The extensions of imageFormatForPath, for messages.
+constexpr const char* kImageExtensions = ".png, .bmp, .pfm, .exr";
+
 std::string lowerExtension(const fs::path& path) {
     std::string ext = path.extension().string();
     std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
@@ -301,8 +304,14 @@ ImageFormat imageFormatForPath(const fs::path& path) {
     if (ext == ".bmp") return ImageFormat::Bmp;
     if (ext == ".pfm") return ImageFormat::Pfm;
     if (ext == ".exr") return ImageFormat::Exr;
-    throw fileError(path, "unsupported image file extension '" + path.extension().string() +
-                              "' (supported: .png, .bmp, .pfm, .exr)");
+    throw fileError(path, "unsupported image file extension '" + path.extension().string() + "' (supported: " +
+                              kImageExtensions + ")");
+}
+
+void checkExtensionGiven(const fs::path& path, std::string_view option) {
+    if (!path.has_extension())
+        throw Error(std::string(option) + " " + path.string() + ": no file extension to choose the format by (give " +
+                    kImageExtensions + ")");
 }
 
 ImageFormat readImageFormat(const fs::path& path) {

@@ -70,6 +70,11 @@ Image readImage(const std::filesystem::path& path, ImageMeta* meta = nullptr);
 void checkColorImagePath(const std::filesystem::path& path);
 void checkAovPath(const std::filesystem::path& path, std::string_view name);
 
+// Throws when `path`, an output named on the command line (`option`: "-o", "OUT"), has no extension
+// to choose its format by, naming the extensions accepted: there a missing one is more likely a slip
+// than a wish for PNG. (A scene file's `output` name keeps the CSE167 rule: no extension is PNG.)
+void checkExtensionGiven(const std::filesystem::path& path, std::string_view option);
+
 // The AOV names writeAov accepts: depth, primid, normal.
 const std::vector<std::string_view>& aovNames();
 

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -52,27 +53,41 @@ glm::vec2 pixelSampleOffset(int s) {
 
 namespace {
 
-Camera closeUpCamera(const Scene& scene) {
-    if (scene.triangles.empty()) return scene.camera;
+struct Bounds {
+    glm::dvec3 centre;
+    double radius;  // half the diagonal: the sphere around the box
+};
+
+std::optional<Bounds> triangleBounds(const Scene& scene) {
+    if (scene.triangles.empty()) return std::nullopt;
     glm::vec3 lo(std::numeric_limits<float>::infinity()), hi(-std::numeric_limits<float>::infinity());
     for (const Triangle& t : scene.triangles)
         for (const glm::vec3& p : {t.p0, t.p1, t.p2}) {
             lo = glm::min(lo, p);
             hi = glm::max(hi, p);
         }
-    const glm::dvec3 centre = 0.5 * (glm::dvec3(lo) + glm::dvec3(hi));
-    const double radius = 0.5 * glm::length(glm::dvec3(hi) - glm::dvec3(lo));
-    const CameraFrame f = makeCameraFrame(scene.camera, 1, 1);  // validates the scene's camera
-    const double distance = std::max({0.5 * radius / f.tanY, radius, 1e-6});
-    Camera c = scene.camera;
-    c.center = glm::vec3(centre);
-    c.eye = glm::vec3(centre + f.w * distance);
+    return Bounds{0.5 * (glm::dvec3(lo) + glm::dvec3(hi)), 0.5 * glm::length(glm::dvec3(hi) - glm::dvec3(lo))};
+}
+
+// `view` moved to look at `b`'s centre from `distance`, along its own direction.
+Camera lookingAt(const Camera& view, const Bounds& b, double distance) {
+    const CameraFrame f = makeCameraFrame(view, 1, 1);  // validates the camera
+    Camera c = view;
+    c.center = glm::vec3(b.centre);
+    c.eye = glm::vec3(b.centre + f.w * std::max(distance, 1e-6));
     return c;
+}
+
+Camera closeUpCamera(const Scene& scene) {
+    const std::optional<Bounds> b = triangleBounds(scene);
+    if (!b) return scene.camera;
+    const double tanY = makeCameraFrame(scene.camera, 1, 1).tanY;
+    return lookingAt(scene.camera, *b, std::max(0.5 * b->radius / tanY, b->radius));
 }
 
 Camera explicitCamera(const Scene& scene, const std::string& text, const std::string& option) {
     const std::string usage =
-        option + " '" + text + "': expected scene, close, EX,EY,EZ,CX,CY,CZ[,FOVY] or EX,EY,EZ,CX,CY,CZ,UX,UY,UZ,FOVY";
+        option + " '" + text + "': expected scene, close, fit, EX,EY,EZ,CX,CY,CZ[,FOVY] or EX,EY,EZ,CX,CY,CZ,UX,UY,UZ,FOVY";
     const std::optional<std::vector<double>> numbers = parseRealList(text);
     if (!numbers) throw Error(usage);
     const std::vector<double>& v = *numbers;
@@ -96,8 +111,20 @@ Camera explicitCamera(const Scene& scene, const std::string& text, const std::st
 
 }  // namespace
 
+Camera fitCamera(const Scene& scene, const Camera& view) {
+    const std::optional<Bounds> b = triangleBounds(scene);
+    if (!b) return view;
+    const double tanY = makeCameraFrame(view, 1, 1).tanY;
+    const double aspect = scene.height > 0 ? double(scene.width) / double(scene.height) : 1.0;
+    const double halfAngle = std::atan(tanY * std::min(aspect, 1.0));
+    // The sphere touches the cone of halfAngle at distance radius / sin(halfAngle) from its centre.
+    constexpr double kMargin = 1.05;
+    return lookingAt(view, *b, kMargin * b->radius / std::sin(halfAngle));
+}
+
 Camera viewCamera(const Scene& scene, const std::string& view, const std::string& option) {
     if (view == "scene") return scene.camera;
+    if (view == "fit") return fitCamera(scene, scene.camera);
     if (view == "close") return closeUpCamera(scene);
     return explicitCamera(scene, view, option);
 }

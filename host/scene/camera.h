@@ -33,8 +33,17 @@ glm::dvec3 primaryDirection(const CameraFrame& f, int i, int j, glm::vec2 offset
 // centre ray. In float, as the GPU kernel gets it, so the CPU reference traces the same rays.
 glm::vec2 pixelSampleOffset(int s);
 
+// A camera that sees all of the scene's triangles: looking from `view`'s direction (eye minus
+// centre) at the centre of the triangles' bounds, with `view`'s up and fovy, as near as the sphere
+// around the bounds still fits in the field of view, with a margin of a twentieth. The field is the
+// vertical one of `view`'s fovy, or the horizontal one where scene.width / scene.height makes it
+// narrower (a portrait image), so the whole object is in any landscape image. `view` unchanged
+// when the scene has no triangles. Throws vkray::Error for a degenerate `view`.
+Camera fitCamera(const Scene& scene, const Camera& view);
+
 // The camera of a view other than the scene's own (`vkray render --view`, `vkray bench --view`):
 //   "scene"                      the scene's camera, unchanged;
+//   "fit"                        fitCamera from the scene camera's direction: all of the scene in view;
 //   "close"                      a close-up where most camera rays hit: looking at the centre of the
 //                                triangles' bounds from the scene camera's direction, near enough
 //                                that the vertical field of view spans half the bounds' diagonal

@@ -4,6 +4,7 @@
 
 #include <filesystem>
 #include <string>
+#include <string_view>
 
 #include "core/error.h"
 #include "scene/scene.h"
@@ -26,5 +27,13 @@ struct MeshRequest {
 // Appends the file's triangles in file order. Throws vkray::Error for an unsupported extension,
 // an unreadable file or bad content.
 void loadMeshFile(const MeshRequest& request, SceneBuilder& out);
+
+// Whether loadMeshFile reads files with this path's extension (.obj, .off, any case).
+bool isMeshFile(const std::filesystem::path& file);
+
+// The error of a mesh reader that cannot read request.file (`format`: "OBJ", "OFF"), at the scene
+// line that asked for it. A missing file under a scenes/meshes/ folder, where the repository's scenes look
+// for the meshes scripts/fetch-scenes.sh downloads (they are not committed), names that script.
+Error meshOpenError(const MeshRequest& request, std::string_view format, const std::string& whyNot);
 
 }  // namespace vkray

@@ -129,7 +129,7 @@ void appendMesh(const MeshRequest& request, const tinyobj::attrib_t& attrib, con
 void loadObj(const MeshRequest& request, SceneBuilder& out) {
     std::string whyNot;
     std::optional<std::string> bytes = request.readFile(request.file, whyNot);
-    if (!bytes) throw Error(request.requestedAt, "cannot open OBJ file '" + request.displayName + "': " + whyNot);
+    if (!bytes) throw meshOpenError(request, "OBJ", whyNot);
     const std::string context = " (OBJ loaded at " + request.requestedAt.str() + ")";
     const ObjSummary summary = checkObjText(*bytes, request.displayName, context);
     // Before tinyobjloader spends time and memory on a mesh that cannot be kept.

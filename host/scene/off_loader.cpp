@@ -207,7 +207,7 @@ void OffReader::finish(int lastLine) const {
 void loadOff(const MeshRequest& request, SceneBuilder& out) {
     std::string whyNot;
     const std::optional<std::string> bytes = request.readFile(request.file, whyNot);
-    if (!bytes) throw Error(request.requestedAt, "cannot open OFF file '" + request.displayName + "': " + whyNot);
+    if (!bytes) throw meshOpenError(request, "OFF", whyNot);
     OffReader reader(request, out, bytes->size());
     int lastLine = 0;
     forEachLine(

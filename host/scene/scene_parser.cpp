@@ -12,6 +12,7 @@
 #include "core/suggest.h"
 #include "scene/generators.h"
 #include "scene/mesh_file.h"
+#include "scene/mesh_scene.h"
 #include "scene/scene_builder.h"
 #include "scene/scene_line.h"
 #include "scene/sphere.h"
@@ -472,6 +473,7 @@ Scene parseScene(std::istream& in, const std::string& displayName, const std::fi
 }
 
 Scene loadScene(const std::filesystem::path& file, const ParseOptions& options) {
+    if (isMeshFile(file)) return loadMeshScene(file, options);
     std::string whyNot;
     const std::optional<std::string> text = readFileBytes(file, whyNot);
     if (!text) throw Error(FileLoc{file.string()}, "cannot open scene file: " + whyNot);

@@ -52,7 +52,8 @@ struct ParseOptions {
     std::function<void(const std::string& step)> progress;
 };
 
-// Reads `file`; relative paths in it (geo/obj) are resolved against its directory.
+// Reads `file`; relative paths in it (geo/obj) are resolved against its directory. A mesh file
+// (.obj, .off: isMeshFile) is read as the scene loadMeshScene makes of it (scene/mesh_scene.h).
 Scene loadScene(const std::filesystem::path& file, const ParseOptions& options = {});
 
 // Parses a scene from a stream; errors name `displayName`, `geo` paths are relative to `baseDir`.

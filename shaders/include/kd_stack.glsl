@@ -7,7 +7,7 @@
 // kd-shortstack is this walk with a short stack (Horn, Sugerman, Houston and Hanrahan, "Interactive
 // k-D Tree GPU Raytracing", I3D 2007, section 4.2; render_kd_shortstack.comp defines
 // VKRAY_KD_SHORT_STACK): a ring of VKRAY_SPEC_KD_SHORT_STACK entries (a specialization constant,
-// VKRAY_KD_SHORT_STACK_SIZE unless --kd-short-stack says otherwise); a push onto a full ring drops
+// VKRAY_KD_SHORT_STACK_SIZE unless kd-short-stack=N says otherwise); a push onto a full ring drops
 // the oldest entry, and when the ring runs dry with part of the ray left (something was dropped) the
 // walk restarts past the leaf, at the node push-down keeps (kd_restart.glsl).
 #ifndef VKRAY_KD_STACK_GLSL

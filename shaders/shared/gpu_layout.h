@@ -82,7 +82,7 @@ using uvec4 = glm::uvec4;
 // bool: write the primary hit's depth, normal and triangle identity (GpuPixel); off when nothing
 // reads them (a render that saves no AOV, a timing run), so the kernel stores 7 words a pixel, not 16.
 #define VKRAY_SPEC_PRIMARY_AOVS 8
-// int: kd-shortstack's stack entries (kd_stack.glsl; --kd-short-stack, default VKRAY_KD_SHORT_STACK_SIZE).
+// int: kd-shortstack's stack entries (kd_stack.glsl; tuning option kd-short-stack, default VKRAY_KD_SHORT_STACK_SIZE).
 #define VKRAY_SPEC_KD_SHORT_STACK 9
 // int: log2 of the texels of one view when texel arrays are split over several views of a binding
 // (VKRAY_TEXEL_VIEWS; read by the kernels' VKRAY_SPLIT_TEXEL_VIEWS variant, bindings.glsl); 0 when

@@ -40,9 +40,8 @@ void writeAll(const fs::path& path, const std::vector<char>& bytes) {
 }
 
 // Builds `name` over `scene` and saves it to `file`; returns what was built.
-GpuAccelData buildAndSave(const Scene& scene, const std::string& name, const fs::path& file, int threads = 2,
-                          const Tuning& tuning = {}) {
-    const AccelSpec spec = resolveAccel(name, tuning);
+GpuAccelData buildAndSave(const Scene& scene, const std::string& name, const fs::path& file, int threads = 2) {
+    const AccelSpec spec = resolveAccel(name);
     const auto built = buildAccel(scene, spec, BuildOptions{.threads = threads, .progress = {}});
     GpuAccelData data = built->gpuData();
     saveAccelFile(file, spec, scene, data, built->stats());
@@ -157,7 +156,7 @@ TEST(AccelFile, AShortStackFileServesAnyStackSize) {
     const GpuAccelData data = built->gpuData();
     EXPECT_EQ(data.kdShortStack, uint32_t(VKRAY_KD_SHORT_STACK_SIZE));
     saveAccelFile(file, saved, scene, data, built->stats());
-    const LoadedAccel loaded = loadAccelFile(file, resolveAccel("kd-shortstack", {{"--kd-short-stack", 2.0}}), scene);
+    const LoadedAccel loaded = loadAccelFile(file, resolveAccel("kd-shortstack:kd-short-stack=2.0"), scene);
     EXPECT_EQ(loaded.data.kdShortStack, 2u);
     EXPECT_EQ(loaded.data.nodes, data.nodes);
 }
@@ -199,13 +198,13 @@ TEST(AccelFile, RefusesAnotherAcceleratorOrTuning) {
     // One tree, another kernel: the kd traversals do not share files.
     expectRefused([&] { loadAccelFile(kdFile, resolveAccel("kd-backtrack"), scene); }, kdFile,
                   "built for --accel kd-stack, not kd-backtrack");
-    expectRefused([&] { loadAccelFile(bvhFile, resolveAccel("bvh", {{"--aac-delta", 9}}), scene); }, bvhFile,
-                  "built for --accel bvh tuned otherwise");
+    expectRefused([&] { loadAccelFile(bvhFile, resolveAccel("bvh:aac-delta=9"), scene); }, bvhFile,
+                  "built for --accel bvh, not bvh:aac-delta=9");
     // bvh is bvh-hq restructured: the same structure only when tuned alike.
     expectRefused([&] { loadAccelFile(bvhFile, resolveAccel("bvh-hq"), scene); }, bvhFile,
                   "built for --accel bvh, not bvh-hq");
     EXPECT_NO_THROW(loadAccelFile(
-        bvhFile, resolveAccel("bvh-hq", {{"--bvh-treelet-passes", 2}, {"--bvh-treelet-min", 8}}), scene));
+        bvhFile, resolveAccel("bvh-hq:bvh-treelet-passes=2:bvh-treelet-min=8"), scene));
 }
 
 // Every damage a disk, a copy or an editor can do: each is caught before the arrays are used.

@@ -6,6 +6,8 @@ set_tests_properties(cli.render_windows PROPERTIES TIMEOUT 600 ENVIRONMENT "VKRA
 
 set(one ${CLI_DATA}/one_triangle.scene)
 vkray_expect_error(crop_outside "--crop 0,1.5,0,1: the fractions must lie in \\[0, 1\\]" render ${one} --crop 0,1.5,0,1 -o ${CLI_OUT}/x.png)
+vkray_expect_error(crop_three "--crop 0.25,0.75,0.25: expected X0,X1,Y0,Y1" render ${one} --crop 0.25 0.75 0.25 -o ${CLI_OUT}/x.png)
+vkray_expect_usage_error(crop_five "--crop: At Most 4 required but received 5" render ${one} --crop 0.1,0.2,0.3,0.4,0.5 -o ${CLI_OUT}/x.png)
 vkray_expect_error(crop_empty "--crop 0.5,0.5,0,1: pixels .* are not a non-empty part of the" render ${one} --crop 0.5,0.5,0,1 -o ${CLI_OUT}/x.png)
 vkray_expect_error(pixel_bounds_outside "--pixel-bounds 0,9999,0,1: pixels \\[0, 9999\\) x \\[0, 1\\) are not a non-empty part of the"
                    render ${one} --pixel-bounds 0,9999,0,1 -o ${CLI_OUT}/x.png)

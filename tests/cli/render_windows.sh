@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # `vkray render`'s windows end to end on the GPU (lavapipe without one): four --tile renders joined by
 # `vkray assemble` are bit-identical to the whole render (EXR floats; colour with reflections and
-# two samples a pixel), so is a --crop window's EXR placed by its data window, --pixel prints the
+# two samples a pixel), so is a --crop window's EXR placed by its data window (its four numbers
+# comma-separated or four arguments), --pixel prints the
 # pixel of the whole render, and several scenes in one call land in --out-dir under their own names;
 # on the GPU a scene that needs an earlier scene's kernel pipeline renders with it, bit-identical to
 # its render alone (the pipeline's descriptors then name the second scene's buffers).
@@ -36,6 +37,11 @@ grep -q "missing tile.* 2 of 4" <<<"$msg" || fail "the missing tile 2 is not nam
 "$vkray" render "$scene" "${args[@]}" --quiet --pixel-bounds 24,72,36,72 -o "$out/bounds.pfm"
 "$vkray" compare "$out/crop.pfm" "$out/bounds.pfm" --threshold 0 --max-rmse 0 --max-bad-fraction 0 \
   || fail "--crop 0.25,0.75,0.5,1 and --pixel-bounds 24,72,36,72 differ"
+# pbrt-v3's form, four arguments (before the scene, which stays a scene), and the same for the bounds.
+"$vkray" render --crop 0.25 0.75 0.5 1 "$scene" "${args[@]}" --quiet -o "$out/crop4.exr"
+cmp "$out/crop.exr" "$out/crop4.exr" || fail "--crop 0.25 0.75 0.5 1 and --crop 0.25,0.75,0.5,1 differ"
+"$vkray" render --pixel-bounds 24 72 36 72 "$scene" "${args[@]}" --quiet -o "$out/bounds4.pfm"
+cmp "$out/bounds.pfm" "$out/bounds4.pfm" || fail "--pixel-bounds 24 72 36 72 and 24,72,36,72 differ"
 
 # --pixel prints the pixel (its values are the whole render's: tests/gpu, tests/cpu).
 line=$("$vkray" render "$scene" "${args[@]}" --pixel 40,30)

@@ -122,9 +122,9 @@ TEST(KdGpuShortStack, AnySizeWalksTheSameLeaves) {
     gpu::GpuRenderReport stack, one, deep;
     const Frame fStack = test::renderGpu(ref.scene, options, &stack, "kd-stack");
     const Frame fOne = test::renderGpu(test::gpuContext(), ref.scene, options,
-                                       accel::resolveAccel("kd-shortstack", {{"--kd-short-stack", 1.0}}), &one);
+                                       accel::resolveAccel("kd-shortstack:kd-short-stack=1"), &one);
     const Frame fDeep = test::renderGpu(test::gpuContext(), ref.scene, options,
-                                        accel::resolveAccel("kd-shortstack", {{"--kd-short-stack", 56.0}}), &deep);
+                                        accel::resolveAccel("kd-shortstack:kd-short-stack=56"), &deep);
     EXPECT_EQ(fOne.primId, fStack.primId);
     EXPECT_EQ(fDeep.primId, fStack.primId);
     EXPECT_EQ(one.trianglesTested, stack.trianglesTested);

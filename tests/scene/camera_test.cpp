@@ -7,6 +7,7 @@
 
 #include "core/error.h"
 #include "scene/camera.h"
+#include "scene_test_util.h"
 
 namespace vkray {
 namespace {
@@ -134,6 +135,53 @@ TEST(ViewCamera, TheWholeCameraLine) {
     EXPECT_EQ(spaced.fovyDegrees, c.fovyDegrees);
     EXPECT_THROW(viewCamera(s, "0,0,5,0,0,0,0,0,1,45"), Error);  // up along the view direction
     EXPECT_THROW(viewCamera(s, "1 2 3 0 0.5 -10 1 0 0 45 # x"), Error);
+}
+
+// --view fit: the whole of the triangles' bounds in the image, every corner of the box inside it,
+// from the scene camera's direction with its up and fovy, for landscape and portrait images and
+// boxes of any proportions.
+TEST(ViewCamera, FitSeesTheWholeBoundingBox) {
+    const glm::vec3 boxes[][2] = {{{-1, -1, -1}, {1, 1, 1}},
+                                  {{10, 0, -3}, {60, 0.5f, -2}},      // long and flat, off the origin
+                                  {{0, 0, 0}, {0.01f, 5, 0.01f}},     // a tall thin pole
+                                  {{-1e4f, -2, 3}, {1e4f, 2, 4}}};    // very wide
+    const Camera views[] = {cameraAt({0, 0, 10}, {0, 0, 0}, {0, 1, 0}, 60.0f),
+                            cameraAt({5, 4, -3}, {1, 0, 2}, {0, 1, 0}, 25.0f),
+                            cameraAt({0, 9, 0.1f}, {0, 0, 0}, {0, 0, -1}, 90.0f)};
+    const std::pair<int, int> sizes[] = {{640, 480}, {100, 400}, {256, 1}, {1, 256}};
+    for (const auto& [lo, hi] : boxes)
+        for (const Camera& view : views)
+            for (const auto& [w, h] : sizes) {
+                SCOPED_TRACE(::testing::Message() << "box " << lo.x << ".." << hi.x << ", fovy " << view.fovyDegrees
+                                                  << ", " << w << "x" << h);
+                Scene s;
+                s.width = w;
+                s.height = h;
+                s.camera = view;
+                s.triangles.push_back(Triangle{lo, hi, {lo.x, hi.y, lo.z}, 0});
+                s.triangles.push_back(Triangle{{hi.x, lo.y, hi.z}, {hi.x, hi.y, lo.z}, {lo.x, lo.y, hi.z}, 0});
+                const Camera fit = viewCamera(s, "fit");
+                EXPECT_EQ(fit.fovyDegrees, view.fovyDegrees);
+                EXPECT_EQ(fit.up, view.up);
+                const glm::dvec3 was = glm::normalize(glm::dvec3(view.eye - view.center));
+                const glm::dvec3 is = glm::normalize(glm::dvec3(fit.eye - fit.center));
+                EXPECT_NEAR(glm::dot(was, is), 1.0, 1e-6) << "the view direction changed";
+                s.camera = fit;
+                test::expectFramed(s, test::triangleBox(s));
+            }
+}
+
+// Fitted, the box fills the narrower field: its sphere touches the cone within the margin.
+TEST(ViewCamera, FitIsNotFarther) {
+    Scene s = unitCubeCorners();  // half-diagonal sqrt(3), centre 0
+    s.width = 640;
+    s.height = 480;
+    const Camera fit = viewCamera(s, "fit");
+    EXPECT_EQ(fit.center, glm::vec3(0, 0, 0));
+    EXPECT_NEAR(fit.eye.z, 1.05 * std::sqrt(3.0) / std::sin(glm::radians(30.0)), 1e-4);
+    s.width = 240;  // portrait: the horizontal field is the narrower one
+    const double halfX = std::atan(std::tan(glm::radians(30.0)) * 240.0 / 480.0);
+    EXPECT_NEAR(viewCamera(s, "fit").eye.z, 1.05 * std::sqrt(3.0) / std::sin(halfX), 1e-4);
 }
 
 TEST(ViewCamera, BadTextIsAnErrorNamingTheOption) {

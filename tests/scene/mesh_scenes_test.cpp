@@ -11,32 +11,16 @@
 #include "scene/camera.h"
 #include "scene/generators.h"
 #include "scene/scene_parser.h"
+#include "scene_test_util.h"
 
 namespace vkray {
 namespace {
 
 namespace fs = std::filesystem;
+using test::Box;
+using test::expectFramed;
 
 fs::path scenesDir() { return fs::path(VKRAY_SOURCE_DIR) / "scenes"; }
-
-struct Box {
-    glm::dvec3 lo{1e300}, hi{-1e300};
-    void add(const glm::vec3& p) { lo = glm::min(lo, glm::dvec3(p)), hi = glm::max(hi, glm::dvec3(p)); }
-};
-
-// Every corner of `box` projects inside the image: the whole object is in view.
-void expectFramed(const Scene& s, const Box& box) {
-    const CameraFrame f = makeCameraFrame(s.camera, s.width, s.height);
-    for (int corner = 0; corner < 8; ++corner) {
-        const glm::dvec3 p((corner & 1) ? box.hi.x : box.lo.x, (corner & 2) ? box.hi.y : box.lo.y,
-                           (corner & 4) ? box.hi.z : box.lo.z);
-        const glm::dvec3 d = p - f.eye;
-        const double depth = -glm::dot(d, f.w);
-        ASSERT_GT(depth, 0.0) << "corner " << corner << " is behind the camera";
-        EXPECT_LT(std::abs(glm::dot(d, f.u) / depth), f.tanX) << "corner " << corner << " outside horizontally";
-        EXPECT_LT(std::abs(glm::dot(d, f.v) / depth), f.tanY) << "corner " << corner << " outside vertically";
-    }
-}
 
 // The triangles after the first two (the floor) make the object.
 Box objectBox(const Scene& s) {

@@ -42,7 +42,7 @@ public:
         // kd-stack keeps a node index and two bits in one stack word (kd_stack.glsl).
         if (t.nodes.size() > VKRAY_KD_MAX_NODES)
             throw Error("the kd-tree has " + std::to_string(t.nodes.size()) + " nodes; the GPU kernels address at most " +
-                        std::to_string(VKRAY_KD_MAX_NODES) + " (raise --kd-traversal-cost or lower --kd-max-depth)");
+                        std::to_string(VKRAY_KD_MAX_NODES) + " (raise kd-traversal-cost or lower kd-max-depth: --accel help)");
         data.maxLeafTriangles = maxLeafTriangles();
         data.kdShortStack = kdShortStack(traversal_, shortStack_);
         data.nodes = asBytes(std::vector<gpu::KdTreeHeader>{t.header});
