@@ -27,7 +27,7 @@ struct BenchOptions {
     std::vector<int> threads;    // build-scaling thread counts; empty: 1, 2, 4, ... up to all cores
     // AAC deltas of the sweep after A. F. Mahmuda, "Bounding Volume Hierarchy Construction Using
     // Agglomerative Clustering for Faster Ray Tracing", 2017 (Tables 5.5, 5.6), built as `bvh` (AAC-HQ's
-    // epsilon) with --aac-delta; empty: no sweep.
+    // epsilon) with aac-delta=N; empty: no sweep.
     std::vector<int> deltas = {4, 8, 12, 20, 30, 50};
     // Depths of the maxdepth sweep; empty: 1 .. scene maxdepth - 1. Depths at or above the scene's
     // are left out (the reference is rendered at the scene's maxdepth).
