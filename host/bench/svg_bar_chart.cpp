@@ -6,22 +6,18 @@
 #include <cstdio>
 #include <iterator>
 
+#include "bench/svg_elements.h"
 #include "bench/svg_plot.h"
 
 namespace vkray::bench {
 namespace {
 
-constexpr double kCharWidth = 6.2;   // of the 11 px sans-serif text, for the margins
+using svg::kCharWidth, svg::line, svg::num, svg::rect, svg::text;
+
 constexpr double kRowHeight = 26.0;
 constexpr double kBarHeight = 16.0;
 constexpr double kLegendRow = 18.0;
 constexpr double kWhiskerRow = 10.0;  // a reference's min–max, above the bars
-
-std::string num(double v) {
-    char buf[32];
-    std::snprintf(buf, sizeof buf, "%.1f", v);
-    return buf;
-}
 
 double textWidth(const std::string& s) {
     size_t glyphs = 0;  // UTF-8: count the bytes that start a character
@@ -30,20 +26,6 @@ double textWidth(const std::string& s) {
 }
 
 bool drawable(double v) { return std::isfinite(v) && v > 0.0; }
-
-std::string text(double x, double y, const std::string& s, const std::string& attrs) {
-    return "<text x=\"" + num(x) + "\" y=\"" + num(y) + "\" " + attrs + ">" + escapeXml(s) + "</text>\n";
-}
-
-std::string line(double x1, double y1, double x2, double y2, const std::string& attrs) {
-    return "<line x1=\"" + num(x1) + "\" y1=\"" + num(y1) + "\" x2=\"" + num(x2) + "\" y2=\"" + num(y2) + "\" " +
-           attrs + "/>\n";
-}
-
-std::string rect(double x, double y, double w, double h, const std::string& attrs) {
-    return "<rect x=\"" + num(x) + "\" y=\"" + num(y) + "\" width=\"" + num(std::max(0.0, w)) + "\" height=\"" +
-           num(h) + "\" " + attrs + "/>";
-}
 
 std::string lineStyle(const ReferenceLine& r) {
     return "stroke=\"" + escapeXml(r.color) + "\" stroke-width=\"2\"" + (r.dashed ? " stroke-dasharray=\"6 4\"" : "");

@@ -7,8 +7,12 @@
 #include <limits>
 #include <utility>
 
+#include "bench/svg_elements.h"
+
 namespace vkray::bench {
 namespace {
+
+using svg::kCharWidth, svg::line, svg::num, svg::text;
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
@@ -48,15 +52,8 @@ double niceAtOrAbove(double v) {
     return 10.0 * decade;
 }
 
-std::string num(double v) {
-    char buf[32];
-    std::snprintf(buf, sizeof buf, "%.1f", v);
-    return buf;
-}
-
 // ---- Drawing ----------------------------------------------------------------------------------
 
-constexpr double kCharWidth = 6.2;  // of the 11 px sans-serif tick labels, for the margins
 constexpr double kInset = 10.0;     // between the axes and the outermost data, so markers stay clear
 constexpr double kZeroRowGap = 24.0;
 constexpr double kMarkerRadius = 4.0, kEmphasisedRadius = 6.0;
@@ -111,15 +108,6 @@ std::vector<Placed> place(const Layout& l, const Scale& x, const Scale& y, const
         out.push_back({toPixelX(l, x, p.x), py, &p});
     }
     return out;
-}
-
-std::string text(double x, double y, const std::string& s, const std::string& attrs) {
-    return "<text x=\"" + num(x) + "\" y=\"" + num(y) + "\" " + attrs + ">" + escapeXml(s) + "</text>\n";
-}
-
-std::string line(double x1, double y1, double x2, double y2, const std::string& attrs) {
-    return "<line x1=\"" + num(x1) + "\" y1=\"" + num(y1) + "\" x2=\"" + num(x2) + "\" y2=\"" + num(y2) + "\" " +
-           attrs + "/>\n";
 }
 
 std::string markerShape(Marker m, double x, double y, double r, const std::string& paint) {
