@@ -91,8 +91,8 @@ TEST(SceneGeometryHash, SeesPositionsAndCountButNotMaterials) {
 }
 
 // The positions are local to Scene::origin: the same floats at another origin are another scene, so
-// a structure file saved for one cannot be loaded for the other; at origin 0 the hash is what it
-// was before the origin existed.
+// a structure file saved for one cannot be loaded for the other; at origin 0 the hash is that of
+// the floats alone.
 TEST(SceneGeometryHash, SeesTheOrigin) {
     const Scene a = test::smallSoup(100, 1);
     Scene b = a;
