@@ -109,7 +109,7 @@ TEST_P(KdGpuCounters, RecordTheWork) {
     EXPECT_EQ(report.cappedRays, 0u);
 }
 
-// kd-shortstack's stack size is its kernel's specialization constant (--kd-short-stack): a ring of one
+// kd-shortstack's stack size is its kernel's specialization constant (tuning option kd-short-stack): a ring of one
 // entry runs dry and restarts often, one of the whole depth never does, and both name the primary
 // triangles kd-stack names, with the same triangle tests: the same leaves with triangles. (Which empty
 // leaves a descent passes without stepping onto them depends on what its stack holds, kd_stack.glsl:
