@@ -192,7 +192,8 @@ void runRender(const RenderArgs& args) {
 void registerRenderCommand(CLI::App& app, int& exitCode) {
     auto args = std::make_shared<RenderArgs>();
     auto* cmd = app.add_subcommand("render", "Render scenes or meshes to images");
-    cmd->footer("Flags that override the scene say so; docs/outputs.md describes the outputs, README.md the rest.");
+    cmd->footer("-o names the format by its extension (a scene's own `output` without one is a PNG, as in CSE167).\n"
+                "Flags that override the scene say so; docs/outputs.md describes the outputs, README.md the rest.");
     cmd->add_option("scenes", args->scenes, "Scene files (.scene, CSE167 .test) or meshes (.obj, .off)")->required();
     CLI::Option* output = cmd->add_option("-o,--output", args->output,
                                           "Image: .png, .bmp (8-bit), .exr, .pfm (float); default SCENE.png")

@@ -199,8 +199,7 @@ TEST(ViewCamera, BadTextIsAnErrorNamingTheOption) {
 
 // --spp's pattern: sample 0 is the pixel centre (so --spp 1 is the centre ray), every sample lies
 // in the pixel, and any prefix covers it evenly: of n samples every cell of a k x k grid holds
-// between half and one and a half times its n / k^2 (measured: 2-5 of 4 for 64 samples in 4x4, 3-5
-// of 4 for 256 in 8x8, 3-5 of 4 for 16 in 2x2), and the first 4 fill a 2x2 grid one each.
+// between half and one and a half times its n / k^2, and the first 4 fill a 2x2 grid one each.
 TEST(Camera, PixelSamplesStartAtTheCentreAndSpreadEvenly) {
     EXPECT_EQ(pixelSampleOffset(0), glm::vec2(0.5f, 0.5f));
     const auto counts = [](int n, int grid) {
