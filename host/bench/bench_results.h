@@ -141,6 +141,9 @@ struct EmbreeResult {
     // Camera rays on which Embree names the reference's triangle (primary hit), as a check that the
     // baseline traces the same rays; below 1 only through ties and float rounding at edges.
     double agreement = 0.0;
+
+    // Whether the scene has the Embree figure that ratios divide by.
+    bool measured() const { return !version.empty() && singleMs.median > 0.0; }
 };
 
 // One unit of measurement of the run (bench_shard.h): "reference", "accel NAME", "concurrent",
@@ -177,19 +180,24 @@ struct SceneResult {
 // a's camera-ray median. One divisor for every accelerator, so the ratios order the accelerators as
 // their rates do. Empty without Embree or without a camera-ray time.
 inline std::optional<double> primaryVsEmbree(const SceneResult& scene, const AccelResult& a) {
-    if (scene.embree.version.empty() || !(scene.embree.singleMs.median > 0.0) || !(a.primaryOnlyMs.median > 0.0))
-        return std::nullopt;
+    if (!scene.embree.measured() || !(a.primaryOnlyMs.median > 0.0)) return std::nullopt;
     return scene.embree.singleMs.median / a.primaryOnlyMs.median;
 }
 
 // Accelerator a's camera-ray rate over `bvh`'s in the same scene (the kd walks' yardstick): bvh's
 // camera-ray median over a's, which is also the quotient of the two ratios to Embree. Empty when the
 // scene has no `bvh` or either time is missing.
-inline std::optional<double> primaryVsBvh(const SceneResult& scene, const AccelResult& a) {
+// The scene's `bvh` with a camera-ray time, the yardstick of primaryVsBvh; null when there is none.
+inline const AccelResult* bvhYardstick(const SceneResult& scene) {
     const AccelResult* bvh = nullptr;
     for (const AccelResult& b : scene.accels)
         if (b.accel == "bvh") bvh = &b;
-    if (!bvh || !(a.primaryOnlyMs.median > 0.0) || !(bvh->primaryOnlyMs.median > 0.0)) return std::nullopt;
+    return bvh && bvh->primaryOnlyMs.median > 0.0 ? bvh : nullptr;
+}
+
+inline std::optional<double> primaryVsBvh(const SceneResult& scene, const AccelResult& a) {
+    const AccelResult* bvh = bvhYardstick(scene);
+    if (!bvh || !(a.primaryOnlyMs.median > 0.0)) return std::nullopt;
     return bvh->primaryOnlyMs.median / a.primaryOnlyMs.median;
 }
 

@@ -75,10 +75,8 @@ Yardstick yardstickOf(const BenchResults& r) {
     bool embree = true, bvh = true;
     for (const SceneResult& s : r.scenes) {
         if (s.accels.empty()) continue;
-        embree = embree && !s.embree.version.empty() && s.embree.singleMs.median > 0.0;
-        bool hasBvh = false;
-        for (const AccelResult& a : s.accels) hasBvh = hasBvh || (a.accel == "bvh" && a.primaryOnlyMs.median > 0.0);
-        bvh = bvh && hasBvh;
+        embree = embree && s.embree.measured();
+        bvh = bvh && bvhYardstick(s) != nullptr;
     }
     return embree ? Yardstick::Embree : bvh ? Yardstick::Bvh : Yardstick::None;
 }
