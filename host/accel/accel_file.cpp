@@ -45,7 +45,6 @@ constexpr size_t kPrefixBytes = 16;            // magic, version, metaBytes
 constexpr uint32_t kMaxMetaBytes = 1u << 20;   // names, key and a few dozen figures: a few KiB
 constexpr size_t kChunkBytes = size_t(8) << 20;  // hashed while still in cache, read or written
 
-Error fileError(const fs::path& path, const std::string& what) { return Error(FileLoc{path.string()}, what); }
 
 constexpr std::string_view kRebuild = "; rebuild it with --save-accel";
 

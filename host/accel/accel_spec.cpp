@@ -166,7 +166,9 @@ std::map<const TuningOption*, double> namedTuning(std::string_view text, const s
 std::string valueRange(const TuningOption& o) {
     if (o.hi >= 1e9) return std::string(o.integer ? "INT" : "X") + " >= " + shortNumber(o.lo);
     if (o.integer) return shortNumber(o.lo) + ".." + shortNumber(o.hi);
-    return "[" + shortNumber(o.lo) + ", " + shortNumber(o.hi) + (o.hiOpen ? ")" : "]");
+    std::string range = "[";
+    range.append(shortNumber(o.lo)).append(", ").append(shortNumber(o.hi)).append(o.hiOpen ? ")" : "]");
+    return range;
 }
 
 }  // namespace
@@ -208,7 +210,10 @@ AccelSpec resolveAccel(std::string_view text) {
 std::string accelHelp() {
     std::string text = "accelerators (--accel NAME, default " + std::string(kDefaultAccel) + "):\n", line = " ";
     for (const std::string& name : accelNames()) {
-        if (line.size() + name.size() > 94) text += line + "\n", line = " ";
+        if (line.size() + name.size() > 94) {
+            text.append(line).append("\n");
+            line.assign(1, ' ');
+        }
         line += " " + name;
     }
     text += line + "\ntuning follows the name: --accel NAME:OPTION=VALUE[:OPTION=VALUE...], "

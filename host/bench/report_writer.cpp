@@ -15,8 +15,6 @@ namespace fs = std::filesystem;
 namespace vkray::bench {
 namespace {
 
-Error fileError(const fs::path& path, const std::string& what) { return Error(FileLoc{path.string()}, what); }
-
 void makeDirectory(const fs::path& dir) {
     std::error_code ec;
     fs::create_directories(dir, ec);

@@ -4,6 +4,7 @@
 // pbrt-v4 FileLoc convention: "error: scene.scene:12: expected 3 numbers after 'vertex'".
 #pragma once
 
+#include <filesystem>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -30,5 +31,11 @@ private:
     FileLoc loc_;
     bool hasLoc_ = false;
 };
+
+// The error of a file as a whole, "PATH: what": an image, a structure file, a report that cannot be
+// written.
+inline Error fileError(const std::filesystem::path& path, const std::string& what) {
+    return Error(FileLoc{path.string()}, what);
+}
 
 }  // namespace vkray

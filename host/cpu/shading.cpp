@@ -9,8 +9,6 @@ namespace vkray::cpu {
 
 namespace {
 
-constexpr double kInfinity = std::numeric_limits<double>::infinity();
-
 glm::dvec3 d3(const glm::vec3& v) { return glm::dvec3(v); }
 
 }  // namespace

@@ -6,6 +6,7 @@
 #pragma once
 
 #include <cstdint>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -16,6 +17,9 @@
 #include "scene/scene.h"
 
 namespace vkray::cpu {
+
+// The far end of a ray that may go anywhere.
+inline constexpr double kInfinity = std::numeric_limits<double>::infinity();
 
 // The geometry the CPU renderer traces with (geometry/): named here as the renderer reads them.
 using geometry::Hit;

@@ -7,7 +7,6 @@
 namespace vkray::cpu {
 
 namespace {
-constexpr double kInfinity = std::numeric_limits<double>::infinity();
 // Below this in every channel a ray could change an 8-bit pixel by at most a quarter of a step per
 // unit of radiance (docs/shading.md, "Depth and weights").
 constexpr double kMinWeight = 1.0 / 1024.0;

@@ -25,8 +25,6 @@ namespace fs = std::filesystem;
 namespace vkray {
 namespace {
 
-Error fileError(const fs::path& path, const std::string& what) { return Error(FileLoc{path.string()}, what); }
-
 // OpenEXR's messages may span lines; ours are one line.
 std::string oneLine(std::string s) {
     std::replace(s.begin(), s.end(), '\n', ' ');

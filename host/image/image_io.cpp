@@ -28,8 +28,6 @@ namespace fs = std::filesystem;
 namespace vkray {
 namespace {
 
-Error fileError(const fs::path& path, const std::string& what) { return Error(FileLoc{path.string()}, what); }
-
 // The extensions of imageFormatForPath, for messages.
 constexpr const char* kImageExtensions = ".png, .bmp, .pfm, .exr";
 
