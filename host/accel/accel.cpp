@@ -17,7 +17,7 @@ public:
     std::unique_ptr<geometry::Tracer> makeTracer(const Scene& scene) const override {
         return std::make_unique<geometry::BruteForceTracer>(scene);
     }
-    GpuAccelData gpuData() const override { return GpuAccelData{}; }  // kernel "brute", no arrays
+    GpuAccelData gpuData() const override { return GpuAccelData{}; }  // traversal "brute", no arrays
     std::vector<AccelStat> stats() const override { return {}; }
 };
 
@@ -33,11 +33,11 @@ std::unique_ptr<BuiltAccel> buildAccel(const Scene& scene, const AccelSpec& spec
     throw Error("accelerator '" + spec.name + "': unknown family");
 }
 
-Kernel kernelOf(const AccelSpec& spec) {
+Traversal traversalOf(const AccelSpec& spec) {
     switch (spec.family) {
-    case Family::Brute: return Kernel::Brute;
-    case Family::Bvh: return bvhKernel(spec.bvh, spec.bvhStackless);
-    case Family::Kd: return kdKernel(spec.kdTraversal);
+    case Family::Brute: return Traversal::Brute;
+    case Family::Bvh: return bvhTraversal(spec.bvh, spec.bvhStackless);
+    case Family::Kd: return kdTraversal(spec.kdTraversal);
     }
     throw Error("accelerator '" + spec.name + "': unknown family");
 }

@@ -25,26 +25,30 @@
 
 namespace vkray::accel {
 
-// The GPU render kernels, one per shaders/render_<kernelName()>.comp. gpu/kernel_registry.cpp checks
-// at compile time that each has its SPIR-V, so a kernel named here and missing there fails the
-// build, not a render.
-enum class Kernel { Brute, Bvh, BvhStackless, BvhSphere, KdStack, KdRestart, KdBacktrack, KdPushDown, KdShortStack, KdRopes };
-inline constexpr std::array kKernels{Kernel::Brute,      Kernel::Bvh,         Kernel::BvhStackless, Kernel::BvhSphere,
-                                     Kernel::KdStack,    Kernel::KdRestart,   Kernel::KdBacktrack,  Kernel::KdPushDown,
-                                     Kernel::KdShortStack, Kernel::KdRopes};
+// The walk a structure's arrays are laid out for (GpuAccelData::traversal): the family and, within
+// it, the traversal that decides which arrays the build adds (the parent links of Hapala et al.'s
+// stackless BVH walk, the ropes of Popov et al. 2007, the parent links and boxes of Foley and
+// Sugerman's kd-backtrack, section 4.2). The GPU layer runs each with a kernel of its own
+// (gpu/kernel_registry.h).
+enum class Traversal { Brute, Bvh, BvhStackless, BvhSphere, KdStack, KdRestart, KdBacktrack, KdPushDown, KdShortStack, KdRopes };
+inline constexpr std::array kTraversals{Traversal::Brute,     Traversal::Bvh,         Traversal::BvhStackless,
+                                        Traversal::BvhSphere, Traversal::KdStack,     Traversal::KdRestart,
+                                        Traversal::KdBacktrack, Traversal::KdPushDown, Traversal::KdShortStack,
+                                        Traversal::KdRopes};
 
-constexpr std::string_view kernelName(Kernel k) {
-    switch (k) {
-    case Kernel::Brute: return "brute";
-    case Kernel::Bvh: return "bvh";
-    case Kernel::BvhStackless: return "bvh_stackless";
-    case Kernel::BvhSphere: return "bvh_sphere";
-    case Kernel::KdStack: return "kd_stack";
-    case Kernel::KdRestart: return "kd_restart";
-    case Kernel::KdBacktrack: return "kd_backtrack";
-    case Kernel::KdPushDown: return "kd_pushdown";
-    case Kernel::KdRopes: return "kd_ropes";
-    case Kernel::KdShortStack: return "kd_shortstack";
+// Its name, as structure files record it: the accelerator that walks it (accel_spec.cpp's names).
+constexpr std::string_view traversalName(Traversal t) {
+    switch (t) {
+    case Traversal::Brute: return "brute";
+    case Traversal::Bvh: return "bvh";
+    case Traversal::BvhStackless: return "bvh-stackless";
+    case Traversal::BvhSphere: return "bvh-sphere";
+    case Traversal::KdStack: return "kd-stack";
+    case Traversal::KdRestart: return "kd-restart";
+    case Traversal::KdBacktrack: return "kd-backtrack";
+    case Traversal::KdPushDown: return "kd-pushdown";
+    case Traversal::KdRopes: return "kd-ropes";
+    case Traversal::KdShortStack: return "kd-shortstack";
     }
     return "";
 }
@@ -64,7 +68,7 @@ struct AccelStat {
 
 // What the GPU kernel needs of a built structure, in the layouts of shaders/shared/*_layout.h.
 struct GpuAccelData {
-    Kernel kernel = Kernel::Brute;
+    Traversal traversal = Traversal::Brute;
     // Triangle-buffer slot k holds scene triangle triangleOrder[k] (leaf order, for locality);
     // empty = scene order. GpuTriangle.original keeps the identity for AOVs either way.
     std::vector<uint32_t> triangleOrder;
@@ -100,8 +104,8 @@ public:
 std::unique_ptr<BuiltAccel> buildAccel(const Scene& scene, const AccelSpec& spec,
                                        const BuildOptions& options = {});
 
-// The kernel that traces what `spec` builds (GpuAccelData::kernel), known without building it.
-Kernel kernelOf(const AccelSpec& spec);
+// The traversal of what `spec` builds (GpuAccelData::traversal), known without building it.
+Traversal traversalOf(const AccelSpec& spec);
 
 // Builds several structures at the same time, each on its own thread with options.threads workers,
 // so that a run that needs the BVH and the kd-tree waits for the slower build instead of the sum.

@@ -28,7 +28,7 @@ namespace vkray::accel {
 // meta is the Header below, field by field (strings as u32 length + bytes, doubles as IEEE bits).
 struct AccelFileReader::Header {
     uint64_t layoutHash = 0;
-    std::string kernel, specName, structureKey;
+    std::string traversal, specName, structureKey;
     uint64_t triangles = 0, sceneHash = 0;
     uint32_t nodeTexelBytes = 0, maxLeafTriangles = 0;
     uint64_t orderCount = 0, nodesBytes = 0, indicesBytes = 0, extraBytes = 0;
@@ -100,7 +100,7 @@ private:
 std::string encodeMeta(const Header& h) {
     MetaWriter w;
     w.put(h.layoutHash);
-    w.put(h.kernel);
+    w.put(h.traversal);
     w.put(h.specName);
     w.put(h.structureKey);
     w.put(h.triangles);
@@ -121,7 +121,7 @@ Header decodeMeta(std::span<const char> bytes, const fs::path& path) {
     MetaReader r(bytes, path);
     Header h;
     h.layoutHash = r.get<uint64_t>();
-    h.kernel = r.getString();
+    h.traversal = r.getString();
     h.specName = r.getString();
     h.structureKey = r.getString();
     h.triangles = r.get<uint64_t>();
@@ -161,7 +161,7 @@ Header headerFor(const AccelSpec& spec, const SceneGeometry& scene, const GpuAcc
                  const std::vector<AccelStat>& stats) {
     Header h;
     h.layoutHash = kLayoutHash;
-    h.kernel = std::string(kernelName(data.kernel));
+    h.traversal = std::string(traversalName(data.traversal));
     h.specName = spec.name;
     h.structureKey = structureKey(spec);
     h.triangles = scene.triangles;
@@ -179,10 +179,10 @@ Header headerFor(const AccelSpec& spec, const SceneGeometry& scene, const GpuAcc
 
 // ---- reading ----------------------------------------------------------------------------------
 
-Kernel kernelNamed(const std::string& name, const fs::path& path) {
-    for (Kernel k : kKernels)
-        if (kernelName(k) == name) return k;
-    throw fileError(path, "built for a kernel this vkray does not have ('" + name + "')" + std::string(kRebuild));
+Traversal traversalNamed(const std::string& name, const fs::path& path) {
+    for (Traversal t : kTraversals)
+        if (traversalName(t) == name) return t;
+    throw fileError(path, "built for a traversal this vkray does not have ('" + name + "')" + std::string(kRebuild));
 }
 
 // What a header must hold whatever it was built for: texel sizes the kernels can bind.
@@ -296,10 +296,10 @@ AccelFileReader& AccelFileReader::operator=(AccelFileReader&&) noexcept = defaul
 void AccelFileReader::checkSpec(const AccelSpec& spec) {
     const Header& h = *header_;
     kdShortStack_ = spec.family == Family::Kd ? kdShortStack(spec.kdTraversal, spec.kdShortStack) : 0u;
-    // bvh and bvh-hq name one structure and one kernel: either reads the other's file. The three kd
-    // traversals share a tree but not a kernel (nor, for kd-backtrack, the arrays).
+    // bvh and bvh-hq name one structure and one traversal: either reads the other's file. The kd
+    // traversals share a tree but not a file (nor, for kd-backtrack and kd-ropes, the arrays).
     const std::string key = structureKey(spec);
-    if (h.kernel == kernelName(kernelOf(spec)) && h.structureKey == key) return;
+    if (h.traversal == traversalName(traversalOf(spec)) && h.structureKey == key) return;
     if (h.specName != spec.name)
         throw fileError(path_, "built for --accel " + h.specName + ", not " + spec.name + std::string(kRebuild));
     throw fileError(path_, "built for --accel " + h.specName + " tuned otherwise (" + h.structureKey +
@@ -364,7 +364,7 @@ LoadedAccel AccelFileReader::readArrays() {
     const Header& h = *header_;
     LoadedAccel loaded;
     GpuAccelData& d = loaded.data;
-    d.kernel = kernelNamed(h.kernel, path_);
+    d.traversal = traversalNamed(h.traversal, path_);
     d.nodeTexelBytes = h.nodeTexelBytes;
     d.maxLeafTriangles = h.maxLeafTriangles;
     d.kdShortStack = kdShortStack_;

@@ -2,7 +2,7 @@
 // structure (GpuAccelData, with its structural figures for --stats), and `--load-accel FILE` reads
 // it back instead of building, so repeated renders of a big scene skip a build of seconds to
 // minutes. A file is a cache, never trusted: it is used only by the accelerator it was built for
-// (same kernel, same structureKey(): preset and tuning), over the same geometry (triangle count and
+// (same traversal, same structureKey(): preset and tuning), over the same geometry (triangle count and
 // an XXH64 of every vertex position, in scene order), by a vkray with the same GPU layouts
 // (shaders/shared/*_layout.h, hashed at configure time); its header and its arrays carry checksums,
 // so a truncated or damaged file is refused too. Each refusal is one vkray::Error naming the file
@@ -26,7 +26,7 @@ namespace vkray::accel {
 // The bytes that open every structure file, and the version of the layout after them; a file of
 // another version is refused (it is rebuilt, never converted).
 inline constexpr char kAccelFileMagic[8] = {'V', 'K', 'R', 'A', 'Y', 'A', 'C', 'C'};
-inline constexpr uint32_t kAccelFileVersion = 1;
+inline constexpr uint32_t kAccelFileVersion = 2;
 
 // XXH64 of the triangle count, every triangle's vertex positions in scene order and, when it is not
 // (0, 0, 0), Scene::origin: all a structure depends on (materials, normals, lights and the camera may
@@ -74,7 +74,7 @@ public:
     AccelFileReader(AccelFileReader&&) noexcept;
     AccelFileReader& operator=(AccelFileReader&&) noexcept;
 
-    // Refuses a file built for another kernel or another structure (preset, tuning); keeps what the
+    // Refuses a file built for another traversal or another structure (preset, tuning); keeps what the
     // spec sets in the kernel but not in the structure (kd-shortstack's stack size) for readArrays().
     void checkSpec(const AccelSpec& spec);
     // Refuses a file built for other geometry.

@@ -70,7 +70,7 @@ Spread spread(const Json& j, const std::string& key, const std::string& where) {
     return {num(s, "median", w), num(s, "min", w), num(s, "max", w)};
 }
 
-ImageError imageError(const Json& j, const std::string& where) {
+ImageError readImageError(const Json& j, const std::string& where) {
     const Json& e = at(j, "error", where);
     const std::string w = path(where, "error");
     return {num(e, "rmse", w), optNum(e, "psnr_db", w), num(e, "max_error", w), num(e, "primary_hit_mismatch", w)};
@@ -138,7 +138,7 @@ AccelResult accelResult(const Json& j, const std::string& w, const Pictures& pic
         a.simdLanes = get<uint32_t>(primary, "simd_lanes", path(w, "per_primary_ray"));
     }
     a.cappedRays = get<uint64_t>(j, "capped_rays", w);
-    a.error = imageError(j, w);
+    a.error = readImageError(j, w);
     const Json names = j.contains("images") ? j["images"] : Json::object();
     a.image = pictures.image(names, "render");
     a.diff = pictures.image(names, "difference");
@@ -157,7 +157,7 @@ ErrorPoint errorPoint(const Json& j, const std::string& w) {
     p.precision = str(j, "precision", w);
     p.buildMs = num(j, "build_ms", w);
     p.traceMs = num(j, "trace_ms", w);
-    p.error = imageError(j, w);
+    p.error = readImageError(j, w);
     p.pareto = get<bool>(j, "pareto", w);
     return p;
 }

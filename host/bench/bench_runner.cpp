@@ -1,26 +1,23 @@
 #include "bench/bench_runner.h"
 
 #include <algorithm>
-#include <ctime>
-#include <cmath>
-#include <cstdlib>
 #include <filesystem>
 #include <map>
 #include <memory>
+#include <stdexcept>
 #include <thread>
 
-#include <unistd.h>
-
 #include "accel/accel.h"
-#include "bench/embree_baseline.h"
 #include "bench/bench_shard.h"
+#include "bench/embree_baseline.h"
+#include "bench/host_facts.h"
+#include "bench/image_error.h"
+#include "image/compare.h"
 #include "bench/report.h"
 #include "core/error.h"
 #include "core/timing.h"
 #include "cpu/reference_renderer.h"
-#include "gpu/gpu_renderer.h"
-#include "gpu/scene_buffers.h"
-#include "image/compare.h"
+#include "gpu/kernel_registry.h"
 #include "render/scene_checks.h"
 #include "render/structure.h"
 #include "scene/camera.h"
@@ -29,35 +26,6 @@
 
 namespace vkray::bench {
 namespace {
-
-// Differences within this many 8-bit levels are what float vs double rounding gives
-// (tests/golden): the difference images show them blue, beyond it red.
-constexpr double kDiffThreshold = 2.0 / 255.0;
-
-// The colour of a frame as the PNG stores it: clamped to [0, 1], NaN as 0.
-Image colorImage(const Frame& frame) {
-    Image img(frame.width, frame.height, 3);
-    for (size_t i = 0; i < frame.color.size(); ++i)
-        for (int c = 0; c < 3; ++c) {
-            const float v = frame.color[i][c];
-            img.data[i * 3 + size_t(c)] = std::isnan(v) ? 0.0f : std::clamp(v, 0.0f, 1.0f);
-        }
-    return img;
-}
-
-ImageError imageError(const Frame& frame, const Image& image, const Frame& reference, const Image& refImage) {
-    const CompareStats s = compareImages(image, refImage, kDiffThreshold);
-    ImageError e;
-    e.rmse = s.rmse;
-    if (s.rmse > 0.0) e.psnr = s.psnr;
-    e.maxError = s.maxError;
-    size_t differ = 0;
-    const bool both = frame.hasAovs() && reference.hasAovs() && !frame.primId.empty();
-    if (both)
-        for (size_t i = 0; i < frame.primId.size(); ++i) differ += frame.primId[i] != reference.primId[i];
-    e.primaryMismatch = both ? double(differ) / double(frame.primId.size()) : 0.0;
-    return e;
-}
 
 int maxThreads(const std::vector<int>& counts) { return *std::max_element(counts.begin(), counts.end()); }
 
@@ -75,8 +43,8 @@ struct GpuRun {
 
 class Runner {
 public:
-    Runner(const gpu::VulkanContext& ctx, const BenchOptions& options, const BenchProgressFn& progress)
-        : ctx_(ctx), options_(options), progress_(progress), start_(Clock::now()) {}
+    Runner(render::Device& device, const BenchOptions& options, const BenchProgressFn& progress)
+        : device_(device), options_(options), progress_(progress), start_(Clock::now()) {}
 
     // The work of one scene: everything in an unsharded run, the shard's share otherwise.
     SceneResult runScene(const std::string& file, int index, int count, const SceneWork& work) {
@@ -85,9 +53,9 @@ public:
         sceneName_ = std::filesystem::path(file).stem().string();
         step("load");
         Scene scene = loadScene(file);
-        vkray::render::checkRenderable(scene, file);
+        render::checkRenderable(scene, file);
         scene.camera = viewCamera(scene, options_.view);
-        gpu::checkSceneFits(ctx_, scene);
+        device_.checkFits(scene);
         SceneResult result;
         result.index = index;
         result.file = file;
@@ -136,8 +104,7 @@ private:
     Frame renderReferenceImage(const Scene& scene, const RenderOptions& render, SceneResult& result) {
         result.referenceAccel = "bvh";
         step("reference: build bvh");
-        const vkray::render::Structure structure =
-            vkray::render::buildStructure(scene, accel::resolveAccel("bvh"), {.tracer = true});
+        const render::Structure structure = render::buildStructure(scene, accel::resolveAccel("bvh"), {.tracer = true});
         result.referenceBuildMs = structure.buildMs;
         Frame frame;
         std::vector<double> ms;
@@ -229,9 +196,9 @@ private:
 
     GpuRun render(const Scene& scene, const RenderOptions& render, const accel::GpuAccelData& data) {
         GpuRun run;
-        run.frame = gpu::renderOnGpu(ctx_, scene, render, data, &run.report, {}, &kernels_);
+        run.frame = device_.render(scene, render, data, run.report);
         if (run.report.gpuMs < 0.0)
-            throw Error("device '" + ctx_.info().name + "' has no timestamp queries: vkray bench times "
+            throw Error("device '" + device_.get()->info().name + "' has no timestamp queries: vkray bench times "
                         "the GPU with them");
         return run;
     }
@@ -330,7 +297,7 @@ private:
         a.buildStats = built.accel->stats();
         const accel::GpuAccelData data = built.accel->gpuData();
         built.accel.reset();  // the CPU side is not needed any more: free it before tracing
-        a.kernel = std::string(accel::kernelName(data.kernel));
+        a.kernel = std::string(gpu::kernelName(data.traversal));
         a.structureBytes = data.bytes();
 
         const Traced t = traceTimed(scene, dark, render, data, spec.name, true);
@@ -500,7 +467,7 @@ private:
         }
     }
 
-    const gpu::VulkanContext& ctx_;
+    render::Device& device_;  // its pipelines are kept for the whole run: they are not what it measures
     const BenchOptions& options_;
     const BenchProgressFn& progress_;
     const Clock::time_point start_;
@@ -508,7 +475,6 @@ private:
     // Per accel::structureKey, per scene: builds of one structure are timed once, whatever walks it
     // (the kd traversals share the tree).
     std::map<std::string, std::vector<ThreadTiming>> buildTimings_;
-    gpu::KernelCache kernels_{ctx_};  // pipelines are not what the bench measures
     std::unique_ptr<EmbreeBaseline> embree_;          // of the current scene
     std::vector<double> embreeSingle_, embreePacket_;  // its timings over every accelerator
     int sceneIndex_ = 0, sceneCount_ = 0;
@@ -518,26 +484,6 @@ public:
     void startScene() { buildTimings_.clear(); }
     const std::vector<int>& threads() const { return threads_; }
 };
-
-std::string isoTimeUtc() {
-    const std::time_t now = std::time(nullptr);
-    char text[32];
-    std::strftime(text, sizeof text, "%Y-%m-%dT%H:%M:%SZ", std::gmtime(&now));
-    return text;
-}
-
-// The machine's 1-minute load average, for the warning about other work competing with the run.
-std::optional<double> loadAverage() {
-    double load[1];
-    if (getloadavg(load, 1) != 1) return std::nullopt;
-    return load[0];
-}
-
-std::string hostName() {
-    char name[256] = {};
-    if (gethostname(name, sizeof name - 1) != 0) return "unknown";
-    return name;
-}
 
 void checkOptions(const BenchOptions& o) {
     if (o.shard.count < 1 || o.shard.index < 0 || o.shard.index >= o.shard.count)
@@ -564,21 +510,23 @@ std::vector<int> defaultThreadCounts() {
     return counts;
 }
 
-BenchResults runBench(const gpu::VulkanContext& ctx, const BenchOptions& options,
-                      const std::string& commandLine, const BenchProgressFn& progress) {
+BenchResults runBench(render::Device& device, const BenchOptions& options, const std::string& commandLine,
+                      const BenchProgressFn& progress) {
     checkOptions(options);
     for (const std::string& file : options.scenes)
         if (!std::filesystem::is_regular_file(file)) throw Error(file + ": no such scene file");
     const auto start = Clock::now();
+    const gpu::VulkanContext* ctx = device.get();
+    if (!ctx) throw std::logic_error("runBench: a render::Device without a device");
     BenchResults results;
     results.vkrayVersion = VKRAY_VERSION;
     results.revision = VKRAY_REVISION;
     results.commandLine = commandLine;
     results.startedAt = isoTimeUtc();
-    results.device = ctx.info().name;
-    results.driver = ctx.info().driver;
-    results.deviceType = ctx.info().type;
-    results.vulkanApi = ctx.info().apiVersion;
+    results.device = ctx->info().name;
+    results.driver = ctx->info().driver;
+    results.deviceType = ctx->info().type;
+    results.vulkanApi = ctx->info().apiVersion;
     results.hardwareThreads = int(std::thread::hardware_concurrency());
     results.loadAverageStart = loadAverage();
     results.repeat = options.repeat;
@@ -588,7 +536,7 @@ BenchResults runBench(const gpu::VulkanContext& ctx, const BenchOptions& options
     const std::vector<Configuration> list = configurationList(results.settings);
     results.configurationCount = list.size();
     results.configurationHash = configurationHash(list);
-    Runner runner(ctx, options, progress);
+    Runner runner(device, options, progress);
     results.threadCounts = runner.threads();
     const std::vector<SceneWork> work = shardWork(results.settings, options.shard);
     for (size_t i = 0; i < options.scenes.size(); ++i) {

@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "bench/bench_results.h"
-#include "gpu/vulkan_context.h"
+#include "render/device.h"
 
 namespace vkray::bench {
 
@@ -52,7 +52,8 @@ std::vector<int> defaultThreadCounts();
 
 // Runs the whole benchmark, or the options' shard of it. Throws vkray::Error (a scene that does not load or does not fit the
 // device, an unknown accelerator, a render the device cuts short) before writing anything.
-BenchResults runBench(const gpu::VulkanContext& ctx, const BenchOptions& options,
-                      const std::string& commandLine, const BenchProgressFn& progress = {});
+// `device` must have a device; its pipelines serve every render of the run.
+BenchResults runBench(render::Device& device, const BenchOptions& options, const std::string& commandLine,
+                      const BenchProgressFn& progress = {});
 
 }  // namespace vkray::bench

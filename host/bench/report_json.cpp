@@ -20,7 +20,7 @@ Json number(const std::optional<double>& v) { return v ? number(*v) : Json(nullp
 
 Json spread(const Spread& s) { return {{"median", number(s.median)}, {"min", number(s.min)}, {"max", number(s.max)}}; }
 
-Json imageError(const ImageError& e) {
+Json imageErrorJson(const ImageError& e) {
     return {{"rmse", number(e.rmse)},
             {"psnr_db", number(e.psnr)},
             {"max_error", number(e.maxError)},
@@ -94,7 +94,7 @@ Json accelResult(const SceneResult& scene, const AccelResult& a, const ImageName
                                  {"lockstep_nodes", number(a.primaryLockstepNodesPerRay)},
                                  {"simd_lanes", a.simdLanes}}},
             {"capped_rays", a.cappedRays},
-            {"error", imageError(a.error)},
+            {"error", imageErrorJson(a.error)},
             {"images", names.of(a.accel)}};
 }
 
@@ -106,7 +106,7 @@ Json errorPoint(const ErrorPoint& p) {
     j["build_ms"] = number(p.buildMs);
     j["trace_ms"] = number(p.traceMs);
     j["total_ms"] = number(p.totalMs());
-    j["error"] = imageError(p.error);
+    j["error"] = imageErrorJson(p.error);
     j["pareto"] = p.pareto;
     return j;
 }

@@ -20,7 +20,7 @@
 #include "cli/cli_options.h"
 #include "cli/commands.h"
 #include "core/error.h"
-#include "gpu/vulkan_context.h"
+#include "render/device.h"
 
 namespace vkray::cli {
 namespace {
@@ -183,12 +183,11 @@ void registerBenchCommand(CLI::App& app, int& exitCode, int argc, const char* co
             if (!std::filesystem::is_regular_file(file)) throw Error(file + ": no such scene file");
         const std::filesystem::path dir = args->out;
         prepareOutputDir(dir);
-        const gpu::VulkanContext ctx(
-            gpu::ContextOptions{.validation = gpu::validationRequestedByEnvironment(), .device = args->device});
+        render::Device device(args->device);
         ProgressLine progress(args->quiet);
         bench::BenchResults results;
         try {
-            results = bench::runBench(ctx, options, commandLine,
+            results = bench::runBench(device, options, commandLine,
                                       [&progress](const bench::BenchProgress& p) { progress(p); });
         } catch (...) {
             progress.finish();  // the error message gets a line of its own

@@ -11,7 +11,7 @@
 namespace vkray::gpu {
 
 struct GpuRenderReport {
-    std::string kernel;          // shaders/render_<kernel>.comp (accel::kernelName)
+    std::string kernel;          // shaders/render_<kernel>.comp (gpu::kernelName)
     ShaderFeatures features;
     uint32_t tiles = 0;          // dispatches of at most VKRAY_TILE_SIZE^2 pixels
     uint32_t submissions = 0;    // batches of tiles submitted together

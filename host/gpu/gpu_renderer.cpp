@@ -9,6 +9,7 @@
 #include "core/timing.h"
 #include "gpu/compute_kernel.h"
 #include "gpu/kernel_bindings.h"
+#include "gpu/kernel_registry.h"
 #include "gpu/pixel_output.h"
 #include "gpu/resumable_pass.h"
 #include "gpu/scene_buffers.h"
@@ -45,14 +46,14 @@ GpuFrameParams frameParams(const Scene& scene, const RenderOptions& options) {
 
 // llvmpipe ends all loops of an invocation after 65535 iterations in total; the kernel flags such
 // pixels, and an image with any of them is refused rather than written wrong.
-void throwIfCutShort(const VulkanContext& ctx, const Scene& scene, accel::Kernel kernel, uint64_t pixels) {
+void throwIfCutShort(const VulkanContext& ctx, const Scene& scene, accel::Traversal traversal, uint64_t pixels) {
     if (pixels == 0) return;
-    const std::string remedy = kernel == accel::Kernel::Brute
+    const std::string remedy = traversal == accel::Traversal::Brute
                                    ? "an acceleration structure (--accel bvh), a smaller --maxdepth or fewer lights"
                                    : "a smaller --maxdepth or fewer lights";
     throw Error(std::to_string(pixels) + " pixels were cut short on '" + ctx.info().name +
                 "': its shader loops stop early (llvmpipe ends all loops of a pixel after 65535 iterations in "
-                "total); with the " + std::string(accel::kernelName(kernel)) + " kernel this scene of " +
+                "total); with the " + std::string(kernelName(traversal)) + " kernel this scene of " +
                 std::to_string(scene.triangles.size()) + " triangles needs " + remedy +
                 ", or another device; no image was written");
 }
@@ -80,7 +81,7 @@ struct Pass {
     const VulkanContext& ctx;
     const Scene& scene;
     const RenderOptions& options;
-    accel::Kernel kernel;
+    accel::Traversal traversal;
     KernelCache& kernels;
     const Uploaded& buffers;
     const PixelOutput& pixels;
@@ -104,7 +105,7 @@ void renderSample(const Pass& pass, ComputeKernel& plain, std::span<const Tile> 
     if (unfinished.empty()) return;
     ShaderFeatures resumable = rep.features;
     resumable.resumable = true;
-    ComputeKernel& again = pass.kernels.kernel(pass.kernel, resumable);
+    ComputeKernel& again = pass.kernels.kernel(pass.traversal, resumable);
     renderResumable(pass.ctx, again, resumable, pass.buffers.scene, pass.buffers.accel, pass.pixels, unfinished,
                     pass.options.maxDepth, params, out, rep, passProgress);
 }
@@ -117,7 +118,7 @@ Frame renderOnGpu(const VulkanContext& ctx, const Scene& scene, const RenderOpti
     GpuRenderReport local;
     GpuRenderReport& rep = report ? *report : local;
     rep = GpuRenderReport{};
-    rep.kernel = std::string(accel::kernelName(accel.kernel));
+    rep.kernel = std::string(kernelName(accel.traversal));
     const GpuFrameParams base = frameParams(scene, options);  // validates camera and size
     const Uploaded buffers = upload(ctx, scene, accel, rep);
 
@@ -127,7 +128,7 @@ Frame renderOnGpu(const VulkanContext& ctx, const Scene& scene, const RenderOpti
     std::optional<KernelCache> ownKernels;
     if (!kernels) kernels = &ownKernels.emplace(ctx);
     const size_t pipelinesBefore = kernels->size();
-    ComputeKernel& kernel = kernels->kernel(accel.kernel, rep.features);
+    ComputeKernel& kernel = kernels->kernel(accel.traversal, rep.features);
     rep.pipelineMs = msSince(start);
 
     const PixelWindow window = options.pixels();
@@ -145,10 +146,10 @@ Frame renderOnGpu(const VulkanContext& ctx, const Scene& scene, const RenderOpti
     start = Clock::now();
     rep.tiles = uint32_t(tiles.size());
     rep.gpuMs = ctx.timestampValidBits() > 0 ? 0.0 : -1.0;
-    rep.resumedFromStart = resumableFromStart(ctx, scene, accel.kernel);
+    rep.resumedFromStart = resumableFromStart(ctx, scene, accel.traversal);
     // One pass over the image per sample (RenderOptions::spp): sample 0, the pixel centres, gives
     // the AOVs; the others only add their colour.
-    const Pass pass{ctx, scene, options, accel.kernel, *kernels, buffers, pixels, base};
+    const Pass pass{ctx, scene, options, accel.traversal, *kernels, buffers, pixels, base};
     Frame more;
     for (int s = 0; s < options.spp; ++s) {
         if (s == 1) more.resize(window, false);  // colour only: the AOVs are sample 0's
@@ -161,7 +162,7 @@ Frame renderOnGpu(const VulkanContext& ctx, const Scene& scene, const RenderOpti
     rep.renderMs = msSince(start);
     rep.pipelinesCreated = uint32_t(kernels->size() - pipelinesBefore);
     ctx.checkValidation();
-    throwIfCutShort(ctx, scene, accel.kernel, rep.pixelsCutShort);
+    throwIfCutShort(ctx, scene, accel.traversal, rep.pixelsCutShort);
     return frame;
 }
 

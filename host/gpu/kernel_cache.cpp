@@ -10,20 +10,20 @@ namespace vkray::gpu {
 KernelCache::KernelCache(const VulkanContext& ctx) : ctx_(ctx) {}
 KernelCache::~KernelCache() = default;
 
-std::span<const uint32_t> KernelCache::spirv(accel::Kernel kernel, KernelVariant variant) {
-    const std::pair key{kernel, variant.index()};
+std::span<const uint32_t> KernelCache::spirv(accel::Traversal traversal, KernelVariant variant) {
+    const std::pair key{traversal, variant.index()};
     auto it = spirvFromFiles_.find(key);
-    if (it == spirvFromFiles_.end()) it = spirvFromFiles_.emplace(key, kernelFromDir(kernel, variant)).first;
+    if (it == spirvFromFiles_.end()) it = spirvFromFiles_.emplace(key, kernelFromDir(traversal, variant)).first;
     if (!it->second.empty()) return it->second;
-    return builtInKernel(kernel, variant);
+    return builtInKernel(traversal, variant);
 }
 
-ComputeKernel& KernelCache::kernel(accel::Kernel kernel, const ShaderFeatures& features) {
+ComputeKernel& KernelCache::kernel(accel::Traversal traversal, const ShaderFeatures& features) {
     const Specialization spec = features.specialization();
     const KernelVariant variant = features.variant();
-    auto& slot = kernels_[{{kernel, variant.index()}, spec.values}];
+    auto& slot = kernels_[{{traversal, variant.index()}, spec.values}];
     if (!slot)
-        slot = std::make_unique<ComputeKernel>(ctx_, spirv(kernel, variant), renderKernelBindings(),
+        slot = std::make_unique<ComputeKernel>(ctx_, spirv(traversal, variant), renderKernelBindings(),
                                                sizeof(GpuFrameParams), spec);
     return *slot;
 }
@@ -39,9 +39,9 @@ ShaderFeatures renderFeatures(const VulkanContext& ctx, const Scene& scene, cons
     return f;
 }
 
-double prepareKernel(const Scene& scene, const RenderOptions& options, accel::Kernel kernel, KernelCache& kernels) {
+double prepareKernel(const Scene& scene, const RenderOptions& options, accel::Traversal traversal, KernelCache& kernels) {
     const auto start = Clock::now();
-    kernels.kernel(kernel, renderFeatures(kernels.context(), scene, options, 1));
+    kernels.kernel(traversal, renderFeatures(kernels.context(), scene, options, 1));
     return msSince(start);
 }
 

@@ -29,17 +29,17 @@ public:
     KernelCache(const KernelCache&) = delete;
     KernelCache& operator=(const KernelCache&) = delete;
 
-    // The pipeline of `kernel` for `features`: its SPIR-V variant (features.variant(): plain,
+    // The pipeline of `traversal`'s kernel for `features`: its SPIR-V variant (features.variant(): plain,
     // resumable, split texel views or both), specialised with features.specialization(). The
     // SPIR-V is the built-in one, or with VKRAY_KERNEL_DIR set the file from that folder, read once
     // per cache (kernel_registry.h).
-    ComputeKernel& kernel(accel::Kernel kernel, const ShaderFeatures& features);
+    ComputeKernel& kernel(accel::Traversal traversal, const ShaderFeatures& features);
     size_t size() const { return kernels_.size(); }
     const VulkanContext& context() const { return ctx_; }
 
 private:
-    using Variant = std::pair<accel::Kernel, int>;  // the kernel, KernelVariant::index()
-    std::span<const uint32_t> spirv(accel::Kernel kernel, KernelVariant variant);
+    using Variant = std::pair<accel::Traversal, int>;  // the kernel, KernelVariant::index()
+    std::span<const uint32_t> spirv(accel::Traversal traversal, KernelVariant variant);
 
     const VulkanContext& ctx_;
     std::map<Variant, std::vector<uint32_t>> spirvFromFiles_;
@@ -52,10 +52,10 @@ private:
 ShaderFeatures renderFeatures(const VulkanContext& ctx, const Scene& scene, const RenderOptions& options,
                               uint32_t maxLeafTriangles, uint32_t kdShortStack = 0);
 
-// Creates in `kernels` the pipeline that a render of `scene` with `kernel` will use, so that the
+// Creates in `kernels` the pipeline that a render of `scene` with `traversal` will use, so that the
 // driver compiles it while the structure is built: the plain kernel's, the same whatever the
 // structure's leaves (only the resumable variant's leaf loop depends on them). Returns the
 // milliseconds it took.
-double prepareKernel(const Scene& scene, const RenderOptions& options, accel::Kernel kernel, KernelCache& kernels);
+double prepareKernel(const Scene& scene, const RenderOptions& options, accel::Traversal traversal, KernelCache& kernels);
 
 }  // namespace vkray::gpu

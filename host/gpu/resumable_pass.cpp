@@ -52,9 +52,9 @@ void resumeStrip(const VulkanContext& ctx, const ComputeKernel& kernel, const Sh
 
 }  // namespace
 
-bool resumableFromStart(const VulkanContext& ctx, const Scene& scene, accel::Kernel kernel) {
+bool resumableFromStart(const VulkanContext& ctx, const Scene& scene, accel::Traversal traversal) {
     const uint64_t passes = uint64_t(scene.triangles.size()) * (1 + scene.lights.size()) / 4;
-    return ctx.info().loopBudget && kernel == accel::Kernel::Brute && passes > VKRAY_RESUMABLE_LOOP_BUDGET;
+    return ctx.info().loopBudget && traversal == accel::Traversal::Brute && passes > VKRAY_RESUMABLE_LOOP_BUDGET;
 }
 
 void renderResumable(const VulkanContext& ctx, ComputeKernel& kernel, const ShaderFeatures& features,

@@ -1,12 +1,18 @@
 #include "render/device.h"
 
+#include <stdexcept>
+
+#include "gpu/gpu_renderer.h"
+#include "gpu/scene_buffers.h"
+
 namespace vkray::render {
 
-Device::Device(const std::string& name) {
-    opening_ = std::async(std::launch::async, [name] {
-        return std::make_unique<gpu::VulkanContext>(
-            gpu::ContextOptions{.validation = gpu::validationRequestedByEnvironment(), .device = name});
-    });
+Device::Device(const std::string& name)
+    : Device(gpu::ContextOptions{.validation = gpu::validationRequestedByEnvironment(), .device = name}) {}
+
+Device::Device(gpu::ContextOptions options) {
+    opening_ = std::async(std::launch::async,
+                          [options = std::move(options)] { return std::make_unique<gpu::VulkanContext>(options); });
 }
 
 Device::~Device() = default;
@@ -17,6 +23,24 @@ const gpu::VulkanContext* Device::get() {
         kernels_.emplace(*ctx_);
     }
     return ctx_.get();
+}
+
+const gpu::VulkanContext& Device::opened() {
+    const gpu::VulkanContext* ctx = get();
+    if (!ctx) throw std::logic_error("render::Device: used without a device (a CPU render or a build alone)");
+    return *ctx;
+}
+
+const gpu::VulkanContext& Device::checkFits(const Scene& scene) {
+    const gpu::VulkanContext& ctx = opened();
+    gpu::checkSceneFits(ctx, scene);
+    return ctx;
+}
+
+Frame Device::render(const Scene& scene, const RenderOptions& options, const accel::GpuAccelData& data,
+                     gpu::GpuRenderReport& report, const gpu::TileProgress& progress) {
+    const gpu::VulkanContext& ctx = opened();
+    return gpu::renderOnGpu(ctx, scene, options, data, &report, progress, &*kernels_);
 }
 
 }  // namespace vkray::render

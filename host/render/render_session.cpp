@@ -8,8 +8,7 @@
 #include "core/error.h"
 #include "core/timing.h"
 #include "cpu/reference_renderer.h"
-#include "gpu/gpu_renderer.h"
-#include "gpu/scene_buffers.h"
+#include "gpu/kernel_cache.h"
 #include "image/image_io.h"
 #include "render/outputs.h"
 #include "render/scene_checks.h"
@@ -74,10 +73,10 @@ RenderSession::Loaded RenderSession::load(const std::string& sceneFile) {
 // before a long build.
 void RenderSession::openDevice(const Scene& scene, RenderReport& report) {
     const Clock::time_point opening = Clock::now();
-    if (const gpu::VulkanContext* ctx = device_.get()) {
+    if (device_.get()) {
         report.deviceMs = msSince(opening);
-        report.device = ctx->info().name + " (" + ctx->info().driver + ")";
-        gpu::checkSceneFits(*ctx, scene);
+        const gpu::VulkanContext& ctx = device_.checkFits(scene);
+        report.device = ctx.info().name + " (" + ctx.info().driver + ")";
     } else {
         report.device = request_.buildOnly ? "none (--build-only)" : "CPU reference (double precision)";
     }
@@ -130,7 +129,7 @@ Frame RenderSession::renderFrame(const Scene& scene, const RenderOptions& option
     const size_t pipelinesBefore = kernels ? kernels->size() : 0;
     if (kernels) {
         compiling = std::async(std::launch::async, [&] {
-            return gpu::prepareKernel(scene, options, accel::kernelOf(request_.accel), *kernels);
+            return gpu::prepareKernel(scene, options, accel::traversalOf(request_.accel), *kernels);
         });
     }
     const StructureNeeds needs{.tracer = kernels == nullptr, .gpuData = kernels != nullptr, .threads = options.threads,
@@ -153,10 +152,8 @@ Frame RenderSession::renderFrame(const Scene& scene, const RenderOptions& option
 
 Frame RenderSession::renderOnDevice(const Scene& scene, const RenderOptions& options, const Structure& structure,
                                     RenderReport& report) {
-    gpu::KernelCache& kernels = *device_.kernels();
     gpu::GpuRenderReport& rep = report.gpu.emplace();
-    Frame frame = gpu::renderOnGpu(kernels.context(), scene, options, *structure.data, &rep, request_.progress.tiles,
-                                   &kernels);
+    Frame frame = device_.render(scene, options, *structure.data, rep, request_.progress.tiles);
     if (rep.cappedRays > 0 && request_.warn)
         request_.warn(std::to_string(rep.cappedRays) +
                       " rays reached the traversal's iteration cap and were ended there; their pixels may be wrong");

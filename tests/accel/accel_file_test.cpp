@@ -113,12 +113,12 @@ TEST_P(EveryStructure, LoadsByteForByteWhatWasBuilt) {
     const AccelSpec spec = resolveAccel(GetParam());
     const auto built = buildAccel(scene, spec, BuildOptions{.threads = 2, .progress = {}});
     const GpuAccelData data = built->gpuData();
-    EXPECT_EQ(kernelOf(spec), data.kernel);  // what checkSpec() compares a file's kernel with
+    EXPECT_EQ(traversalOf(spec), data.traversal);  // what checkSpec() compares a file's traversal with
     saveAccelFile(file, spec, scene, data, built->stats());
     EXPECT_FALSE(fs::exists(file.string() + ".tmp"));
 
     const LoadedAccel loaded = loadAccelFile(file, spec, scene);
-    EXPECT_EQ(loaded.data.kernel, data.kernel);
+    EXPECT_EQ(loaded.data.traversal, data.traversal);
     EXPECT_EQ(loaded.data.triangleOrder, data.triangleOrder);
     EXPECT_EQ(loaded.data.nodes, data.nodes);
     EXPECT_EQ(loaded.data.indices, data.indices);
@@ -261,7 +261,8 @@ TEST_F(DamagedFile, NotAStructureFileOrAnotherVersion) {
     expectBad({'c', 'a', 'm'}, "not a vkray structure file");
     bytes = bytes_;
     bytes[8] = 99;
-    expectBad(bytes, "structure file format version 99, this vkray reads version 1; rebuild it with --save-accel");
+    expectBad(bytes, "structure file format version 99, this vkray reads version " + std::to_string(kAccelFileVersion) +
+                         "; rebuild it with --save-accel");
     const fs::path missing = outDir() / "missing.vkacc";
     fs::remove(missing);
     expectRefused([&] { AccelFileReader reader(missing); }, missing, "cannot open structure file: No such file");

@@ -23,7 +23,7 @@
 #include "bench/bench_shard.h"
 #include "bench/report.h"
 #include "core/error.h"
-#include "gpu/vulkan_context.h"
+#include "render/device.h"
 
 namespace vkray::bench {
 namespace {
@@ -128,7 +128,7 @@ protected:
 
     static void SetUpTestSuite() {
         const char* dev = std::getenv("VKRAY_TEST_DEVICE");
-        const gpu::VulkanContext ctx(gpu::ContextOptions{.validation = true, .device = dev ? dev : ""});
+        render::Device device(gpu::ContextOptions{.validation = true, .device = dev ? dev : ""});
         BenchOptions o;
         o.scenes = {std::string(VKRAY_SOURCE_DIR) + "/scenes/objects.scene"};
         o.accels = {"bvh", "kd-stack"};
@@ -138,10 +138,10 @@ protected:
         o.threads = {1};
         o.deltas = {8};
         fs::remove_all(kRoot);
-        writeBenchReport(runBench(ctx, o, "unsharded"), kRoot / "all");
+        writeBenchReport(runBench(device, o, "unsharded"), kRoot / "all");
         for (int i = 0; i < kShards; ++i) {
             o.shard = {i, kShards};
-            writeBenchReport(runBench(ctx, o, "shard"), shardDir(i));
+            writeBenchReport(runBench(device, o, "shard"), shardDir(i));
         }
     }
 

@@ -15,7 +15,7 @@
 #include "bench/bench_runner.h"
 #include "bench/embree_baseline.h"
 #include "bench/report.h"
-#include "gpu/vulkan_context.h"
+#include "render/device.h"
 
 namespace vkray::bench {
 namespace {
@@ -23,12 +23,13 @@ namespace {
 namespace fs = std::filesystem;
 using Json = nlohmann::json;
 
-const gpu::VulkanContext& context() {
-    static std::unique_ptr<gpu::VulkanContext> ctx = [] {
+// One device for the tests of this binary, as `vkray bench` opens one for its run.
+render::Device& device() {
+    static render::Device d = [] {
         const char* dev = std::getenv("VKRAY_TEST_DEVICE");
-        return std::make_unique<gpu::VulkanContext>(gpu::ContextOptions{.validation = true, .device = dev ? dev : ""});
+        return render::Device(gpu::ContextOptions{.validation = true, .device = dev ? dev : ""});
     }();
-    return *ctx;
+    return d;
 }
 
 std::string readText(const fs::path& p) {
@@ -128,7 +129,7 @@ TEST(BenchSmoke, ReportOnLavapipeIsComplete) {
     o.threads = {1, 2};
     o.deltas = {4, 20};
     o.maxDepths = {1, 2};
-    const BenchResults results = runBench(context(), o, "bench_smoke_test");
+    const BenchResults results = runBench(device(), o, "bench_smoke_test");
     const fs::path dir = fs::path(VKRAY_TEST_OUTPUT_DIR) / "bench-smoke";
     fs::remove_all(dir);
     writeBenchReport(results, dir);

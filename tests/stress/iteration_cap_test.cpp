@@ -12,6 +12,7 @@
 #include "accel/accel.h"
 #include "accel/bvh/quantize.h"
 #include "gpu/gpu_renderer.h"
+#include "gpu/kernel_registry.h"
 #include "shared/bvh_layout.h"
 #include "shared/kd_layout.h"
 
@@ -34,9 +35,9 @@ Scene oneTriangleScene() {
 
 const glm::vec3 kLo(-2, -2, -1), kHi(2, 2, 1);
 
-accel::GpuAccelData cyclicBvh(accel::Kernel kernel) {
+accel::GpuAccelData cyclicBvh(accel::Traversal traversal) {
     accel::GpuAccelData data;
-    data.kernel = kernel;
+    data.traversal = traversal;
     // One node whose first child is a leaf (triangle slot 0) and whose second is itself: the leaf is
     // tested, the node popped again, forever.
     const bvh::Aabb box{kLo, kHi};
@@ -45,7 +46,7 @@ accel::GpuAccelData cyclicBvh(accel::Kernel kernel) {
         boxes, gpu::uvec4(VKRAY_BVH_LEAF_BIT, 0u, VKRAY_BVH_NO_CHILD, VKRAY_BVH_NO_CHILD));
     const std::vector<gpu::GpuBvhNode> nodes = {node};
     data.nodes = accel::asBytes(nodes);
-    if (kernel == accel::Kernel::BvhSphere) {  // the same two children as spheres holding the box
+    if (traversal == accel::Traversal::BvhSphere) {  // the same two children as spheres holding the box
         const glm::vec3 c = 0.5f * (kLo + kHi);
         const float r = glm::length(kHi - kLo);
         const gpu::GpuBvhSphereNode sphere{.centreX = gpu::vec4(c.x), .centreY = gpu::vec4(c.y),
@@ -55,13 +56,13 @@ accel::GpuAccelData cyclicBvh(accel::Kernel kernel) {
     // The root's parent link (the stackless walk: bvh-stackless, and every BVH kernel's shadow
     // rays), in the box node (quantizedNode's) or beside the sphere node; the walk goes down into
     // itself before it ever climbs.
-    if (kernel == accel::Kernel::BvhSphere) data.indices = accel::asBytes(std::vector<uint32_t>{VKRAY_BVH_NO_PARENT});
+    if (traversal == accel::Traversal::BvhSphere) data.indices = accel::asBytes(std::vector<uint32_t>{VKRAY_BVH_NO_PARENT});
     return data;
 }
 
-accel::GpuAccelData cyclicKd(accel::Kernel kernel) {
+accel::GpuAccelData cyclicKd(accel::Traversal traversal) {
     accel::GpuAccelData data;
-    data.kernel = kernel;
+    data.traversal = traversal;
     data.nodeTexelBytes = VKRAY_KD_NODE_TEXEL_BYTES;  // as the kd-tree's own gpuData() says
     const gpu::KdTreeHeader header{.lo = kLo, .nodeCount = 2, .hi = kHi, .indexCount = 1};
     // Root: split z = 0.5, below child = node 1 (a leaf), above child = the root itself. A ray coming
@@ -71,19 +72,19 @@ accel::GpuAccelData cyclicKd(accel::Kernel kernel) {
     std::memcpy(data.nodes.data(), &header, sizeof(header));
     std::memcpy(data.nodes.data() + sizeof(header), nodes.data(), nodes.size() * sizeof(gpu::KdNode));
     data.indices = accel::asBytes(std::vector<uint32_t>{0});
-    if (kernel == accel::Kernel::KdBacktrack)
+    if (traversal == accel::Traversal::KdBacktrack)
         data.extra = accel::asBytes(std::vector<gpu::KdNodeExtra>{
             {.lo = kLo, .parent = VKRAY_KD_NO_PARENT, .hi = kHi, .pad0 = 0}, {.lo = kLo, .parent = 0, .hi = kHi, .pad0 = 0}});
     return data;
 }
 
-class IterationCap : public ::testing::TestWithParam<accel::Kernel> {};
+class IterationCap : public ::testing::TestWithParam<accel::Traversal> {};
 
 TEST_P(IterationCap, RunawayRaysEndAndAreCounted) {
     const Scene scene = oneTriangleScene();
-    const accel::Kernel kernel = GetParam();
-    const bool bvh = kernel == accel::Kernel::Bvh || kernel == accel::Kernel::BvhStackless || kernel == accel::Kernel::BvhSphere;
-    const accel::GpuAccelData data = bvh ? cyclicBvh(kernel) : cyclicKd(kernel);
+    const accel::Traversal traversal = GetParam();
+    const bool bvh = traversal == accel::Traversal::Bvh || traversal == accel::Traversal::BvhStackless || traversal == accel::Traversal::BvhSphere;
+    const accel::GpuAccelData data = bvh ? cyclicBvh(traversal) : cyclicKd(traversal);
     RenderOptions options{.width = kSize, .height = kSize, .maxDepth = 1};
     gpu::GpuRenderReport report;
     const Frame f = gpu::renderOnGpu(test::gpuContext(), scene, options, data, &report);
@@ -95,10 +96,10 @@ TEST_P(IterationCap, RunawayRaysEndAndAreCounted) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Stress, IterationCap,
-                         ::testing::Values(accel::Kernel::Bvh, accel::Kernel::BvhStackless, accel::Kernel::BvhSphere, accel::Kernel::KdStack, accel::Kernel::KdRestart,
-                                           accel::Kernel::KdPushDown, accel::Kernel::KdShortStack, accel::Kernel::KdRopes,
-                                           accel::Kernel::KdBacktrack),
-                         [](const auto& info) { return std::string(accel::kernelName(info.param)); });
+                         ::testing::Values(accel::Traversal::Bvh, accel::Traversal::BvhStackless, accel::Traversal::BvhSphere, accel::Traversal::KdStack, accel::Traversal::KdRestart,
+                                           accel::Traversal::KdPushDown, accel::Traversal::KdShortStack, accel::Traversal::KdRopes,
+                                           accel::Traversal::KdBacktrack),
+                         [](const auto& info) { return std::string(gpu::kernelName(info.param)); });
 
 }  // namespace
 }  // namespace vkray

@@ -41,7 +41,7 @@ public:
 
     accel::GpuAccelData gpuData() const override {
         accel::GpuAccelData data;
-        data.kernel = accel::bvhKernel(config_, stackless_);
+        data.traversal = accel::bvhTraversal(config_, stackless_);
         data.triangleOrder = flat_.triangleOrder;
         // Every BVH kernel walks its shadow rays stackless, by the parent links: a box node holds
         // its own, sphere nodes' are an array beside them. The nodes are made in parallel, on as
@@ -151,9 +151,9 @@ BuildResult buildFlatBvh(std::span<const Triangle> triangles, const Config& conf
 
 namespace vkray::accel {
 
-Kernel bvhKernel(const bvh::Config& config, bool stackless) {
-    if (config.container == bvh::Config::Container::Sphere) return Kernel::BvhSphere;
-    return stackless ? Kernel::BvhStackless : Kernel::Bvh;
+Traversal bvhTraversal(const bvh::Config& config, bool stackless) {
+    if (config.container == bvh::Config::Container::Sphere) return Traversal::BvhSphere;
+    return stackless ? Traversal::BvhStackless : Traversal::Bvh;
 }
 
 std::unique_ptr<BuiltAccel> buildBvhAccel(const Scene& scene, const bvh::Config& config, bool stackless,

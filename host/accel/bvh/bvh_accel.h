@@ -16,8 +16,8 @@
 
 namespace vkray::accel {
 
-// The kernel that walks a BVH of `config` (its container), with a stack or, `stackless`, parent links.
-Kernel bvhKernel(const bvh::Config& config, bool stackless);
+// The GPU traversal of a BVH of `config` (its container), with a stack or, `stackless`, parent links.
+Traversal bvhTraversal(const bvh::Config& config, bool stackless);
 
 // `stackless`: walked with parent links instead of a stack (bvh-stackless), on the GPU and the CPU.
 std::unique_ptr<BuiltAccel> buildBvhAccel(const Scene& scene, const bvh::Config& config, bool stackless,

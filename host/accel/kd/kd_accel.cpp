@@ -36,7 +36,7 @@ public:
 
     GpuAccelData gpuData() const override {
         GpuAccelData data;
-        data.kernel = kdKernel(traversal_);
+        data.traversal = kdTraversal(traversal_);
         data.nodeTexelBytes = VKRAY_KD_NODE_TEXEL_BYTES;
         const kd::KdTree& t = build_.tree;
         // kd-stack keeps a node index and two bits in one stack word (kd_stack.glsl).
@@ -114,16 +114,16 @@ private:
 
 }  // namespace
 
-Kernel kdKernel(kd::Traversal traversal) {
+Traversal kdTraversal(kd::Traversal traversal) {
     switch (traversal) {
-    case kd::Traversal::Stack: return Kernel::KdStack;
-    case kd::Traversal::Restart: return Kernel::KdRestart;
-    case kd::Traversal::Backtrack: return Kernel::KdBacktrack;
-    case kd::Traversal::PushDown: return Kernel::KdPushDown;
-    case kd::Traversal::ShortStack: return Kernel::KdShortStack;
-    case kd::Traversal::Ropes: return Kernel::KdRopes;
+    case kd::Traversal::Stack: return Traversal::KdStack;
+    case kd::Traversal::Restart: return Traversal::KdRestart;
+    case kd::Traversal::Backtrack: return Traversal::KdBacktrack;
+    case kd::Traversal::PushDown: return Traversal::KdPushDown;
+    case kd::Traversal::ShortStack: return Traversal::KdShortStack;
+    case kd::Traversal::Ropes: return Traversal::KdRopes;
     }
-    return Kernel::KdRestart;
+    return Traversal::KdRestart;
 }
 
 uint32_t kdShortStack(kd::Traversal traversal, int shortStack) {

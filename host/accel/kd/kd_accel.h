@@ -10,8 +10,8 @@
 
 namespace vkray::accel {
 
-// The GPU kernel that walks the tree with `traversal`.
-Kernel kdKernel(kd::Traversal traversal);
+// The GPU traversal of the tree walked with `traversal`.
+Traversal kdTraversal(kd::Traversal traversal);
 
 // GpuAccelData::kdShortStack for `traversal`: the stack's entries for kd-shortstack, else 0.
 uint32_t kdShortStack(kd::Traversal traversal, int shortStack);

@@ -281,7 +281,7 @@ TEST(BvhAccel, BuildReportsPhasesAndStats) {
     EXPECT_EQ(phases.front(), "primitives");
     EXPECT_EQ(phases.back(), "done");
     const accel::GpuAccelData gpu = built->gpuData();
-    EXPECT_EQ(gpu.kernel, accel::Kernel::Bvh);
+    EXPECT_EQ(gpu.traversal, accel::Traversal::Bvh);
     EXPECT_EQ(gpu.triangleOrder.size(), s.triangles.size());
     EXPECT_EQ(gpu.nodes.size() % sizeof(gpu::GpuBvhNode), 0u);
     // The shadow rays' stackless walk reads each node's parent link from the node (the root's names
