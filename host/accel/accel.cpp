@@ -21,12 +21,34 @@ public:
     std::vector<AccelStat> stats() const override { return {}; }
 };
 
+// `rayquery`: nothing to build on the CPU; the driver builds its structure on the device for each
+// render (gpu/driver_structure.h). It has no CPU traversal of its own: the CPU reference walks
+// brute force, which answers as every vkray traversal does.
+class DriverAccel final : public BuiltAccel {
+public:
+    explicit DriverAccel(const DriverBuild& build) : build_(build) {}
+    std::unique_ptr<geometry::Tracer> makeTracer(const Scene& scene) const override {
+        return std::make_unique<geometry::BruteForceTracer>(scene);
+    }
+    GpuAccelData gpuData() const override {
+        GpuAccelData data;
+        data.traversal = Traversal::RayQuery;
+        data.driverBuild = build_;
+        return data;
+    }
+    std::vector<AccelStat> stats() const override { return {}; }
+
+private:
+    DriverBuild build_;
+};
+
 }  // namespace
 
 std::unique_ptr<BuiltAccel> buildAccel(const Scene& scene, const AccelSpec& spec,
                                        const BuildOptions& options) {
     switch (spec.family) {
     case Family::Brute: return std::make_unique<BruteAccel>();
+    case Family::Driver: return std::make_unique<DriverAccel>(spec.driver);
     case Family::Bvh: return buildBvhAccel(scene, spec.bvh, spec.bvhStackless, options);
     case Family::Kd: return buildKdAccel(scene, spec.kd, spec.kdTraversal, spec.kdShortStack, options);
     }
@@ -36,6 +58,7 @@ std::unique_ptr<BuiltAccel> buildAccel(const Scene& scene, const AccelSpec& spec
 Traversal traversalOf(const AccelSpec& spec) {
     switch (spec.family) {
     case Family::Brute: return Traversal::Brute;
+    case Family::Driver: return Traversal::RayQuery;
     case Family::Bvh: return bvhTraversal(spec.bvh, spec.bvhStackless);
     case Family::Kd: return kdTraversal(spec.kdTraversal);
     }

@@ -30,11 +30,14 @@ namespace vkray::accel {
 // stackless BVH walk, the ropes of Popov et al. 2007, the parent links and boxes of Foley and
 // Sugerman's kd-backtrack, section 4.2). The GPU layer runs each with a kernel of its own
 // (gpu/kernel_registry.h).
-enum class Traversal { Brute, Bvh, BvhStackless, BvhSphere, KdStack, KdRestart, KdBacktrack, KdPushDown, KdShortStack, KdRopes };
+// RayQuery: the driver's (its structure built on the device from the scene's triangles).
+enum class Traversal {
+    Brute, Bvh, BvhStackless, BvhSphere, KdStack, KdRestart, KdBacktrack, KdPushDown, KdShortStack, KdRopes, RayQuery
+};
 inline constexpr std::array kTraversals{Traversal::Brute,     Traversal::Bvh,         Traversal::BvhStackless,
                                         Traversal::BvhSphere, Traversal::KdStack,     Traversal::KdRestart,
                                         Traversal::KdBacktrack, Traversal::KdPushDown, Traversal::KdShortStack,
-                                        Traversal::KdRopes};
+                                        Traversal::KdRopes,   Traversal::RayQuery};
 
 // Its name, as structure files record it: the accelerator that walks it (accel_spec.cpp's names).
 constexpr std::string_view traversalName(Traversal t) {
@@ -49,6 +52,7 @@ constexpr std::string_view traversalName(Traversal t) {
     case Traversal::KdPushDown: return "kd-pushdown";
     case Traversal::KdRopes: return "kd-ropes";
     case Traversal::KdShortStack: return "kd-shortstack";
+    case Traversal::RayQuery: return "rayquery";
     }
     return "";
 }
@@ -83,6 +87,8 @@ struct GpuAccelData {
     uint32_t maxLeafTriangles = 0;
     // kd-shortstack: its stack's entries (VKRAY_SPEC_KD_SHORT_STACK); 0 for the other kernels.
     uint32_t kdShortStack = 0;
+    // rayquery: how the driver builds its structure on the device, from the triangle buffer.
+    DriverBuild driverBuild;
 
     size_t bytes() const { return nodes.size() + indices.size() + extra.size(); }
 };

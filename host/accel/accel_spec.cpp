@@ -46,6 +46,9 @@ const AccelEntry kAccels[] = {
     {"kd-stack", Family::Kd, {}, kd::Traversal::Stack},
     {"kd-shortstack", Family::Kd, {}, kd::Traversal::ShortStack},
     {"brute", Family::Brute, {}},
+    // The driver's own BVH and traversal (VK_KHR_acceleration_structure, VK_KHR_ray_query): in
+    // hardware on GPUs with ray-tracing units. A yardstick beside Embree, not one of vkray's own.
+    {"rayquery", Family::Driver, {}},
 };
 
 // ---- The tuning options -------------------------------------------------------------------------
@@ -56,6 +59,7 @@ bool isAac(const AccelSpec& s) {
 bool isKd(const AccelSpec& s) { return s.family == Family::Kd; }
 bool isKdShortStack(const AccelSpec& s) { return isKd(s) && s.kdTraversal == kd::Traversal::ShortStack; }
 bool isBvh(const AccelSpec& s) { return s.family == Family::Bvh; }
+bool isDriver(const AccelSpec& s) { return s.family == Family::Driver; }
 // Treelet restructuring prices boxes: not for sphere containers.
 bool isBoxBvh(const AccelSpec& s) { return isBvh(s) && s.bvh.container == bvh::Config::Container::Box; }
 
@@ -94,6 +98,10 @@ const TuningOption kTuning[] = {
      [](AccelSpec& s, double v) { s.kd.maxDuplication = v; }},
     {"kd-short-stack", "kd-shortstack: entries of its stack (default 4)", isKdShortStack, 1, VKRAY_KD_STACK_SIZE,
      false, true, "", [](AccelSpec& s, double v) { s.kdShortStack = int(v); }},
+    {"rq-fast-build", "rayquery: 1 asks the driver for a fast build, 0 for a fast trace (default 0)", isDriver, 0,
+     1, false, true, "", [](AccelSpec& s, double v) { s.driver.preferFastBuild = v != 0.0; }},
+    {"rq-compact", "rayquery: 1 compacts the structure after its build (default 1)", isDriver, 0, 1, false, true,
+     "", [](AccelSpec& s, double v) { s.driver.compact = v != 0.0; }},
 };
 
 bool accepts(const TuningOption& o, double v) {
@@ -230,6 +238,9 @@ std::string accelHelp() {
 std::string structureKey(const AccelSpec& spec) {
     switch (spec.family) {
     case Family::Brute: return "brute";
+    case Family::Driver:
+        return std::string("driver ") + (spec.driver.preferFastBuild ? "fast-build" : "fast-trace") +
+               (spec.driver.compact ? " compacted" : "");
     case Family::Bvh: return "bvh " + spec.bvh.describe();
     case Family::Kd:  // one tree for every kd traversal; kd-ropes adds its ropes to it
         return "kd " + spec.kd.describe() + " depth " + (spec.kd.maxDepth ? std::to_string(*spec.kd.maxDepth) : "auto") +

@@ -19,7 +19,15 @@
 
 namespace vkray::accel {
 
-enum class Family { Brute, Bvh, Kd };
+// Driver: the device's own ray tracing (`rayquery`), whose structure the driver builds on the device.
+enum class Family { Brute, Bvh, Kd, Driver };
+
+// How the driver builds `rayquery`'s structure (VkBuildAccelerationStructureFlagsKHR): for a fast
+// trace or a fast build, and compacted after the build (a copy into the size the driver reports).
+struct DriverBuild {
+    bool preferFastBuild = false;
+    bool compact = true;
+};
 
 // The accelerator `vkray render` uses when --accel is not given.
 inline constexpr std::string_view kDefaultAccel = "bvh";
@@ -34,6 +42,7 @@ struct AccelSpec {
     // kd-shortstack: its stack's entries (a specialization constant of its kernel, not part of the
     // structure: files of any size serve).
     int kdShortStack = VKRAY_KD_SHORT_STACK_SIZE;
+    DriverBuild driver;  // Family::Driver
 };
 
 // Every accelerator name vkray accepts, in the order `--help` lists them.

@@ -4,6 +4,7 @@
 // `--merge DIR...` joins the shards' reports into one (docs/cluster.md).
 #include <unistd.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <memory>
@@ -183,7 +184,10 @@ void registerBenchCommand(CLI::App& app, int& exitCode, int argc, const char* co
             if (!std::filesystem::is_regular_file(file)) throw Error(file + ": no such scene file");
         const std::filesystem::path dir = args->out;
         prepareOutputDir(dir);
-        render::Device device(args->device);
+        const bool rayQuery = std::any_of(options.accels.begin(), options.accels.end(), [](const std::string& a) {
+            return accel::resolveAccel(a).family == accel::Family::Driver;
+        });
+        render::Device device(args->device, rayQuery);
         ProgressLine progress(args->quiet);
         bench::BenchResults results;
         try {

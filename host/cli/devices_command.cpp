@@ -24,15 +24,17 @@ void registerDevicesCommand(CLI::App& app, int& exitCode) {
                                {"device_local_bytes", d.deviceLocalBytes},
                                {"timestamp_period_ns", d.timestampPeriodNs},
                                {"subgroup_size", d.subgroupSize},
-                               {"compute", d.hasCompute}});
+                               {"compute", d.hasCompute},
+                               {"ray_query", d.rayQuery}});
             std::printf("%s\n", out.dump(2).c_str());
         } else {
             if (devices.empty()) std::printf("no Vulkan devices\n");
             for (const auto& d : devices)
-                std::printf("%u: %s\n   type %s, driver %s, Vulkan %s, maxStorageBufferRange %llu MiB, subgroups of %u%s\n",
-                            d.index, d.name.c_str(), d.type.c_str(), d.driver.c_str(),
-                            d.apiVersion.c_str(),
+                std::printf("%u: %s\n   type %s, driver %s, Vulkan %s, maxStorageBufferRange %llu MiB, subgroups of %u, "
+                            "%s%s\n",
+                            d.index, d.name.c_str(), d.type.c_str(), d.driver.c_str(), d.apiVersion.c_str(),
                             (unsigned long long)(d.maxStorageBufferRange >> 20), d.subgroupSize,
+                            d.rayQuery ? "ray query (--accel rayquery)" : "no ray query",
                             d.hasCompute ? "" : ", no compute queue");
             if (const auto skipped = gpu::skippedDrivers())
                 std::printf("(not loaded, no DRM render node in /dev/dri: %s; VK_LOADER_DRIVERS_DISABLE= loads them)\n",

@@ -84,6 +84,7 @@ nlohmann::json gpuJson(const gpu::GpuRenderReport& g) {
                         {"resumed", {{"tiles", g.resumedTiles}, {"from_start", g.resumedFromStart},
                                      {"strip_rows", g.resumeRows},
                                      {"dispatches", g.resumeDispatches}}}};
+    if (g.driverBuildMs) j["driver_build_ms"] = *g.driverBuildMs;
     if (g.features.countTraversal)
         j["traversal"] = {{"nodes", g.nodesVisited}, {"leaves", g.leavesVisited},
                           {"triangles", g.trianglesTested}, {"restarts", g.restarts},
@@ -98,6 +99,9 @@ void printGpuStats(const gpu::GpuRenderReport& g) {
                 "(%.2f MiB structure)\n",
                 g.kernel.c_str(), g.tiles, g.tiles == 1 ? "" : "s", g.submissions, g.submissions == 1 ? "" : "s", double(g.bytesUploaded) / (1 << 20),
                 double(g.accelBytes) / (1 << 20));
+    if (g.driverBuildMs)
+        std::printf("driver:      built its structure on the device in %.1f ms (GPU timestamps; part of upload)\n",
+                    *g.driverBuildMs);
     if (g.resumedTiles > 0)
         std::printf("resumed:     %u tiles beyond the driver's loop budget%s, in strips of %u rows, %u dispatches\n",
                     g.resumedTiles, g.resumedFromStart ? " (from the start)" : "", g.resumeRows,

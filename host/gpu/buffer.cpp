@@ -35,8 +35,13 @@ Buffer::Buffer(const VulkanContext& ctx, vk::DeviceSize size, vk::BufferUsageFla
             break;
     }
     const uint32_t type = ctx.findMemoryType(req.memoryTypeBits, required, preferred);
+    // A buffer the device addresses (the driver's acceleration structures and their inputs) needs
+    // memory allocated for it.
+    const vk::MemoryAllocateFlagsInfo addressable{.flags = vk::MemoryAllocateFlagBits::eDeviceAddress};
+    const bool addressed = bool(usage & vk::BufferUsageFlagBits::eShaderDeviceAddress);
     try {
-        memory_ = vk::raii::DeviceMemory(dev, vk::MemoryAllocateInfo{.allocationSize = req.size,
+        memory_ = vk::raii::DeviceMemory(dev, vk::MemoryAllocateInfo{.pNext = addressed ? &addressable : nullptr,
+                                                                     .allocationSize = req.size,
                                                                      .memoryTypeIndex = type});
     } catch (const vk::SystemError& e) {
         throw Error("cannot allocate " + mib(size) + " of GPU memory for " + what + " on '" +
@@ -48,6 +53,7 @@ Buffer::Buffer(const VulkanContext& ctx, vk::DeviceSize size, vk::BufferUsageFla
     // Only coherent memory is written in place: it needs no flush/invalidate calls.
     if ((flags & MP::eHostVisible) && (flags & MP::eHostCoherent))
         mapped_ = memory_.mapMemory(0, VK_WHOLE_SIZE);
+    if (addressed) address_ = dev.getBufferAddress(vk::BufferDeviceAddressInfo{.buffer = *buffer_});
 }
 
 OneShotCommands::OneShotCommands(const VulkanContext& ctx) : ctx_(ctx) {
@@ -165,6 +171,17 @@ TexelArray uploadTexelArray(const VulkanContext& ctx, const void* data, size_t b
         array.views.emplace_back(ctx, target, format, texelBytes, part);
     }
     return array;
+}
+
+Buffer uploadBuffer(const VulkanContext& ctx, const void* data, size_t bytes, vk::BufferUsageFlags usage,
+                    const std::string& what) {
+    Buffer target(ctx, std::max<vk::DeviceSize>(bytes, 4), usage | vk::BufferUsageFlagBits::eTransferDst,
+                  MemoryUse::DeviceLocal, what);
+    if (bytes > 0) {
+        if (target.hostVisible()) parallelCopy(target.mapped(), data, bytes);
+        else uploadThroughStaging(ctx, target, data, bytes, what);
+    }
+    return target;
 }
 
 }  // namespace vkray::gpu

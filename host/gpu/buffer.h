@@ -33,6 +33,8 @@ public:
     // Whether the memory is the device's own (on lavapipe and integrated GPUs, also the host's).
     bool deviceLocal() const { return deviceLocal_; }
     void* mapped() const { return mapped_; }
+    // The device address of a buffer created with eShaderDeviceAddress usage; 0 otherwise.
+    vk::DeviceAddress address() const { return address_; }
 
 private:
     vk::raii::Buffer buffer_{nullptr};
@@ -40,6 +42,7 @@ private:
     vk::DeviceSize size_ = 0;
     void* mapped_ = nullptr;  // persistently mapped when host-visible; unmapped by vkFreeMemory
     bool deviceLocal_ = false;
+    vk::DeviceAddress address_ = 0;
 };
 
 // Records commands into a fresh primary command buffer, submits them and waits on a fence.
@@ -54,6 +57,11 @@ private:
     vk::raii::CommandPool pool_{nullptr};
     vk::raii::CommandBuffer cmd_{nullptr};
 };
+
+// A device-local buffer of `usage` holding `bytes` of `data` (written in place where the memory is
+// host-visible, else through a staging copy). Throws naming `what` when it cannot be allocated.
+Buffer uploadBuffer(const VulkanContext& ctx, const void* data, size_t bytes, vk::BufferUsageFlags usage,
+                    const std::string& what);
 
 // A read-only view of a buffer as a uniform texel buffer of `format` (RAII): the kernels fetch their
 // hot data through these (shared/gpu_layout.h, "Texel views").

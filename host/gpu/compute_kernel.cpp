@@ -89,6 +89,7 @@ void ComputeKernel::bind(std::span<const Resource> resources) {
         throw Error("internal: " + std::to_string(resources.size()) + " resources for a kernel of " +
                     std::to_string(bindings_.size()) + " bindings");
     std::vector<vk::DescriptorBufferInfo> infos(resources.size());
+    std::vector<vk::WriteDescriptorSetAccelerationStructureKHR> structures(resources.size());
     std::vector<vk::WriteDescriptorSet> writes;
     for (uint32_t i = 0; i < bindings_.size(); ++i) {
         const Binding& b = bindings_[i];
@@ -98,6 +99,9 @@ void ComputeKernel::bind(std::span<const Resource> resources) {
                 throw Error("internal: " + std::to_string(resources[i].views.size()) + " views for binding " +
                             std::to_string(i) + " of " + std::to_string(b.count));
             w.pTexelBufferView = resources[i].views.data();
+        } else if (b.type == vk::DescriptorType::eAccelerationStructureKHR) {
+            structures[i] = {.accelerationStructureCount = 1, .pAccelerationStructures = &resources[i].structure};
+            w.pNext = &structures[i];
         } else {
             infos[i] = vk::DescriptorBufferInfo{.buffer = resources[i].buffer, .offset = 0, .range = VK_WHOLE_SIZE};
             w.pBufferInfo = &infos[i];

@@ -25,17 +25,18 @@ class ComputeKernel {
 public:
     // Binding i of the set: one storage buffer, or an array of `count` uniform texel buffers.
     struct Binding {
-        vk::DescriptorType type;  // eStorageBuffer or eUniformTexelBuffer
+        vk::DescriptorType type;  // eStorageBuffer, eUniformTexelBuffer or eAccelerationStructureKHR
         uint32_t count = 1;
     };
     ComputeKernel(const VulkanContext& ctx, std::span<const uint32_t> spirv, std::span<const Binding> bindings,
                   uint32_t pushConstantBytes, const Specialization& spec);
 
     // What binding i is pointed at: the buffer (whole range) of a storage-buffer binding, the
-    // `count` views of a texel-buffer binding.
+    // `count` views of a texel-buffer binding, the acceleration structure of such a binding.
     struct Resource {
         vk::Buffer buffer;
         std::vector<vk::BufferView> views;
+        vk::AccelerationStructureKHR structure;
     };
     // Points every binding at resources[i]; one entry per binding.
     void bind(std::span<const Resource> resources);

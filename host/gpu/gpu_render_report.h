@@ -3,6 +3,7 @@
 
 #include <cstdint>
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -23,7 +24,10 @@ struct GpuRenderReport {
     uint32_t pipelinesCreated = 0;
     double gpuMs = -1.0;         // sum of the batches' timestamp intervals; -1 without timestamps
     double renderMs = 0.0;       // dispatch to read-back done, host clock
-    uint64_t accelBytes = 0;     // of bytesUploaded, the acceleration structure's
+    uint64_t accelBytes = 0;     // of bytesUploaded, the acceleration structure's (rayquery: the driver's)
+    // rayquery: the driver's build of its structure on the device (GPU timestamps; part of
+    // uploadMs); -1 without timestamps; absent for every other accelerator.
+    std::optional<double> driverBuildMs;
     uint64_t raysTraced = 0;     // camera and secondary rays (closest hit)
     uint64_t shadowRays = 0;     // any-hit rays
     uint64_t cappedRays = 0;     // rays a traversal ended at its iteration cap (reported, not hidden)

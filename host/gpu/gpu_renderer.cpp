@@ -69,8 +69,9 @@ Uploaded upload(const VulkanContext& ctx, const Scene& scene, const accel::GpuAc
     const auto start = Clock::now();
     const PackedScene packed = packScene(scene, accel.triangleOrder);
     const int viewBits = texelViewBits(ctx, texelArraySizes(packed, accel));
-    Uploaded u{uploadScene(ctx, packed, viewBits), uploadAccel(ctx, accel, viewBits), viewBits};
+    Uploaded u{uploadScene(ctx, packed, viewBits), uploadAccel(ctx, accel, packed, viewBits), viewBits};
     rep.accelBytes = u.accel.bytes;
+    if (u.accel.driver) rep.driverBuildMs = u.accel.driver->buildMs();
     rep.bytesUploaded = u.scene.bytes + u.accel.bytes;
     rep.uploadMs = msSince(start);
     return u;

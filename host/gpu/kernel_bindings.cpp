@@ -9,13 +9,15 @@
 namespace vkray::gpu {
 namespace {
 
-// Storage buffers, then arrays of texel views.
+// Storage buffers, then arrays of texel views, then (rayquery) the acceleration structure.
+static_assert(VKRAY_BINDING_SCENE_STRUCTURE == VKRAY_BINDING_COUNT);
 constexpr auto kBindings = [] {
-    std::array<ComputeKernel::Binding, VKRAY_BINDING_COUNT> bindings{};
+    std::array<ComputeKernel::Binding, VKRAY_BINDING_COUNT + 1> bindings{};
     for (uint32_t i = 0; i < VKRAY_BINDING_COUNT; ++i)
         bindings[i] = i < VKRAY_STORAGE_BINDING_COUNT
                           ? ComputeKernel::Binding{vk::DescriptorType::eStorageBuffer, 1}
                           : ComputeKernel::Binding{vk::DescriptorType::eUniformTexelBuffer, VKRAY_TEXEL_VIEWS};
+    bindings[VKRAY_BINDING_SCENE_STRUCTURE] = {vk::DescriptorType::eAccelerationStructureKHR, 1};
     return bindings;
 }();
 
@@ -29,7 +31,10 @@ std::vector<vk::BufferView> viewHandles(const TexelArray& array) {
 
 }  // namespace
 
-std::span<const ComputeKernel::Binding> renderKernelBindings() { return kBindings; }
+std::span<const ComputeKernel::Binding> renderKernelBindings(accel::Traversal traversal) {
+    const size_t count = traversal == accel::Traversal::RayQuery ? kBindings.size() : VKRAY_BINDING_COUNT;
+    return std::span(kBindings).first(count);
+}
 
 ResumeBuffers::ResumeBuffers(const VulkanContext& ctx, uint64_t pixels, uint64_t maxDepth)
     : records(ctx, std::max<uint64_t>(pixels, 1) * sizeof(GpuPixelResume),
@@ -40,7 +45,7 @@ ResumeBuffers::ResumeBuffers(const VulkanContext& ctx, uint64_t pixels, uint64_t
 
 void bindBuffers(ComputeKernel& kernel, const SceneBuffers& scene, const AccelBuffers& accel,
                  const PixelOutput& pixels, const ResumeBuffers& resume) {
-    std::array<ComputeKernel::Resource, VKRAY_BINDING_COUNT> r{};
+    std::vector<ComputeKernel::Resource> r(VKRAY_BINDING_COUNT + (accel.driver ? 1 : 0));
     r[VKRAY_BINDING_PIXELS].buffer = pixels.target().handle();
     r[VKRAY_BINDING_RESUME].buffer = resume.records.handle();
     r[VKRAY_BINDING_RESUME_RAYS].buffer = resume.rays.handle();
@@ -51,6 +56,7 @@ void bindBuffers(ComputeKernel& kernel, const SceneBuffers& scene, const AccelBu
     r[VKRAY_BINDING_NORMAL_TEXELS].views = viewHandles(scene.normals);
     r[VKRAY_BINDING_MATERIAL_TEXELS].views = viewHandles(scene.materials);
     r[VKRAY_BINDING_LIGHT_TEXELS].views = viewHandles(scene.lights);
+    if (accel.driver) r[VKRAY_BINDING_SCENE_STRUCTURE].structure = accel.driver->handle();
     kernel.bind(r);
 }
 

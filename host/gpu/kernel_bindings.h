@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <span>
 
+#include "accel/accel.h"
 #include "gpu/buffer.h"
 #include "gpu/compute_kernel.h"
 #include "gpu/pixel_output.h"
@@ -14,8 +15,9 @@
 
 namespace vkray::gpu {
 
-// The bindings every render kernel declares, in binding order.
-std::span<const ComputeKernel::Binding> renderKernelBindings();
+// The bindings `traversal`'s render kernel declares, in binding order: every kernel's, and the
+// rayquery kernel's acceleration structure after them.
+std::span<const ComputeKernel::Binding> renderKernelBindings(accel::Traversal traversal);
 
 // The resumable variant's records (VKRAY_BINDING_RESUME, _RESUME_RAYS): for `pixels` pixels of
 // `maxDepth` pending rays each, or one-element dummies for the plain kernel.

@@ -23,7 +23,7 @@ ComputeKernel& KernelCache::kernel(accel::Traversal traversal, const ShaderFeatu
     const KernelVariant variant = features.variant();
     auto& slot = kernels_[{{traversal, variant.index()}, spec.values}];
     if (!slot)
-        slot = std::make_unique<ComputeKernel>(ctx_, spirv(traversal, variant), renderKernelBindings(),
+        slot = std::make_unique<ComputeKernel>(ctx_, spirv(traversal, variant), renderKernelBindings(traversal),
                                                sizeof(GpuFrameParams), spec);
     return *slot;
 }

@@ -138,10 +138,15 @@ void checkSceneFits(const VulkanContext& ctx, const Scene& scene) {
     checkTexelArrayFits(ctx, uint64_t(scene.normals.size()) * VKRAY_NORMAL_TEXELS, kNormals);
 }
 
-AccelBuffers uploadAccel(const VulkanContext& ctx, const accel::GpuAccelData& data, int viewBits) {
+AccelBuffers uploadAccel(const VulkanContext& ctx, const accel::GpuAccelData& data, const PackedScene& packed,
+                         int viewBits) {
     const auto a = accelArrays(data);
-    AccelBuffers b{a[0].upload(ctx, viewBits), a[1].upload(ctx, viewBits), a[2].upload(ctx, viewBits), 0};
+    AccelBuffers b{a[0].upload(ctx, viewBits), a[1].upload(ctx, viewBits), a[2].upload(ctx, viewBits), std::nullopt, 0};
     b.bytes = data.bytes();
+    if (data.traversal == accel::Traversal::RayQuery) {
+        b.driver.emplace(ctx, packed.triangles, data.driverBuild);
+        b.bytes += b.driver->bytes();
+    }
     return b;
 }
 

@@ -2,10 +2,12 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <vector>
 
 #include "accel/accel.h"
 #include "gpu/buffer.h"
+#include "gpu/driver_structure.h"
 #include "scene/scene.h"
 #include "shared/gpu_layout.h"
 
@@ -37,13 +39,17 @@ SceneBuffers uploadScene(const VulkanContext& ctx, const PackedScene& packed, in
 // packed: a scene too large fails in milliseconds, not after a long build.
 void checkSceneFits(const VulkanContext& ctx, const Scene& scene);
 
-// The acceleration structure's arrays (accel::GpuAccelData), one texel view per binding.
+// The acceleration structure's arrays (accel::GpuAccelData), one texel view per binding, and for
+// rayquery the driver's structure (VKRAY_BINDING_SCENE_STRUCTURE), built by the caller.
 struct AccelBuffers {
     TexelArray nodes, indices, extra;  // VKRAY_BINDING_NODE_TEXELS, _INDEX_TEXELS, _EXTRA_TEXELS
+    std::optional<DriverStructure> driver;
     uint64_t bytes = 0;
 };
 
-AccelBuffers uploadAccel(const VulkanContext& ctx, const accel::GpuAccelData& data, int viewBits = 0);
+// For rayquery, the driver builds its structure over `packed`'s triangles here.
+AccelBuffers uploadAccel(const VulkanContext& ctx, const accel::GpuAccelData& data, const PackedScene& packed,
+                         int viewBits = 0);
 
 // The lengths of every texel array a render of `packed` with `accel` binds, for texelViewBits.
 std::vector<TexelArraySize> texelArraySizes(const PackedScene& packed, const accel::GpuAccelData& accel);

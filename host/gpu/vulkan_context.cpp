@@ -1,6 +1,7 @@
 #include "gpu/vulkan_context.h"
 
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <cctype>
 #include <cstdio>
@@ -54,6 +55,33 @@ std::optional<uint32_t> computeQueueFamily(const vk::raii::PhysicalDevice& pd) {
     return std::nullopt;
 }
 
+bool hasExtension(const std::vector<vk::ExtensionProperties>& extensions, const char* name) {
+    return std::any_of(extensions.begin(), extensions.end(),
+                       [&](const vk::ExtensionProperties& e) { return std::strcmp(e.extensionName.data(), name) == 0; });
+}
+
+// The extensions `--accel rayquery` needs (VK_KHR_acceleration_structure requires deferred host
+// operations to be enabled with it, though vkray builds on the device).
+constexpr std::array kRayQueryExtensions{VK_KHR_ACCELERATION_STRUCTURE_EXTENSION_NAME, VK_KHR_RAY_QUERY_EXTENSION_NAME,
+                                         VK_KHR_DEFERRED_HOST_OPERATIONS_EXTENSION_NAME};
+
+using RayQueryFeatures = vk::StructureChain<vk::PhysicalDeviceFeatures2, vk::PhysicalDeviceVulkan12Features,
+                                            vk::PhysicalDeviceAccelerationStructureFeaturesKHR,
+                                            vk::PhysicalDeviceRayQueryFeaturesKHR>;
+
+bool supportsRayQuery(const vk::raii::PhysicalDevice& pd) {
+    if (pd.getProperties().apiVersion < VK_API_VERSION_1_2) return false;
+    const auto extensions = pd.enumerateDeviceExtensionProperties();
+    for (const char* name : kRayQueryExtensions)
+        if (!hasExtension(extensions, name)) return false;
+    const RayQueryFeatures features = pd.getFeatures2<vk::PhysicalDeviceFeatures2, vk::PhysicalDeviceVulkan12Features,
+                                                      vk::PhysicalDeviceAccelerationStructureFeaturesKHR,
+                                                      vk::PhysicalDeviceRayQueryFeaturesKHR>();
+    return features.get<vk::PhysicalDeviceVulkan12Features>().bufferDeviceAddress &&
+           features.get<vk::PhysicalDeviceAccelerationStructureFeaturesKHR>().accelerationStructure &&
+           features.get<vk::PhysicalDeviceRayQueryFeaturesKHR>().rayQuery;
+}
+
 DeviceInfo describe(const vk::raii::PhysicalDevice& pd, uint32_t index) {
     DeviceInfo d;
     d.index = index;
@@ -81,6 +109,7 @@ DeviceInfo describe(const vk::raii::PhysicalDevice& pd, uint32_t index) {
         if (mem.memoryHeaps[h].flags & vk::MemoryHeapFlagBits::eDeviceLocal)
             d.deviceLocalBytes = std::max<uint64_t>(d.deviceLocalBytes, mem.memoryHeaps[h].size);
     d.hasCompute = computeQueueFamily(pd).has_value();
+    d.rayQuery = supportsRayQuery(pd);
     return d;
 }
 
@@ -108,7 +137,7 @@ vk::raii::Instance createInstance(const vk::raii::Context& ctx, bool validation)
                             .applicationVersion = VK_MAKE_API_VERSION(0, 0, 1, 0),
                             .pEngineName = "vkray",
                             .engineVersion = VK_MAKE_API_VERSION(0, 0, 1, 0),
-                            .apiVersion = VK_API_VERSION_1_1};
+                            .apiVersion = VK_API_VERSION_1_2};
     vk::InstanceCreateInfo info{.pApplicationInfo = &app,
                                 .enabledLayerCount = uint32_t(layers.size()),
                                 .ppEnabledLayerNames = layers.data(),
@@ -227,6 +256,21 @@ VulkanContext::VulkanContext(const ContextOptions& options)
     vk::DeviceQueueCreateInfo queueInfo{.queueFamilyIndex = queueFamily_, .queueCount = 1,
                                         .pQueuePriorities = &priority};
     vk::DeviceCreateInfo deviceInfo{.queueCreateInfoCount = 1, .pQueueCreateInfos = &queueInfo};
+    // Only what a render asks for is enabled: the other kernels run on the device as without it.
+    RayQueryFeatures rayQuery;
+    if (options.rayQuery) {
+        if (!info_.rayQuery)
+            throw Error("Vulkan device '" + info_.name + "' (" + info_.driver + ", Vulkan " + info_.apiVersion +
+                        ") has no VK_KHR_ray_query with acceleration structures, which --accel rayquery needs "
+                        "(`vkray devices` says which devices have it)");
+        rayQuery.get<vk::PhysicalDeviceVulkan12Features>().bufferDeviceAddress = true;
+        rayQuery.get<vk::PhysicalDeviceAccelerationStructureFeaturesKHR>().accelerationStructure = true;
+        rayQuery.get<vk::PhysicalDeviceRayQueryFeaturesKHR>().rayQuery = true;
+        deviceInfo.pNext = &rayQuery.get<vk::PhysicalDeviceFeatures2>();
+        deviceInfo.enabledExtensionCount = uint32_t(kRayQueryExtensions.size());
+        deviceInfo.ppEnabledExtensionNames = kRayQueryExtensions.data();
+        rayQueryEnabled_ = true;
+    }
     device_ = vk::raii::Device(physical_, deviceInfo);
     queue_ = vk::raii::Queue(device_, queueFamily_, 0);
 }

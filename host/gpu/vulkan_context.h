@@ -40,6 +40,9 @@ struct DeviceInfo {
     // where a SIMD vector's lanes wait for its last ray and each invocation has its costs; 1 on a
     // GPU, which needs every thread it can get (a dispatch is one tile of at most 65,536 pixels).
     uint32_t pixelsPerInvocation = 1;
+    // The driver's own ray tracing from compute shaders: Vulkan 1.2, VK_KHR_acceleration_structure
+    // and VK_KHR_ray_query with their features (`--accel rayquery`).
+    bool rayQuery = false;
 };
 
 struct ContextOptions {
@@ -54,6 +57,9 @@ struct ContextOptions {
     // Tests: render this many pixels an invocation, 1 to VKRAY_MAX_PIXELS_PER_INVOCATION (0: the
     // device's DeviceInfo::pixelsPerInvocation), so that either path runs on any device.
     uint32_t pixelsPerInvocation = 0;
+    // Enable the driver's ray tracing (DeviceInfo::rayQuery) on the device, for `--accel rayquery`;
+    // a device without it is then refused with one line naming it.
+    bool rayQuery = false;
 };
 
 bool validationRequestedByEnvironment();
@@ -69,6 +75,8 @@ public:
     static std::vector<DeviceInfo> listDevices(bool validation);
 
     const DeviceInfo& info() const { return info_; }
+    // Whether the driver's ray tracing was enabled (ContextOptions::rayQuery).
+    bool rayQueryEnabled() const { return rayQueryEnabled_; }
     const vk::raii::Device& device() const { return device_; }
     const vk::raii::PhysicalDevice& physicalDevice() const { return physical_; }
     const vk::raii::Queue& queue() const { return queue_; }
@@ -93,6 +101,7 @@ private:
     vk::raii::Queue queue_{nullptr};
     uint32_t queueFamily_ = 0;
     uint32_t timestampValidBits_ = 0;
+    bool rayQueryEnabled_ = false;
     vk::PhysicalDeviceLimits limits_{};
     DeviceInfo info_;
 };

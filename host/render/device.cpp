@@ -7,8 +7,9 @@
 
 namespace vkray::render {
 
-Device::Device(const std::string& name)
-    : Device(gpu::ContextOptions{.validation = gpu::validationRequestedByEnvironment(), .device = name}) {}
+Device::Device(const std::string& name, bool rayQuery)
+    : Device(gpu::ContextOptions{
+          .validation = gpu::validationRequestedByEnvironment(), .device = name, .rayQuery = rayQuery}) {}
 
 Device::Device(gpu::ContextOptions options) {
     opening_ = std::async(std::launch::async,

@@ -24,8 +24,9 @@ class Device {
 public:
     Device() = default;  // none: CPU renders, builds only
     // Starts opening `name` (an index or a name substring; empty: vkray's choice), with the
-    // validation layer where the environment asks for it.
-    explicit Device(const std::string& name);
+    // validation layer where the environment asks for it and, with `rayQuery`, the driver's ray
+    // tracing (`--accel rayquery`; a device without it fails when first needed).
+    explicit Device(const std::string& name, bool rayQuery = false);
     // Starts opening the device `options` name, with its validation setting (the tests: always).
     explicit Device(gpu::ContextOptions options);
     ~Device();

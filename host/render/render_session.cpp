@@ -20,7 +20,7 @@ namespace {
 
 Device deviceFor(const RenderRequest& request) {
     if (request.cpu || request.buildOnly) return Device();
-    return Device(request.device);
+    return Device(request.device, request.accel.family == accel::Family::Driver);
 }
 
 void fillSceneReport(const std::string& sceneFile, const Scene& scene, const RenderOptions& options,

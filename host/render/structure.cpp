@@ -13,7 +13,8 @@ Structure buildStructure(const Scene& scene, const accel::AccelSpec& spec, const
     const Clock::time_point t0 = Clock::now();
     s.built = accel::buildAccel(scene, spec, accel::BuildOptions{.threads = needs.threads, .progress = needs.progress});
     if (needs.tracer) s.tracer = s.built->makeTracer(scene);
-    if (needs.lineDone && spec.family != accel::Family::Brute) needs.lineDone();
+    const bool nothingBuilt = spec.family == accel::Family::Brute || spec.family == accel::Family::Driver;
+    if (needs.lineDone && !nothingBuilt) needs.lineDone();
     s.stats = s.built->stats();
     // Timed apart too: laying the arrays out for the kernel copies the whole structure.
     if (needs.gpuData) {
@@ -30,6 +31,15 @@ StructureFiles::StructureFiles(const std::filesystem::path& save, const std::fil
     if (!save.empty() && !load.empty())
         throw Error("--save-accel and --load-accel: give one (a loaded structure is already in its file)");
     const bool brute = spec.family == accel::Family::Brute;
+    const bool driver = spec.family == accel::Family::Driver;
+    // The driver's structure lives on the device only, built again for each render.
+    if (driver && cpu)
+        throw Error("--accel rayquery is the device driver's own ray tracing: it has no CPU traversal (drop --cpu, "
+                    "or give another --accel)");
+    if (driver && (!save.empty() || !load.empty()))
+        throw Error(std::string(!save.empty() ? "--save-accel" : "--load-accel") +
+                    ": --accel rayquery's structure is built by the driver on the device for each render; "
+                    "there is no file of it");
     if (!save.empty()) {
         if (brute) throw Error("--save-accel: --accel brute builds no structure to save");
         accel::checkAccelFileTarget(save);

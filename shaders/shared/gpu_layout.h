@@ -51,6 +51,9 @@ using uvec4 = glm::uvec4;
 #define VKRAY_BINDING_MATERIAL_TEXELS 8  // GpuMaterial[] as RGBA32UI, 6 texels each
 #define VKRAY_BINDING_LIGHT_TEXELS 9     // GpuLight[] as RGBA32UI, 2 texels each (one dummy without lights)
 #define VKRAY_BINDING_COUNT 10
+// The rayquery kernel's alone, after the others: the driver's top-level acceleration structure
+// (gpu/driver_structure.h). The other kernels do not declare it, so they need no ray tracing.
+#define VKRAY_BINDING_SCENE_STRUCTURE 10
 // Texels (16 bytes) per element of the texel views of the scene's structs below.
 #define VKRAY_TRIANGLE_TEXELS 3
 #define VKRAY_NORMAL_TEXELS 3

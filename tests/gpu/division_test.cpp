@@ -53,7 +53,7 @@ TEST(Division, QuotientIsTheIeeeQuotientOnTheDevice) {
 
     const gpu::ComputeKernel::Binding binding{vk::DescriptorType::eStorageBuffer, 1};
     gpu::ComputeKernel kernel(ctx, quotient_test_spv, {&binding, 1}, sizeof(n), gpu::Specialization{});
-    kernel.bind({{gpu::ComputeKernel::Resource{buffer.handle(), {}}}});
+    kernel.bind({{gpu::ComputeKernel::Resource{.buffer = buffer.handle()}}});
     gpu::OneShotCommands commands(ctx);
     const vk::raii::CommandBuffer& cmd = commands.begin();
     kernel.dispatch(cmd, &n, (n + 63) / 64, 1);
