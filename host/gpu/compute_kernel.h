@@ -34,9 +34,9 @@ public:
     // What binding i is pointed at: the buffer (whole range) of a storage-buffer binding, the
     // `count` views of a texel-buffer binding, the acceleration structure of such a binding.
     struct Resource {
-        vk::Buffer buffer;
-        std::vector<vk::BufferView> views;
-        vk::AccelerationStructureKHR structure;
+        vk::Buffer buffer{};
+        std::vector<vk::BufferView> views{};
+        vk::AccelerationStructureKHR structure{};
     };
     // Points every binding at resources[i]; one entry per binding.
     void bind(std::span<const Resource> resources);
