@@ -127,7 +127,7 @@ vk::AccelerationStructureGeometryKHR triangleGeometry(const Buffer& vertices, ui
                              .vertexFormat = vk::Format::eR32G32B32Sfloat,
                              .vertexData = {.deviceAddress = vertices.address()},
                              .vertexStride = kVertexStride,
-                             .maxVertex = 3 * count - 1,
+                             .maxVertex = count > 0 ? 3 * count - 1 : 0,
                              .indexType = vk::IndexType::eNoneKHR}},
             .flags = vk::GeometryFlagBitsKHR::eOpaque};
 }
@@ -180,7 +180,6 @@ Built buildTop(const VulkanContext& ctx, const Storage& bottom, vk::BuildAcceler
 DriverStructure::Parts DriverStructure::buildParts(const VulkanContext& ctx, std::span<const GpuTriangle> triangles,
                                                    const accel::DriverBuild& build) {
     if (!ctx.rayQueryEnabled()) throw std::logic_error("DriverStructure: the context has no ray query enabled");
-    if (triangles.empty()) throw Error("internal: rayquery's structure over no triangles");
     const vk::BuildAccelerationStructureFlagsKHR preference =
         build.preferFastBuild ? vk::BuildAccelerationStructureFlagBitsKHR::ePreferFastBuild
                               : vk::BuildAccelerationStructureFlagBitsKHR::ePreferFastTrace;

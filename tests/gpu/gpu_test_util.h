@@ -37,6 +37,26 @@ inline const gpu::VulkanContext& gpuContext() {
     return *ctx;
 }
 
+// The test device with the driver's ray tracing enabled (`--accel rayquery`), one per test binary;
+// null when the device has none. Its tests fail then rather than skip: `make test` installs a
+// lavapipe that has it (Mesa from bookworm-backports, scripts/install-deps.sh); only with
+// VKRAY_SYSTEM_MESA=1, the install's opt-out that keeps Debian's own Mesa, are they skipped
+// (rayQuerySkipped()).
+inline const gpu::VulkanContext* rayQueryContext() {
+    static const std::unique_ptr<gpu::VulkanContext> ctx = []() -> std::unique_ptr<gpu::VulkanContext> {
+        gpu::ContextOptions options = gpuContextOptions();
+        if (!gpu::VulkanContext(options).info().rayQuery) return nullptr;
+        options.rayQuery = true;
+        return std::make_unique<gpu::VulkanContext>(options);
+    }();
+    return ctx.get();
+}
+
+inline bool rayQuerySkipped() {
+    const char* v = std::getenv("VKRAY_SYSTEM_MESA");
+    return !rayQueryContext() && v && std::string_view(v) == "1";
+}
+
 // Builds `spec`'s structure with options.threads workers and renders it on ctx's device.
 inline Frame renderGpu(const gpu::VulkanContext& ctx, const Scene& scene, const RenderOptions& options,
                        const accel::AccelSpec& spec, gpu::GpuRenderReport* report = nullptr) {
