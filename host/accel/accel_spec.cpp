@@ -98,9 +98,9 @@ const TuningOption kTuning[] = {
      [](AccelSpec& s, double v) { s.kd.maxDuplication = v; }},
     {"kd-short-stack", "kd-shortstack: entries of its stack (default 4)", isKdShortStack, 1, VKRAY_KD_STACK_SIZE,
      false, true, "", [](AccelSpec& s, double v) { s.kdShortStack = int(v); }},
-    {"rq-fast-build", "rayquery: 1 asks the driver for a fast build, 0 for a fast trace (default 0)", isDriver, 0,
+    {"rq-fast-build", "rayquery: 1 = fast build, 0 = fast trace (default 0)", isDriver, 0,
      1, false, true, "", [](AccelSpec& s, double v) { s.driver.preferFastBuild = v != 0.0; }},
-    {"rq-compact", "rayquery: 1 compacts the structure after its build (default 1)", isDriver, 0, 1, false, true,
+    {"rq-compact", "rayquery: 1 = compacted after its build (default 1)", isDriver, 0, 1, false, true,
      "", [](AccelSpec& s, double v) { s.driver.compact = v != 0.0; }},
 };
 

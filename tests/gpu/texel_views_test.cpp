@@ -20,10 +20,12 @@
 namespace vkray {
 namespace {
 
-// A context like the test device, except that one view holds at most `texels` texels.
-gpu::VulkanContext contextWithViewsOf(uint64_t texels) {
+// A context like the test device, except that one view holds at most `texels` texels (and, for
+// rayquery, with the driver's ray tracing).
+gpu::VulkanContext contextWithViewsOf(uint64_t texels, bool rayQuery = false) {
     gpu::ContextOptions options = test::gpuContextOptions();
     options.maxTexelsPerView = texels;
+    options.rayQuery = rayQuery;
     return gpu::VulkanContext(options);
 }
 
@@ -40,14 +42,19 @@ TEST(TexelViews, EveryAcceleratorRendersTheSamePixelsThroughSplitArrays) {
     RenderOptions o{.width = 64, .height = 48, .maxDepth = 3};
     for (const std::string& name : accel::accelNames()) {
         SCOPED_TRACE(name);
-        const auto built = accel::buildAccel(scene, accel::resolveAccel(name));
+        const accel::AccelSpec spec = accel::resolveAccel(name);
+        const bool driver = spec.family == accel::Family::Driver;
+        if (driver && test::rayQuerySkipped()) continue;
+        const gpu::VulkanContext* ctx = driver ? test::rayQueryContext() : &test::gpuContext();
+        ASSERT_NE(ctx, nullptr) << "the test device has no VK_KHR_ray_query (see `vkray devices`)";
+        const auto built = accel::buildAccel(scene, spec);
         const accel::GpuAccelData data = built->gpuData();
         gpu::GpuRenderReport whole, split;
-        const Frame reference = gpu::renderOnGpu(test::gpuContext(), scene, o, data, &whole);
+        const Frame reference = gpu::renderOnGpu(*ctx, scene, o, data, &whole);
         ASSERT_EQ(whole.features.texelViewBits, 0);
         // Views of a power of two of texels such that the largest array takes 5 to 8 of them.
         const uint64_t perView = std::bit_ceil((largestArray(scene, data) + VKRAY_TEXEL_VIEWS - 1) / VKRAY_TEXEL_VIEWS);
-        const gpu::VulkanContext small = contextWithViewsOf(perView);
+        const gpu::VulkanContext small = contextWithViewsOf(perView, driver);
         const Frame viaViews = gpu::renderOnGpu(small, scene, o, data, &split);
         EXPECT_EQ(split.features.texelViewBits, std::countr_zero(perView));
         test::expectSamePixels(reference, viaViews, PixelWindow{0, 0, o.width, o.height});
