@@ -106,6 +106,12 @@ AccelResult accelResult(const Json& j, const std::string& w, const Pictures& pic
     const Json& build = array(j, "build", w);
     for (size_t i = 0; i < build.size(); ++i)
         a.build.push_back({get<int>(build[i], "threads", item(w, "build", i)), spread(build[i], "ms", item(w, "build", i))});
+    if (j.contains("build_on")) {  // reports from before the driver's build on the device lack it: CPU
+        const std::string on = str(j, "build_on", w);
+        if (on != "cpu" && on != "device")
+            throw Error("\"" + path(w, "build_on") + "\": \"" + on + "\", expected \"cpu\" or \"device\"");
+        a.buildOnDevice = on == "device";
+    }
     for (const auto& [key, s] : at(j, "build_stats", w).items())
         a.buildStats.push_back({key, num(s, "value", path(w, key)), str(s, "unit", path(w, key))});
     a.structureBytes = get<uint64_t>(j, "structure_bytes", w);

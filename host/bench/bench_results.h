@@ -49,9 +49,12 @@ struct ThreadTiming {
 struct AccelResult {
     std::string accel;                  // --accel name, e.g. "bvh-hq", "kd-restart"
     std::string kernel;                 // shaders/render_<kernel>.comp
-    std::vector<ThreadTiming> build;    // CPU build time per thread count, ascending threads
+    std::vector<ThreadTiming> build;    // CPU build time per thread count, ascending threads (or buildOnDevice)
+    // The build is the driver's on the device (rayquery): one ThreadTiming at the run's most threads,
+    // GPU timestamps of the driver's build in each timed full render; not in the CPU build scaling.
+    bool buildOnDevice = false;
     std::vector<accel::AccelStat> buildStats;  // of the build with the most threads
-    uint64_t structureBytes = 0;        // on the GPU: nodes, index lists, extra arrays
+    uint64_t structureBytes = 0;        // on the GPU: nodes, index lists, extra arrays (the driver's)
 
     Spread traceMs;                     // full Whitted render, GPU timestamps
     Spread primaryOnlyMs;               // camera rays only (maxdepth 1, no lights)
@@ -184,21 +187,23 @@ inline std::optional<double> primaryVsEmbree(const SceneResult& scene, const Acc
     return scene.embree.singleMs.median / a.primaryOnlyMs.median;
 }
 
-// Accelerator a's camera-ray rate over `bvh`'s in the same scene (the kd walks' yardstick): bvh's
-// camera-ray median over a's, which is also the quotient of the two ratios to Embree. Empty when the
-// scene has no `bvh` or either time is missing.
-// The scene's `bvh` with a camera-ray time, the yardstick of primaryVsBvh; null when there is none.
-inline const AccelResult* bvhYardstick(const SceneResult& scene) {
-    const AccelResult* bvh = nullptr;
+// The scene's accelerator `name` ("bvh", "rayquery") with a camera-ray time, a yardstick of
+// primaryVs; null when there is none.
+inline const AccelResult* yardstick(const SceneResult& scene, const std::string& name) {
+    const AccelResult* found = nullptr;
     for (const AccelResult& b : scene.accels)
-        if (b.accel == "bvh") bvh = &b;
-    return bvh && bvh->primaryOnlyMs.median > 0.0 ? bvh : nullptr;
+        if (b.accel == name) found = &b;
+    return found && found->primaryOnlyMs.median > 0.0 ? found : nullptr;
 }
 
-inline std::optional<double> primaryVsBvh(const SceneResult& scene, const AccelResult& a) {
-    const AccelResult* bvh = bvhYardstick(scene);
-    if (!bvh || !(a.primaryOnlyMs.median > 0.0)) return std::nullopt;
-    return bvh->primaryOnlyMs.median / a.primaryOnlyMs.median;
+// Accelerator a's camera-ray rate over yardstick `name`'s in the same scene ("vs bvh", the kd walks'
+// yardstick; "x rayquery", the driver's): the yardstick's camera-ray median over a's, which is also the
+// quotient of the two ratios to Embree. Empty when the scene has no such accelerator or either time is
+// missing.
+inline std::optional<double> primaryVs(const SceneResult& scene, const AccelResult& a, const std::string& name) {
+    const AccelResult* y = yardstick(scene, name);
+    if (!y || !(a.primaryOnlyMs.median > 0.0)) return std::nullopt;
+    return y->primaryOnlyMs.median / a.primaryOnlyMs.median;
 }
 
 // The settings that decide what a run measures; shards merge only when theirs are equal.

@@ -8,6 +8,7 @@
 #include "bench/bench_json.h"
 #include "bench/bench_shard.h"
 #include "bench/report.h"
+#include "bench/report_tables.h"
 
 namespace vkray::bench {
 namespace {
@@ -70,9 +71,10 @@ Json accelResult(const SceneResult& scene, const AccelResult& a, const ImageName
         if (!k.note.empty()) j["note"] = k.note;
         kinds.push_back(j);
     }
-    return {{"accel", a.accel},
+    Json j = {{"accel", a.accel},
             {"kernel", a.kernel},
             {"build", build},
+            {"build_on", a.buildOnDevice ? "device" : "cpu"},
             {"build_stats", stats},
             {"structure_bytes", a.structureBytes},
             {"trace_ms", spread(a.traceMs)},
@@ -82,7 +84,8 @@ Json accelResult(const SceneResult& scene, const AccelResult& a, const ImageName
                                                            {"intersect16_ms", spread(*a.embreePacketMs)},
                                                            {"primary_vs_intersect1", number(primaryVsEmbree(scene, a))}}
                                                      : Json(nullptr)},
-            {"primary_vs_bvh", number(primaryVsBvh(scene, a))},
+            {"primary_vs_bvh", number(primaryVs(scene, a, "bvh"))},
+            {"primary_vs_rayquery", number(primaryVs(scene, a, "rayquery"))},
             {"mrays_per_s", number(a.mraysPerSecond)},
             {"ray_kinds", kinds},
             {"per_ray", {{"nodes", number(a.nodesPerRay)},
@@ -96,6 +99,8 @@ Json accelResult(const SceneResult& scene, const AccelResult& a, const ImageName
             {"capped_rays", a.cappedRays},
             {"error", imageErrorJson(a.error)},
             {"images", names.of(a.accel)}};
+    if (const std::string about = accelAbout(a.accel); !about.empty()) j["about"] = about;
+    return j;
 }
 
 Json errorPoint(const ErrorPoint& p) {

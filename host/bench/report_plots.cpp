@@ -99,7 +99,7 @@ std::string scalingPlotSvg(const SceneResult& scene) {
     std::vector<PlotSeries> plotted{ideal};
     std::vector<double> speedups{1.0, double(most) / double(base)};
     for (const AccelResult& a : scene.accels) {
-        if (a.build.empty()) continue;
+        if (a.build.empty() || a.buildOnDevice) continue;  // the driver's build on the device: no CPU threads
         const size_t k = plotted.size() - 1;
         PlotSeries s = series(a.accel, paletteColor(k), paletteMarker(k), Line::Straight);
         for (const ThreadTiming& t : a.build) {

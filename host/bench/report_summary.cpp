@@ -56,14 +56,14 @@ std::string accelLine(const SceneResult& s, const AccelResult& a) {
     std::string out = printed("  %-14s build %9.1f ms  trace %9.1f ms  %7.2f Mrays/s  %6.1f nodes/ray  RMSE %.4f",
                               a.accel.c_str(), buildMs, a.traceMs.median, a.mraysPerSecond, a.nodesPerRay, a.error.rmse);
     if (const auto camera = a.primaryMrays()) out += printed("  camera rays %7.2f Mrays/s", *camera);
-    const auto overEmbree = primaryVsEmbree(s, a);
-    const auto overBvh = a.accel != "bvh" ? primaryVsBvh(s, a) : std::nullopt;
-    if (overEmbree || overBvh) {
-        out += " (";
-        if (overEmbree) out += printed("%.3fx Embree%s", *overEmbree, overBvh ? ", " : "");
-        if (overBvh) out += printed("%.2fx bvh", *overBvh);
-        out += ")";
-    }
+    std::vector<std::string> ratios;
+    if (const auto overEmbree = primaryVsEmbree(s, a)) ratios.push_back(printed("%.3fx Embree", *overEmbree));
+    for (const char* name : {"bvh", "rayquery"})
+        if (const auto over = a.accel != name ? primaryVs(s, a, name) : std::nullopt)
+            ratios.push_back(printed("%.2fx %s", *over, name));
+    std::string joined;
+    for (const std::string& r : ratios) joined += (joined.empty() ? "" : ", ") + r;
+    if (!joined.empty()) out += " (" + joined + ")";
     return out + "\n";
 }
 
@@ -76,7 +76,7 @@ Yardstick yardstickOf(const BenchResults& r) {
     for (const SceneResult& s : r.scenes) {
         if (s.accels.empty()) continue;
         embree = embree && s.embree.measured();
-        bvh = bvh && bvhYardstick(s) != nullptr;
+        bvh = bvh && yardstick(s, "bvh") != nullptr;
     }
     return embree ? Yardstick::Embree : bvh ? Yardstick::Bvh : Yardstick::None;
 }
@@ -136,6 +136,7 @@ std::string benchSummary(const BenchResults& r) {
         else if (!s.embree.note.empty())
             out += printed("  %-14s %s\n", "Embree", s.embree.note.c_str());
         for (const AccelResult& a : s.accels) out += accelLine(s, a);
+        for (const std::string& about : accelAboutNotes(s)) out += "  " + about + "\n";
     }
     return out;
 }
@@ -171,7 +172,7 @@ std::optional<Table> summaryTable(const BenchResults& r) {
         for (const SceneResult* s : scenes) {
             std::optional<double> ratio;
             for (const AccelResult& a : s->accels)
-                if (a.accel == names[i]) ratio = embree ? primaryVsEmbree(*s, a) : primaryVsBvh(*s, a);
+                if (a.accel == names[i]) ratio = embree ? primaryVsEmbree(*s, a) : primaryVs(*s, a, "bvh");
             row.push_back(ratio ? formatRatio(*ratio) : kMissing);
             if (ratio && *ratio > 0.0) logSum += std::log(*ratio), ++n;
         }

@@ -145,6 +145,25 @@ std::optional<accel::Family> familyOf(const std::string& accelName) {
     }
 }
 
+std::string accelAbout(const std::string& accelName) {
+    if (familyOf(accelName) != accel::Family::Driver) return "";
+    return "the driver's own BVH and traversal (VK_KHR_ray_query; in hardware on GPUs with ray-tracing units)";
+}
+
+std::vector<std::string> accelAboutNotes(const SceneResult& scene) {
+    std::vector<std::string> out;
+    for (const AccelResult& a : scene.accels) {
+        std::string about = accelAbout(a.accel);
+        if (about.empty()) continue;
+        about = a.accel + ": " + about;
+        if (a.buildOnDevice)
+            about += "; its build is the driver's on the device (GPU timestamps, in each timed full render), "
+                     "its structure the driver's";
+        out.push_back(about + ".");
+    }
+    return out;
+}
+
 // ---- Formatting -------------------------------------------------------------------------------
 
 std::string formatNumber(double v) {
@@ -259,6 +278,7 @@ Table acceleratorTable(const SceneResult& scene) {
                       "Times in ms, medians with the min–max spread. Per-ray counts over rays of all kinds, from the "
                       "statistics variant of each kernel. Error against the reference; primary mismatch: pixels "
                       "whose primary hit differs.");
+    for (const std::string& n : accelAboutNotes(scene)) t.notes.push_back(n);
     for (const std::string& n : notes.texts()) t.notes.push_back(n);
     t.whenEmpty = "No accelerator was run on this scene.";
     return t;
@@ -267,7 +287,8 @@ Table acceleratorTable(const SceneResult& scene) {
 std::vector<int> buildThreadCounts(const SceneResult& scene) {
     std::set<int> counts;
     for (const AccelResult& a : scene.accels)
-        for (const ThreadTiming& t : a.build) counts.insert(t.threads);
+        if (!a.buildOnDevice)
+            for (const ThreadTiming& t : a.build) counts.insert(t.threads);
     return {counts.begin(), counts.end()};
 }
 
@@ -290,7 +311,7 @@ Table buildScalingTable(const SceneResult& scene) {
         t.numeric.push_back(true);
     }
     for (const AccelResult& a : scene.accels) {
-        if (a.build.empty()) continue;
+        if (a.build.empty() || a.buildOnDevice) continue;  // the driver's build on the device: no CPU threads
         std::vector<std::string> row{a.accel};
         for (int n : counts) {
             const ThreadTiming* at = timingAt(a, n);
@@ -383,12 +404,17 @@ Table errorTable(const SceneResult& scene) {
 
 // Primary rays against the CPU yardstick: Embree's own rows, then every accelerator's camera-ray rate
 // with its ratio to Embree rtcIntersect1 (the scene's one figure, so the ratios order the rows as the
-// rates do) and to bvh's.
+// rates do), to bvh's and, when the run measured it, to rayquery's (the driver's own traversal).
 Table embreeTable(const SceneResult& scene) {
+    const bool rayQuery = yardstick(scene, "rayquery") != nullptr;
     Table t = makeTable("Primary rays against Embree",
                         {"tracer", "camera rays ms", "Mrays/s", "vs Embree rtcIntersect1", "vs bvh", "node steps a ray",
                          "SIMD efficiency"},
                         {false, true, true, true, true, true, true});
+    if (rayQuery) {
+        t.columns.insert(t.columns.begin() + 5, "x rayquery");
+        t.numeric.insert(t.numeric.begin() + 5, true);
+    }
     const EmbreeResult& e = scene.embree;
     if (e.version.empty()) {
         t.whenEmpty = "No CPU baseline: " + e.note + ".";
@@ -398,27 +424,37 @@ Table embreeTable(const SceneResult& scene) {
     const auto cell = [](std::optional<double> v, std::string (*format)(double)) {
         return v ? format(*v) : std::string(kMissing);
     };
-    addRow(t, {e.version + " rtcIntersect1", formatSpread(e.singleMs),
-               cell(mraysPerSecond(rays, e.singleMs.median), formatNumber), "1.00x", kMissing, kMissing, kMissing});
-    addRow(t, {e.version + " rtcIntersect16", formatSpread(e.packetMs),
-               cell(mraysPerSecond(rays, e.packetMs.median), formatNumber),
-               formatRatio(e.singleMs.median / e.packetMs.median), kMissing, kMissing, kMissing});
+    const auto embreeRow = [&](const std::string& tracer, const Spread& ms, const std::string& vsEmbree) {
+        std::vector<std::string> row{tracer, formatSpread(ms), cell(mraysPerSecond(rays, ms.median), formatNumber),
+                                     vsEmbree, kMissing, kMissing, kMissing};
+        if (rayQuery) row.push_back(kMissing);
+        addRow(t, row);
+    };
+    embreeRow(e.version + " rtcIntersect1", e.singleMs, "1.00x");
+    embreeRow(e.version + " rtcIntersect16", e.packetMs, formatRatio(e.singleMs.median / e.packetMs.median));
     for (const AccelResult& a : scene.accels) {
         const std::optional<double> simd = a.primarySimdEfficiency();
-        addRow(t, {a.accel, formatSpread(a.primaryOnlyMs), cell(a.primaryMrays(), formatNumber),
-                   cell(primaryVsEmbree(scene, a), formatRatio), cell(primaryVsBvh(scene, a), formatRatio),
-                   formatPerRay(a.primaryNodesPerRay),
-                   simd ? formatPercent(*simd) + ", " + std::to_string(a.simdLanes) + " lanes" : std::string(kMissing)});
+        std::vector<std::string> row{a.accel, formatSpread(a.primaryOnlyMs), cell(a.primaryMrays(), formatNumber),
+                                     cell(primaryVsEmbree(scene, a), formatRatio),
+                                     cell(primaryVs(scene, a, "bvh"), formatRatio), formatPerRay(a.primaryNodesPerRay),
+                                     simd ? formatPercent(*simd) + ", " + std::to_string(a.simdLanes) + " lanes"
+                                          : std::string(kMissing)};
+        if (rayQuery) row.insert(row.begin() + 5, cell(primaryVs(scene, a, "rayquery"), formatRatio));
+        addRow(t, row);
     }
     t.notes.push_back("Camera rays only (no lights, maxdepth 1): GPU time from timestamps, Embree wall-clock on " +
                       std::to_string(e.threads) + " threads, the same rays, medians with the min–max spread. "
                       "Embree runs interleaved with every accelerator's repeats; its rows summarise all of those "
                       "runs, and every ratio divides by that one median, so a higher rate always has a higher "
-                      "ratio. vs bvh: the camera-ray rate over bvh's. Embree names the reference's primary "
-                      "triangle on " +
-                      formatPercent(e.agreement) + " of the camera rays. Node steps and SIMD efficiency from the "
-                      "statistics variant: the steps a ray over the steps a ray as the device's subgroups (of the "
-                      "lanes given) run them, each until its slowest lane is done (Aila and Laine 2009).");
+                      "ratio. vs bvh: the camera-ray rate over bvh's" +
+                      std::string(rayQuery ? "; x rayquery: over rayquery's (rayquery's camera-ray time over the "
+                                             "accelerator's)"
+                                           : "") +
+                      ". Embree names the reference's primary triangle on " + formatPercent(e.agreement) +
+                      " of the camera rays. Node steps and SIMD efficiency from the statistics variant: the steps a "
+                      "ray over the steps a ray as the device's subgroups (of the lanes given) run them, each until "
+                      "its slowest lane is done (Aila and Laine 2009).");
+    for (const std::string& n : accelAboutNotes(scene)) t.notes.push_back(n);
     return t;
 }
 

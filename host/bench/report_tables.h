@@ -67,6 +67,14 @@ std::optional<Table> summaryTable(const BenchResults& results);
 // The family of an accelerator's name (tuning included); empty for a name this build does not know.
 std::optional<accel::Family> familyOf(const std::string& accelName);
 
+// What the report says an accelerator is, for one whose structure and traversal are not vkray's own
+// (rayquery: the driver's); empty for every other.
+std::string accelAbout(const std::string& accelName);
+// Lines naming each such accelerator of the scene with what it is and, for a build timed on the
+// device, that its build and structure are the driver's: the note under every table that lists the
+// accelerators, the console summary's line and bench.json's "about".
+std::vector<std::string> accelAboutNotes(const SceneResult& scene);
+
 // Which traversal traces fastest, from the median trace times: the fastest BVH against the fastest
 // kd traversal with their ratio, then the kd traversals among themselves; says what is missing
 // when a family was not run.

@@ -187,7 +187,7 @@ TEST(BenchReport, EmbreeTableGivesEachTracerOverBvh) {
     EXPECT_EQ(t.rows[4][overBvh], "0.67x");
     EXPECT_EQ(t.rows[5][overEmbree], "0.25x");  // the same divisor, with or without its own runs
     EXPECT_EQ(t.rows[5][overBvh], "0.50x");
-    EXPECT_FALSE(primaryVsBvh(fullScene(), fullScene().accels[2]));  // no bvh in the run
+    EXPECT_FALSE(primaryVs(fullScene(), fullScene().accels[2], "bvh"));  // no bvh in the run
 }
 
 TEST(BenchReport, SignedChangesReadAsChanges) {
