@@ -99,6 +99,23 @@ private:
     fs::path dir_;
 };
 
+// The traversal counters of an accelerator's entry (per_ray, per_primary_ray).
+void readCounters(const Json& j, const std::string& w, AccelResult& a) {
+    const Json& perRay = at(j, "per_ray", w);
+    const std::string wp = path(w, "per_ray");
+    a.nodesPerRay = num(perRay, "nodes", wp);
+    a.leavesPerRay = num(perRay, "leaves", wp);
+    a.trianglesPerRay = num(perRay, "triangles", wp);
+    a.restartsPerRay = num(perRay, "restarts", wp);
+    const Json& primary = at(j, "per_primary_ray", w);
+    a.primaryNodesPerRay = num(primary, "nodes", path(w, "per_primary_ray"));
+    a.primaryTrianglesPerRay = num(primary, "triangles", path(w, "per_primary_ray"));
+    if (primary.contains("lockstep_nodes")) {  // reports from before they were measured lack them
+        a.primaryLockstepNodesPerRay = num(primary, "lockstep_nodes", path(w, "per_primary_ray"));
+        a.simdLanes = get<uint32_t>(primary, "simd_lanes", path(w, "per_primary_ray"));
+    }
+}
+
 AccelResult accelResult(const Json& j, const std::string& w, const Pictures& pictures) {
     AccelResult a;
     a.accel = str(j, "accel", w);
@@ -130,19 +147,8 @@ AccelResult accelResult(const Json& j, const std::string& w, const Pictures& pic
                               optNum(kinds[i], "mrays_per_s", wk),
                               kinds[i].contains("note") ? str(kinds[i], "note", wk) : ""});
     }
-    const Json& perRay = at(j, "per_ray", w);
-    const std::string wp = path(w, "per_ray");
-    a.nodesPerRay = num(perRay, "nodes", wp);
-    a.leavesPerRay = num(perRay, "leaves", wp);
-    a.trianglesPerRay = num(perRay, "triangles", wp);
-    a.restartsPerRay = num(perRay, "restarts", wp);
-    const Json& primary = at(j, "per_primary_ray", w);
-    a.primaryNodesPerRay = num(primary, "nodes", path(w, "per_primary_ray"));
-    a.primaryTrianglesPerRay = num(primary, "triangles", path(w, "per_primary_ray"));
-    if (primary.contains("lockstep_nodes")) {  // reports from before they were measured lack them
-        a.primaryLockstepNodesPerRay = num(primary, "lockstep_nodes", path(w, "per_primary_ray"));
-        a.simdLanes = get<uint32_t>(primary, "simd_lanes", path(w, "per_primary_ray"));
-    }
+    a.traversalCounted = !at(j, "per_ray", w).is_null();  // null: a traversal without counters
+    if (a.traversalCounted) readCounters(j, w, a);
     a.cappedRays = get<uint64_t>(j, "capped_rays", w);
     a.error = readImageError(j, w);
     const Json names = j.contains("images") ? j["images"] : Json::object();

@@ -53,6 +53,9 @@ struct AccelResult {
     // The build is the driver's on the device (rayquery): one ThreadTiming at the run's most threads,
     // GPU timestamps of the driver's build in each timed full render; not in the CPU build scaling.
     bool buildOnDevice = false;
+    // false: the traversal has no counters (the driver's, rayquery), so the per-ray figures, the
+    // SIMD efficiency and the heatmaps are not measured (reports print "—", bench.json null).
+    bool traversalCounted = true;
     std::vector<accel::AccelStat> buildStats;  // of the build with the most threads
     uint64_t structureBytes = 0;        // on the GPU: nodes, index lists, extra arrays (the driver's)
 

@@ -334,6 +334,8 @@ private:
         a.error = imageError(t.full.frame, a.image, reference, result.reference);
         a.diff = makeDiffImage(a.image, result.reference, kDiffThreshold);
 
+        a.traversalCounted = !onDevice;  // the driver's traversal has no counters
+        if (!a.traversalCounted) return a;
         const Counted c = countTraversal(scene, render, data, spec.name);
         a.nodesPerRay = c.nodesPerRay;
         a.leavesPerRay = c.leavesPerRay;

@@ -88,14 +88,17 @@ Json accelResult(const SceneResult& scene, const AccelResult& a, const ImageName
             {"primary_vs_rayquery", number(primaryVs(scene, a, "rayquery"))},
             {"mrays_per_s", number(a.mraysPerSecond)},
             {"ray_kinds", kinds},
-            {"per_ray", {{"nodes", number(a.nodesPerRay)},
-                         {"leaves", number(a.leavesPerRay)},
-                         {"triangles", number(a.trianglesPerRay)},
-                         {"restarts", number(a.restartsPerRay)}}},
-            {"per_primary_ray", {{"nodes", number(a.primaryNodesPerRay)},
-                                 {"triangles", number(a.primaryTrianglesPerRay)},
-                                 {"lockstep_nodes", number(a.primaryLockstepNodesPerRay)},
-                                 {"simd_lanes", a.simdLanes}}},
+            // null: the traversal has no counters (rayquery)
+            {"per_ray", !a.traversalCounted ? Json(nullptr)
+                                            : Json{{"nodes", number(a.nodesPerRay)},
+                                                   {"leaves", number(a.leavesPerRay)},
+                                                   {"triangles", number(a.trianglesPerRay)},
+                                                   {"restarts", number(a.restartsPerRay)}}},
+            {"per_primary_ray", !a.traversalCounted ? Json(nullptr)
+                                                    : Json{{"nodes", number(a.primaryNodesPerRay)},
+                                                           {"triangles", number(a.primaryTrianglesPerRay)},
+                                                           {"lockstep_nodes", number(a.primaryLockstepNodesPerRay)},
+                                                           {"simd_lanes", a.simdLanes}}},
             {"capped_rays", a.cappedRays},
             {"error", imageErrorJson(a.error)},
             {"images", names.of(a.accel)}};

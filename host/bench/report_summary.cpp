@@ -53,8 +53,9 @@ std::string printed(const char* format, ...) {
 
 std::string accelLine(const SceneResult& s, const AccelResult& a) {
     const double buildMs = a.build.empty() ? 0.0 : a.build.back().ms.median;
-    std::string out = printed("  %-14s build %9.1f ms  trace %9.1f ms  %7.2f Mrays/s  %6.1f nodes/ray  RMSE %.4f",
-                              a.accel.c_str(), buildMs, a.traceMs.median, a.mraysPerSecond, a.nodesPerRay, a.error.rmse);
+    const std::string nodes = a.traversalCounted ? printed("%6.1f", a.nodesPerRay) : "     —";
+    std::string out = printed("  %-14s build %9.1f ms  trace %9.1f ms  %7.2f Mrays/s  %s nodes/ray  RMSE %.4f",
+                              a.accel.c_str(), buildMs, a.traceMs.median, a.mraysPerSecond, nodes.c_str(), a.error.rmse);
     if (const auto camera = a.primaryMrays()) out += printed("  camera rays %7.2f Mrays/s", *camera);
     std::vector<std::string> ratios;
     if (const auto overEmbree = primaryVsEmbree(s, a)) ratios.push_back(printed("%.3fx Embree", *overEmbree));

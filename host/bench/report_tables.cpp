@@ -193,6 +193,8 @@ std::string formatPerRay(double v) {
     return printed(std::abs(v) < 10.0 ? "%.2f" : "%.1f", v);
 }
 
+std::string perRayCell(const AccelResult& a, double v) { return a.traversalCounted ? formatPerRay(v) : kMissing; }
+
 std::string formatRmse(double rmse) {
     if (!std::isfinite(rmse)) return kMissing;
     return rmse == 0.0 ? "0" : printed("%.3g", rmse);
@@ -269,8 +271,8 @@ Table acceleratorTable(const SceneResult& scene) {
         const ThreadTiming* build = fullBuild(a);
         addRow(t, {a.accel, build ? formatSpread(build->ms) : kMissing, formatBytes(a.structureBytes),
                    formatSpread(a.traceMs), formatNumber(a.mraysPerSecond), rayKindCell(a, "primary", notes),
-                   rayKindCell(a, "shadow", notes), rayKindCell(a, "secondary", notes), formatPerRay(a.nodesPerRay),
-                   formatPerRay(a.leavesPerRay), formatPerRay(a.trianglesPerRay), formatPerRay(a.restartsPerRay),
+                   rayKindCell(a, "shadow", notes), rayKindCell(a, "secondary", notes), perRayCell(a, a.nodesPerRay),
+                   perRayCell(a, a.leavesPerRay), perRayCell(a, a.trianglesPerRay), perRayCell(a, a.restartsPerRay),
                    std::to_string(a.cappedRays), formatRmse(a.error.rmse), formatPsnr(a.error.psnr),
                    formatPercent(a.error.primaryMismatch)});
     }
@@ -436,7 +438,7 @@ Table embreeTable(const SceneResult& scene) {
         const std::optional<double> simd = a.primarySimdEfficiency();
         std::vector<std::string> row{a.accel, formatSpread(a.primaryOnlyMs), cell(a.primaryMrays(), formatNumber),
                                      cell(primaryVsEmbree(scene, a), formatRatio),
-                                     cell(primaryVs(scene, a, "bvh"), formatRatio), formatPerRay(a.primaryNodesPerRay),
+                                     cell(primaryVs(scene, a, "bvh"), formatRatio), perRayCell(a, a.primaryNodesPerRay),
                                      simd ? formatPercent(*simd) + ", " + std::to_string(a.simdLanes) + " lanes"
                                           : std::string(kMissing)};
         if (rayQuery) row.insert(row.begin() + 5, cell(primaryVs(scene, a, "rayquery"), formatRatio));

@@ -102,6 +102,8 @@ std::string formatRatio(double r);
 std::string formatBytes(uint64_t bytes);
 // Per-ray counts: 2 decimals under 10, 1 above.
 std::string formatPerRay(double v);
+// The same of an accelerator's counter, "—" where its traversal has no counters (rayquery).
+std::string perRayCell(const AccelResult& a, double v);
 // RMSE with 3 significant digits ("0.0123", "1.23e-05"), exactly "0" when identical.
 std::string formatRmse(double rmse);
 // dB with 1 decimal, "identical" when empty.

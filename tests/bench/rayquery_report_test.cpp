@@ -42,6 +42,10 @@ AccelResult rayQuery() {
     AccelResult a = cameraAccel("rayquery", 50.0);
     a.build = {{4, around(3.0)}};  // the driver's, at the run's most threads
     a.buildOnDevice = true;
+    a.traversalCounted = false;  // the driver's traversal has no counters
+    a.nodesPerRay = a.leavesPerRay = a.trianglesPerRay = a.primaryNodesPerRay = 0.0;
+    a.nodesPerPixel.clear();
+    a.primaryNodesPerPixel.clear();
     a.buildStats.clear();
     a.structureBytes = 98304;
     return a;
@@ -127,6 +131,22 @@ TEST(RayQueryReport, NamedAndTheRatioToItInEveryPlace) {
     EXPECT_EQ(accelAbout("rayquery:rq-compact=0"), accelAbout("rayquery"));  // tuning does not change what it is
 }
 
+// No counters: its per-ray cells say "—", never a measured-looking 0.00; bench.json has null.
+TEST(RayQueryReport, CountersNotMeasuredAreNotShownAsZero) {
+    const BenchResults r = oneScene(sceneWith({"bvh", "rayquery"}));
+    const std::string summary = benchSummary(r);
+    const size_t line = summary.find("  rayquery");
+    ASSERT_NE(line, std::string::npos) << summary;
+    const std::string row = summary.substr(line, summary.find('\n', line) - line);
+    EXPECT_NE(row.find("— nodes/ray"), std::string::npos) << row;
+    EXPECT_EQ(perRayCell(r.scenes[0].accels[1], 0.0), "—");
+    EXPECT_EQ(perRayCell(r.scenes[0].accels[0], 6.0), "6.00");
+    const nlohmann::json j = nlohmann::json::parse(benchJson(r));
+    EXPECT_TRUE(j["scenes"][0]["accelerators"][1]["per_ray"].is_null());
+    EXPECT_TRUE(j["scenes"][0]["accelerators"][1]["per_primary_ray"].is_null());
+    EXPECT_FALSE(j["scenes"][0]["accelerators"][0]["per_ray"].is_null());
+}
+
 TEST(RayQueryReport, WithoutRayQueryNoColumnNoteOrRatio) {
     const BenchResults r = oneScene(sceneWith({"bvh", "kd-ropes"}));
     const Table e = embreeTable(r.scenes[0]);
@@ -161,6 +181,8 @@ TEST(RayQueryReport, BenchJsonReadBackKeepsTheDeviceBuildAndTheRatios) {
     ASSERT_EQ(back.scenes[0].accels.size(), 3u);
     EXPECT_FALSE(back.scenes[0].accels[0].buildOnDevice);
     EXPECT_TRUE(back.scenes[0].accels[2].buildOnDevice);
+    EXPECT_TRUE(back.scenes[0].accels[0].traversalCounted);
+    EXPECT_FALSE(back.scenes[0].accels[2].traversalCounted);
     expectRayQueryFigures(back, "read back");
     EXPECT_EQ(benchSummary(back), benchSummary(r));
 
