@@ -4,7 +4,6 @@
 #include <array>
 #include <atomic>
 #include <cctype>
-#include <charconv>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -83,17 +82,6 @@ bool supportsRayQuery(const vk::raii::PhysicalDevice& pd) {
            features.get<vk::PhysicalDeviceRayQueryFeaturesKHR>().rayQuery;
 }
 
-// The major version in a Mesa driver's info ("Mesa 25.0.7-2~bpo12+1 (LLVM 15.0.6)"), if it has one.
-std::optional<int> mesaMajor(std::string_view info) {
-    const size_t at = info.find("Mesa ");
-    if (at == std::string_view::npos) return std::nullopt;
-    int major = 0;
-    const char* first = info.data() + at + 5;
-    const auto [end, ec] = std::from_chars(first, info.data() + info.size(), major);
-    if (ec != std::errc() || end == first) return std::nullopt;
-    return major;
-}
-
 DeviceInfo describe(const vk::raii::PhysicalDevice& pd, uint32_t index) {
     DeviceInfo d;
     d.index = index;
@@ -111,10 +99,7 @@ DeviceInfo describe(const vk::raii::PhysicalDevice& pd, uint32_t index) {
     d.driver = std::string(drv.driverName.data());
     if (drv.driverInfo[0] != '\0') d.driver += " / " + std::string(drv.driverInfo.data());
     d.apiVersion = versionString(props.apiVersion);
-    // Mesa 22.3.6's llvmpipe ends an invocation's loops at 65535 iterations; 25.0.7's was measured
-    // not to (tests/gpu/resumable_test.cpp). Mesa versions between are taken to have the budget:
-    // there the resumable variant is a fallback that costs time, never correctness.
-    d.loopBudget = drv.driverID == vk::DriverId::eMesaLlvmpipe && mesaMajor(drv.driverInfo.data()).value_or(0) < 25;
+    d.loopBudget = drv.driverID == vk::DriverId::eMesaLlvmpipe;
     d.pixelsPerInvocation = props.deviceType == vk::PhysicalDeviceType::eCpu ? VKRAY_MAX_PIXELS_PER_INVOCATION : 1;
     d.maxStorageBufferRange = props.limits.maxStorageBufferRange;
     d.maxTexelBufferElements = props.limits.maxTexelBufferElements;

@@ -32,8 +32,8 @@ struct DeviceInfo {
     // Invocations that run together (VkPhysicalDeviceSubgroupProperties::subgroupSize): 8 on
     // llvmpipe with 256-bit vectors, 32 on NVIDIA, 32 or 64 on AMD.
     uint32_t subgroupSize = 0;
-    // llvmpipe (lavapipe) before Mesa 25: all loops of an invocation end once they ran 65535
-    // iterations together (Mesa's LP_MAX_TGSI_LOOP_ITERATIONS); render_main.glsl, "Resumable pixels".
+    // llvmpipe (lavapipe): all loops of an invocation end once they ran 65535 iterations together
+    // (Mesa's LP_MAX_TGSI_LOOP_ITERATIONS); render_main.glsl, "Resumable pixels".
     bool loopBudget = false;
     // Pixels an invocation of the plain render kernel renders (VKRAY_SPEC_PIXELS_PER_INVOCATION;
     // render_main.glsl, "Pixels per invocation"): VKRAY_MAX_PIXELS_PER_INVOCATION on a CPU device,
