@@ -44,16 +44,16 @@ GpuFrameParams frameParams(const Scene& scene, const RenderOptions& options) {
     return p;
 }
 
-// llvmpipe ends all loops of an invocation after 65535 iterations in total; the kernel flags such
-// pixels, and an image with any of them is refused rather than written wrong.
+// llvmpipe of Mesa 22.3 ends all loops of an invocation after 65535 iterations in total; the kernel
+// flags such pixels, and an image with any of them is refused rather than written wrong.
 void throwIfCutShort(const VulkanContext& ctx, const Scene& scene, accel::Traversal traversal, uint64_t pixels) {
     if (pixels == 0) return;
     const std::string remedy = traversal == accel::Traversal::Brute
                                    ? "an acceleration structure (--accel bvh), a smaller --maxdepth or fewer lights"
                                    : "a smaller --maxdepth or fewer lights";
     throw Error(std::to_string(pixels) + " pixels were cut short on '" + ctx.info().name +
-                "': its shader loops stop early (llvmpipe ends all loops of a pixel after 65535 iterations in "
-                "total); with the " + std::string(kernelName(traversal)) + " kernel this scene of " +
+                "': its shader loops stop early (llvmpipe of Mesa 22.3 ends all loops of a pixel after 65535 "
+                "iterations in total); with the " + std::string(kernelName(traversal)) + " kernel this scene of " +
                 std::to_string(scene.triangles.size()) + " triangles needs " + remedy +
                 ", or another device; no image was written");
 }

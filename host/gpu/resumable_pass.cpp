@@ -54,7 +54,8 @@ void resumeStrip(const VulkanContext& ctx, const ComputeKernel& kernel, const Sh
 
 bool resumableFromStart(const VulkanContext& ctx, const Scene& scene, accel::Traversal traversal) {
     const uint64_t passes = uint64_t(scene.triangles.size()) * (1 + scene.lights.size()) / 4;
-    return ctx.info().loopBudget && traversal == accel::Traversal::Brute && passes > VKRAY_RESUMABLE_LOOP_BUDGET;
+    return ctx.resumableFromStart() ||
+           (traversal == accel::Traversal::Brute && passes > VKRAY_RESUMABLE_LOOP_BUDGET && ctx.loopBudget());
 }
 
 void renderResumable(const VulkanContext& ctx, ComputeKernel& kernel, const ShaderFeatures& features,

@@ -20,8 +20,10 @@
 namespace vkray::gpu {
 
 // Brute force over more triangles than one budget covers for a camera ray and its shadow rays (four
-// triangles per loop pass) would run out on every tile of llvmpipe: such a render is resumable from
-// the start, without a plain pass whose every tile would be rendered again.
+// triangles per loop pass) would run out on every tile where the driver ends long loops
+// (VulkanContext::loopBudget()): such a render is resumable from the start, without a plain pass whose
+// every tile would be rendered again. So is every render of a context that asks for it
+// (ContextOptions::resumableFromStart).
 bool resumableFromStart(const VulkanContext& ctx, const Scene& scene, accel::Traversal traversal);
 
 // Renders `tiles` again with `kernel`, the resumable variant of `features`, strip by strip, into

@@ -10,6 +10,7 @@
 #include <string_view>
 
 #include "core/error.h"
+#include "gpu/loop_budget.h"
 #include "shared/gpu_layout.h"
 
 namespace vkray::gpu {
@@ -99,7 +100,6 @@ DeviceInfo describe(const vk::raii::PhysicalDevice& pd, uint32_t index) {
     d.driver = std::string(drv.driverName.data());
     if (drv.driverInfo[0] != '\0') d.driver += " / " + std::string(drv.driverInfo.data());
     d.apiVersion = versionString(props.apiVersion);
-    d.loopBudget = drv.driverID == vk::DriverId::eMesaLlvmpipe;
     d.pixelsPerInvocation = props.deviceType == vk::PhysicalDeviceType::eCpu ? VKRAY_MAX_PIXELS_PER_INVOCATION : 1;
     d.maxStorageBufferRange = props.limits.maxStorageBufferRange;
     d.maxTexelBufferElements = props.limits.maxTexelBufferElements;
@@ -273,6 +273,15 @@ VulkanContext::VulkanContext(const ContextOptions& options)
     }
     device_ = vk::raii::Device(physical_, deviceInfo);
     queue_ = vk::raii::Queue(device_, queueFamily_, 0);
+    resumableFromStart_ = options.resumableFromStart;
+    driver_ = physical_.getProperties2<vk::PhysicalDeviceProperties2, vk::PhysicalDeviceDriverProperties>()
+                  .get<vk::PhysicalDeviceDriverProperties>()
+                  .driverID;
+}
+
+bool VulkanContext::loopBudget() const {
+    std::call_once(loopBudgetProbed_, [this] { loopBudget_ = endsLongLoops(*this, driver_); });
+    return loopBudget_;
 }
 
 VulkanContext::~VulkanContext() {

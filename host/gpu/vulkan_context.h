@@ -7,6 +7,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <mutex>
 #include <optional>
 #include <string>
 #include <vector>
@@ -32,9 +33,6 @@ struct DeviceInfo {
     // Invocations that run together (VkPhysicalDeviceSubgroupProperties::subgroupSize): 8 on
     // llvmpipe with 256-bit vectors, 32 on NVIDIA, 32 or 64 on AMD.
     uint32_t subgroupSize = 0;
-    // llvmpipe (lavapipe): all loops of an invocation end once they ran 65535 iterations together
-    // (Mesa's LP_MAX_TGSI_LOOP_ITERATIONS); render_main.glsl, "Resumable pixels".
-    bool loopBudget = false;
     // Pixels an invocation of the plain render kernel renders (VKRAY_SPEC_PIXELS_PER_INVOCATION;
     // render_main.glsl, "Pixels per invocation"): VKRAY_MAX_PIXELS_PER_INVOCATION on a CPU device,
     // where a SIMD vector's lanes wait for its last ray and each invocation has its costs; 1 on a
@@ -60,6 +58,10 @@ struct ContextOptions {
     // Enable the driver's ray tracing (DeviceInfo::rayQuery) on the device, for `--accel rayquery`;
     // a device without it is then refused with one line naming it.
     bool rayQuery = false;
+    // Tests: render every tile with the resumable variant from the start, as a render that would
+    // surely run out of the driver's loop budget does (gpu/resumable_pass.h), so that its resuming
+    // runs on a device whose loops never end early too.
+    bool resumableFromStart = false;
 };
 
 bool validationRequestedByEnvironment();
@@ -83,6 +85,13 @@ public:
     uint32_t queueFamily() const { return queueFamily_; }
     const vk::PhysicalDeviceLimits& limits() const { return limits_; }
     uint32_t timestampValidBits() const { return timestampValidBits_; }
+    // ContextOptions::resumableFromStart.
+    bool resumableFromStart() const { return resumableFromStart_; }
+    // Whether the driver ends all loops of an invocation once they ran 65535 iterations together,
+    // as llvmpipe of Mesa 22.3 does (Mesa's LP_MAX_TGSI_LOOP_ITERATIONS; render_main.glsl,
+    // "Resumable pixels"). Measured by a probe kernel the first time it is asked (gpu/loop_budget.h),
+    // which only the renders that would surely run out of such a budget do.
+    bool loopBudget() const;
 
     uint32_t findMemoryType(uint32_t typeBits, vk::MemoryPropertyFlags required,
                             vk::MemoryPropertyFlags preferred = {}) const;
@@ -102,6 +111,10 @@ private:
     uint32_t queueFamily_ = 0;
     uint32_t timestampValidBits_ = 0;
     bool rayQueryEnabled_ = false;
+    bool resumableFromStart_ = false;
+    vk::DriverId driver_{};
+    mutable std::once_flag loopBudgetProbed_;
+    mutable bool loopBudget_ = false;
     vk::PhysicalDeviceLimits limits_{};
     DeviceInfo info_;
 };

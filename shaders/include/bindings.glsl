@@ -17,9 +17,11 @@ layout(std430, set = 0, binding = VKRAY_BINDING_PIXELS) buffer Pixels {
 // translate before a specialization constant could fold it away.
 //
 // VKRAY_TEXEL_ARRAY(name, slot) declares binding `slot` as the views name##Views, name##Texel(i),
-// its texel i, and name##FloatTexel(i), the same as four floats. The split variant chooses the view
-// by a switch with constant indices: no descriptor indexing is needed from the device, and no loop
-// spends lavapipe's budget.
+// its texel i, and name##FloatTexel(i), the same as four floats. The views are textures without a
+// sampler (utextureBuffer): texelFetch needs none, and SPIR-V 1.6 deprecates a sampled image of a
+// buffer (the validation layer warns of one on a Vulkan 1.4 device). The split variant chooses the
+// view by a switch with constant indices: no descriptor indexing is needed from the device, and no
+// loop spends lavapipe's budget.
 #ifdef VKRAY_SPLIT_TEXEL_VIEWS
 layout(constant_id = VKRAY_SPEC_TEXEL_VIEW_BITS) const int TEXEL_VIEW_BITS = 27;
 #if VKRAY_TEXEL_VIEWS != 8
@@ -44,7 +46,7 @@ layout(constant_id = VKRAY_SPEC_TEXEL_VIEW_BITS) const int TEXEL_VIEW_BITS = 27;
     uvec4 name##Texel(int i) { return texelFetch(name##Views[0], i); }
 #endif
 #define VKRAY_TEXEL_ARRAY(name, slot)                                                       \
-    layout(set = 0, binding = slot) uniform usamplerBuffer name##Views[VKRAY_TEXEL_VIEWS]; \
+    layout(set = 0, binding = slot) uniform utextureBuffer name##Views[VKRAY_TEXEL_VIEWS]; \
     VKRAY_TEXEL_FETCH(name)                                                                 \
     vec4 name##FloatTexel(int i) { return uintBitsToFloat(name##Texel(i)); }
 VKRAY_TEXEL_ARRAY(triangle, VKRAY_BINDING_TRIANGLE_TEXELS)

@@ -25,8 +25,8 @@ struct PendingRay {
     int depth;  // primary rays have depth 1
 };
 
-// Resumable pixels. llvmpipe ends every loop of an invocation once its loops together ran 65535
-// iterations (trace_status.glsl): brute force over many triangles, or a BVH over heavily
+// Resumable pixels. llvmpipe of Mesa 22.3 ends every loop of an invocation once its loops together
+// ran 65535 iterations (trace_status.glsl): brute force over many triangles, or a BVH over heavily
 // overlapping ones, needs more for one pixel. The resumable variant (RESUMABLE, specialised by the
 // host only for tiles the plain kernel could not finish) keeps its pending rays in a buffer
 // instead of registers, counts its loops' passes itself (budgetLeft(), trace_status.glsl) and,

@@ -1,8 +1,9 @@
 // What every traversal reports besides its hit: whether a loop was cut short by the driver, rays
 // ended by an iteration cap, and (in the statistics variant only) the work done.
 //
-// llvmpipe (lavapipe) ends every loop of an invocation once its loops together ran 65535
-// iterations (Mesa gallivm LP_MAX_TGSI_LOOP_ITERATIONS). A traversal loop that ends before its own
+// llvmpipe (lavapipe) of Mesa 22.3 ends every loop of an invocation once its loops together ran
+// 65535 iterations (Mesa gallivm LP_MAX_TGSI_LOOP_ITERATIONS; Mesa 25's runs them to the end: the
+// host measures which, VulkanContext::loopBudget()). A traversal loop that ends before its own
 // exit condition and before its cap sets gLoopCutShort, so such a pixel is flagged, never silently
 // wrong. A loop that reaches its own iteration cap (a runaway ray: lavapipe has no watchdog)
 // counts the ray in gCappedRays instead.

@@ -1,7 +1,9 @@
 // Resumable pixels (shaders/include/render_main.glsl): scenes whose pixels need more loop
-// iterations than lavapipe allows one invocation render across several dispatches, to the same
-// image, bit for bit, as an accelerator that needs no resuming.
-#include <string>
+// iterations than llvmpipe of Mesa 22.3 allows one invocation render across several dispatches, to
+// the same image, bit for bit, as an accelerator that needs no resuming. On a device whose loops
+// never end early the same renders are made resumable from the start, so that the resumable
+// variant's own budget splits them over dispatches all the same.
+#include <optional>
 #include <string_view>
 
 #include <gtest/gtest.h>
@@ -90,28 +92,45 @@ void expectSameFrames(const Frame& a, const Frame& b) {
     }
 }
 
-bool onLlvmpipe() { return test::gpuContext().info().name.find("llvmpipe") != std::string::npos; }
-
-// Renders `sceneText` with `resumed`, which must run out of llvmpipe's budget and be resumed there,
-// and with `reference`, which must not, and expects the same frames and ray counts.
+// Renders `sceneText` with `resumed`, which must run out of the driver's loop budget and be resumed
+// (`fromStart`: resumable from the start), and with `reference`, which must not, and expects the
+// same frames and ray counts. Without such a budget (VulkanContext::loopBudget()), `resumed` renders
+// on a context that makes every render resumable from the start.
 void expectResumedLikeReference(const char* sceneText, std::string_view resumed, std::string_view reference,
                                 bool fromStart = false) {
     const Scene s = parseSceneText(sceneText, "test.scene", ".");
     const RenderOptions o{.width = s.width, .height = s.height, .maxDepth = s.maxDepth};
-    gpu::GpuRenderReport a, b;
-    const Frame fa = test::renderGpu(s, o, &a, resumed);
-    const Frame fb = test::renderGpu(s, o, &b, reference);
-    if (onLlvmpipe()) {
-        // The case these tests are for: the plain kernel could not finish, the resumable one did.
-        EXPECT_EQ(a.resumedTiles, 1u);
-        EXPECT_GT(a.resumeDispatches, 1u);
-        EXPECT_EQ(a.resumedFromStart, fromStart);
-        EXPECT_EQ(b.resumedTiles, 0u);
+    const bool budget = test::gpuContext().loopBudget();
+    std::optional<gpu::VulkanContext> alwaysResumable;
+    if (!budget) {
+        gpu::ContextOptions options = test::gpuContextOptions();
+        options.resumableFromStart = true;
+        alwaysResumable.emplace(options);
     }
+    gpu::GpuRenderReport a, b;
+    const Frame fa = test::renderGpu(budget ? test::gpuContext() : *alwaysResumable, s, o, &a, resumed);
+    const Frame fb = test::renderGpu(s, o, &b, reference);
+    // The case these tests are for: the plain kernel could not finish (or would not have), the
+    // resumable one did, over several dispatches.
+    EXPECT_EQ(a.resumedTiles, 1u);
+    EXPECT_GT(a.resumeDispatches, 1u);
+    EXPECT_EQ(a.resumedFromStart, fromStart || !budget);
+    EXPECT_EQ(b.resumedTiles, 0u);
     EXPECT_EQ(a.pixelsCutShort, 0u);
     EXPECT_EQ(a.raysTraced, b.raysTraced);
     EXPECT_EQ(a.shadowRays, b.shadowRays);
     expectSameFrames(fa, fb);
+}
+
+// VulkanContext::loopBudget()'s probe against a render: the plain brute-force kernel runs out on the
+// heavy scene exactly where the probe says the driver ends long loops.
+TEST(ResumablePixels, TheLoopBudgetProbeAgreesWithTheKernels) {
+    const Scene s = parseSceneText(kHeavyScene, "test.scene", ".");
+    gpu::GpuRenderReport r;
+    test::renderGpu(s, RenderOptions{.width = s.width, .height = s.height, .maxDepth = s.maxDepth}, &r, "brute");
+    EXPECT_FALSE(r.resumedFromStart);
+    EXPECT_EQ(r.resumedTiles > 0, test::gpuContext().loopBudget());
+    EXPECT_EQ(r.pixelsCutShort, 0u);
 }
 
 TEST(ResumablePixels, BruteForceBeyondTheLoopBudgetMatchesTheBvhBitForBit) {
