@@ -23,13 +23,12 @@ namespace {
 namespace fs = std::filesystem;
 using Json = nlohmann::json;
 
-// One device for the tests of this binary, as `vkray bench` opens one for its run.
-render::Device& device() {
-    static render::Device d = [] {
-        const char* dev = std::getenv("VKRAY_TEST_DEVICE");
-        return render::Device(gpu::ContextOptions{.validation = true, .device = dev ? dev : ""});
-    }();
-    return d;
+// The device of a run, opened as `vkray bench` opens one. A local of the test, not a static: its
+// pipelines are destroyed before the process exits, as in vkray. Destroyed in a static destructor,
+// after lavapipe's own exit handlers (Mesa 25), the driver leaks every pipeline's JIT code.
+render::Device openDevice() {
+    const char* dev = std::getenv("VKRAY_TEST_DEVICE");
+    return render::Device(gpu::ContextOptions{.validation = true, .device = dev ? dev : ""});
 }
 
 std::string readText(const fs::path& p) {
@@ -130,7 +129,8 @@ TEST(BenchSmoke, ReportOnLavapipeIsComplete) {
     o.threads = {1, 2};
     o.deltas = {4, 20};
     o.maxDepths = {1, 2};
-    const BenchResults results = runBench(device(), o, "bench_smoke_test");
+    render::Device device = openDevice();
+    const BenchResults results = runBench(device, o, "bench_smoke_test");
     const fs::path dir = fs::path(VKRAY_TEST_OUTPUT_DIR) / "bench-smoke";
     fs::remove_all(dir);
     writeBenchReport(results, dir);
