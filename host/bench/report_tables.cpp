@@ -157,8 +157,8 @@ std::vector<std::string> accelAboutNotes(const SceneResult& scene) {
         if (about.empty()) continue;
         about = a.accel + ": " + about;
         if (a.buildOnDevice)
-            about += "; its build is the driver's on the device (GPU timestamps, in each timed full render), "
-                     "its structure the driver's";
+            about += "; its build is the driver's on the device (GPU timestamps, in each timed full render) "
+                     "plus vkray's Morton ordering of the triangles on the CPU, its structure the driver's";
         out.push_back(about + ".");
     }
     return out;

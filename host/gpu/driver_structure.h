@@ -1,8 +1,9 @@
 // `--accel rayquery`: the driver's own acceleration structure (VK_KHR_acceleration_structure), built
 // on the device from the scene's triangles and traced by the render kernel with VK_KHR_ray_query
 // (shaders/include/ray_query.glsl). One bottom-level structure holds every triangle in the order of
-// the triangle buffer, so a hit's primitive index is its triangle slot and the AOVs, materials and
-// normals follow as for every other accelerator; one top-level structure holds one instance of it
+// the triangle buffer (a Morton order: accel/accel.cpp says why), so a hit's primitive index is its
+// triangle slot and the AOVs, materials and normals follow from that slot's triangle as for every
+// other accelerator; one top-level structure holds one instance of it
 // with the identity transform. Both are opaque geometry: the kernel gets the driver's closest hit
 // without a candidate loop, and shadow rays end at their first hit.
 #pragma once

@@ -2,6 +2,7 @@
 // (GL_EXT_ray_query over VK_KHR_acceleration_structure; in hardware on GPUs with ray-tracing units).
 // The host builds the structure over the triangle buffer in slot order (gpu/driver_structure.h), so
 // a hit's primitive index is its triangle slot and the shading reads it as for any accelerator.
+// The slots are in a Morton order; each triangle's identity is its GpuTriangle.original.
 // The driver's triangle test and tie rule are its own, not Woop, Benthin and Wald's watertight test
 // (triangle.glsl) and beats(): where a ray grazes an edge or meets two triangles at the same t, its
 // answer may differ from brute force's (docs/stability.md has the measured agreement).
@@ -26,7 +27,7 @@ Hit driverTrace(vec3 origin, vec3 dir, float tmax, const uint flags) {
         h.t = rayQueryGetIntersectionTEXT(q, true);
         h.uv = rayQueryGetIntersectionBarycentricsEXT(q, true);
         h.triangle = rayQueryGetIntersectionPrimitiveIndexEXT(q, true);
-        h.original = uint(h.triangle);  // the slots are in scene order (no triangle order)
+        h.original = loadTriangle(uint(h.triangle)).original;
     }
     return h;
 }

@@ -5,6 +5,7 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
+#include "accel/bvh/primitives.h"
 #include "core/parallel_alloc.h"
 #include "core/radix_sort.h"
 
@@ -48,6 +49,15 @@ BuildArray<MortonKey> mortonKeys(std::span<const glm::vec3> centroids, const Aab
 
 void radixSortByCode(BuildArray<MortonKey>& keys) {
     radixSortBits(keys, 32, kMortonBits, [](MortonKey k) { return k; });
+}
+
+std::vector<uint32_t> mortonOrder(std::span<const Triangle> triangles) {
+    const PrimitiveSet prims = primitivesOf(triangles);
+    BuildArray<MortonKey> keys = mortonKeys(prims.centroids, prims.centroidBounds);
+    radixSortByCode(keys);
+    std::vector<uint32_t> order(keys.size());
+    for (size_t i = 0; i < keys.size(); ++i) order[i] = keyPrimitive(keys[i]);
+    return order;
 }
 
 }  // namespace vkray::bvh

@@ -11,6 +11,7 @@
 #include <glm/glm.hpp>
 
 #include "accel/bvh/bvh.h"
+#include "scene/scene.h"
 
 namespace vkray::bvh {
 
@@ -40,5 +41,9 @@ BuildArray<MortonKey> mortonKeys(std::span<const glm::vec3> centroids, const Aab
 // histograms and scatters fixed blocks in parallel (oneTBB); the blocks do not depend on the thread
 // count, and a stable sort has one answer anyway.
 void radixSortByCode(BuildArray<MortonKey>& keys);
+
+// The triangles' indices in the Morton order of their centroids (ties in index order): the order
+// the driver's structure is built over (`rayquery`, gpu/driver_structure.h).
+std::vector<uint32_t> mortonOrder(std::span<const Triangle> triangles);
 
 }  // namespace vkray::bvh
