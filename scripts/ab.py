@@ -7,12 +7,14 @@ usage: scripts/ab.py [--rounds N] [--warmup N] [--metric M] [--rotate] [--dump F
 
 SPEC      a vkray binary, or BINARY:KERNEL_DIR: that binary reading its kernels from KERNEL_DIR
           (VKRAY_KERNEL_DIR, one render_<kernel>[_resumable][_split].spv each; docs/architecture.md).
-          The first SPEC is the baseline.
+          Any executable that runs vkray will do: a wrapper that sets VK_ICD_FILENAMES compares two
+          Vulkan drivers (docs/performance.md, "Two lavapipes"). The first SPEC is the baseline.
 --rounds  timed rounds (default 7); each runs every SPEC once, in order.
 --warmup  untimed rounds first (default 1): Mesa's disk cache then holds every kernel's machine code.
 --metric  what is compared: a field of `vkray render --json`'s report, dotted (default gpu.gpu_ms,
-          the kernels' time by timestamp queries; gpu.pipeline_ms, render_ms, total_ms, ...), or
-          "wall": the whole process's wall clock.
+          the kernels' time by timestamp queries; device_ms, gpu.pipeline_ms, render_ms, total_ms,
+          ...), or "wall": the whole process's wall clock. Several, comma-separated, are taken from
+          the same renders and printed one table each.
 --rotate  rotate the order every round (ABC, BCA, CAB, ...), so no SPEC always runs after another.
 --dump    write every measurement as JSON.
 
@@ -59,7 +61,7 @@ def parse():
     return args
 
 
-def run(spec, render_args, metric, image):
+def run(spec, render_args, metrics, image):
     binary, _, kernels = spec.partition(":")
     env = dict(os.environ)
     env.pop("VKRAY_KERNEL_DIR", None)
@@ -72,36 +74,47 @@ def run(spec, render_args, metric, image):
     if done.returncode != 0:
         last = (done.stderr.strip().splitlines() or ["(no message)"])[-1]
         sys.exit(f"ab: {spec}: exit {done.returncode}: {last}")
-    if metric == "wall":
-        return wall_ms
-    value = json.loads(done.stdout)
-    for key in metric.split("."):
-        if not isinstance(value, dict) or key not in value:
-            sys.exit(f"ab: the report has no {metric} (at '{key}')")
-        value = value[key]
-    return float(value)
+    report = json.loads(done.stdout)
+    out = []
+    for metric in metrics:
+        if metric == "wall":
+            out.append(wall_ms)
+            continue
+        value = report
+        for key in metric.split("."):
+            if not isinstance(value, dict) or key not in value:
+                sys.exit(f"ab: the report has no {metric} (at '{key}')")
+            value = value[key]
+        out.append(float(value))
+    return out
 
 
 def main():
     args = parse()
     order = list(range(len(args.specs)))
-    times = [[] for _ in args.specs]  # by position: the same SPEC twice is an A/A check
+    metrics = args.metric.split(",")
+    times = {m: [[] for _ in args.specs] for m in metrics}  # by position: the same SPEC twice is an A/A check
     with tempfile.TemporaryDirectory() as tmp:
         image = os.path.join(tmp, "ab.png")
         for r in range(-args.warmup, args.rounds):
             shift = r % len(order) if args.rotate and r >= 0 else 0
             for i in order[shift:] + order[:shift]:
-                t = run(args.specs[i], args.render, args.metric, image)
+                values = run(args.specs[i], args.render, metrics, image)
                 if r >= 0:
-                    times[i].append(t)
+                    for m, v in zip(metrics, values):
+                        times[m][i].append(v)
             print(f"round {r + 1}/{args.rounds}" if r >= 0 else "warm-up", file=sys.stderr, flush=True)
     if args.dump:
-        json.dump({"metric": args.metric, "render": args.render, "specs": args.specs, "times": times},
+        json.dump({"metrics": metrics, "render": args.render, "specs": args.specs, "times": times},
                   open(args.dump, "w"), indent=1)
+    for m in metrics:
+        report(m, times[m], args)
 
+
+def report(metric, times, args):
     base = times[0]
     width = max(len(s) for s in args.specs)
-    print(f"{args.metric}, {args.rounds} rounds: {' '.join(args.render)}")
+    print(f"{metric}, {args.rounds} rounds: {' '.join(args.render)}")
     for i, spec in enumerate(args.specs):
         t = times[i]
         line = f"{spec:<{width}}  median {statistics.median(t):9.2f}  min {min(t):9.2f}"
