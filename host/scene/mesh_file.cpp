@@ -6,6 +6,7 @@
 
 #include "scene/obj_loader.h"
 #include "scene/off_loader.h"
+#include "scene/ply_loader.h"
 
 namespace vkray {
 namespace {
@@ -21,6 +22,7 @@ struct MeshFormat {
 constexpr MeshFormat kMeshFormats[] = {
     {".obj", &loadObj},
     {".off", &loadOff},
+    {".ply", &loadPly},
 };
 
 std::string lowerCase(std::string s) {

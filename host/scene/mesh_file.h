@@ -28,10 +28,10 @@ struct MeshRequest {
 // an unreadable file or bad content.
 void loadMeshFile(const MeshRequest& request, SceneBuilder& out);
 
-// Whether loadMeshFile reads files with this path's extension (.obj, .off, any case).
+// Whether loadMeshFile reads files with this path's extension (.obj, .off, .ply, any case).
 bool isMeshFile(const std::filesystem::path& file);
 
-// The error of a mesh reader that cannot read request.file (`format`: "OBJ", "OFF"), at the scene
+// The error of a mesh reader that cannot read request.file (`format`: "OBJ", "OFF", "PLY"), at the scene
 // line that asked for it. A missing file under a scenes/meshes/ folder, where the repository's scenes look
 // for the meshes scripts/fetch-scenes.sh downloads (they are not committed), names that script.
 Error meshOpenError(const MeshRequest& request, std::string_view format, const std::string& whyNot);
