@@ -4,6 +4,7 @@
 #include <cctype>
 #include <string_view>
 
+#include "scene/gltf_loader.h"
 #include "scene/obj_loader.h"
 #include "scene/off_loader.h"
 #include "scene/ply_loader.h"
@@ -23,6 +24,8 @@ constexpr MeshFormat kMeshFormats[] = {
     {".obj", &loadObj},
     {".off", &loadOff},
     {".ply", &loadPly},
+    {".gltf", &loadGltf},
+    {".glb", &loadGltf},
 };
 
 std::string lowerCase(std::string s) {

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <filesystem>
+#include <functional>
 #include <string>
 #include <string_view>
 
@@ -22,6 +23,9 @@ struct MeshRequest {
     Transform toWorld;           // the current transform at that line
     Material defaultMaterial;    // the scene's material state, for faces the file gives none
     FileReader readFile;         // reads the mesh and the files it names (never empty)
+    // Told what a reader skips of a file that still loads (glTF textures, points and lines), one
+    // line per cause and file; may be empty.
+    std::function<void(const std::string& message)> warn;
 };
 
 // Appends the file's triangles in file order. Throws vkray::Error for an unsupported extension,
