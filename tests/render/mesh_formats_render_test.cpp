@@ -1,5 +1,5 @@
-// A mesh written as PLY (binary and ASCII) from the triangles vkray loaded from another source
-// renders exactly as that source does: the same image, depth and primid on the CPU reference,
+// A mesh written as PLY (binary and ASCII) and as glTF (GLB) from the triangles vkray loaded from
+// another source renders exactly as that source does: the same image, depth and primid on the CPU reference,
 // pixel for pixel. With a generated mesh always, and with the Stanford bunny of scenes/bunny.scene
 // (its OBJ) when scripts/fetch-scenes.sh has fetched it.
 #include <cstring>
@@ -8,6 +8,8 @@
 #include <iterator>
 #include <sstream>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -15,6 +17,7 @@
 #include "accel/accel_spec.h"
 #include "cpu/reference_renderer.h"
 #include "scene/scene_parser.h"
+#include "support/gltf_writer.h"
 #include "support/ply_writer.h"
 
 namespace vkray {
@@ -61,9 +64,21 @@ void expectSameFrame(const Frame& a, const Frame& b) {
     EXPECT_GT(hits, a.color.size() / 10) << "the mesh should be in view";
 }
 
+// The mesh as a GLB: one node, one indexed triangle list, no material.
+std::string glbOf(const test::PlyMesh& mesh) {
+    test::GltfWriter w;
+    std::vector<float> positions;
+    for (const glm::vec3& p : mesh.positions) positions.insert(positions.end(), {p.x, p.y, p.z});
+    std::vector<uint32_t> indices;
+    for (const std::vector<uint32_t>& f : mesh.faces) indices.insert(indices.end(), f.begin(), f.end());
+    const int p = w.vec3(positions), i = w.indices32(indices);
+    return w.glb("\"meshes\": [{\"primitives\": [{\"attributes\": {\"POSITION\": " + std::to_string(p) +
+                 "}, \"indices\": " + std::to_string(i) + "}]}], \"nodes\": [{\"mesh\": 0}]");
+}
+
 // `scene` (the scene text that loads the mesh with `geoLine`) rendered with the mesh as it is and
-// as PLY files written from its triangles (loaded alone by `geoLine`, identity transform).
-void expectPlyRendersTheSame(const std::string& sceneText, const std::string& geoLine, const fs::path& baseDir,
+// as PLY and glTF files written from its triangles (loaded alone by `geoLine`, identity transform).
+void expectConvertedRendersTheSame(const std::string& sceneText, const std::string& geoLine, const fs::path& baseDir,
                              const std::string& name) {
     const Scene alone = parse(geoLine + "\n", baseDir);
     ASSERT_EQ(alone.origin, glm::dvec3(0.0)) << "the mesh's floats are its world positions";
@@ -71,33 +86,37 @@ void expectPlyRendersTheSame(const std::string& sceneText, const std::string& ge
     const size_t at = sceneText.find(geoLine);
     ASSERT_NE(at, std::string::npos);
     const Frame reference = render(parse(sceneText, baseDir));
-    for (const PlyEncoding e : {PlyEncoding::LittleEndian, PlyEncoding::Ascii}) {
-        SCOPED_TRACE(e == PlyEncoding::Ascii ? "ASCII PLY" : "binary PLY");
-        const fs::path ply = outputDir() / (name + (e == PlyEncoding::Ascii ? "-ascii.ply" : "-binary.ply"));
-        std::ofstream(ply, std::ios::binary) << test::writePly(mesh, e);
+    const std::pair<std::string, std::string> files[] = {
+        {name + "-binary.ply", test::writePly(mesh, PlyEncoding::LittleEndian)},
+        {name + "-ascii.ply", test::writePly(mesh, PlyEncoding::Ascii)},
+        {name + ".glb", glbOf(mesh)},
+    };
+    for (const auto& [file, bytes] : files) {
+        SCOPED_TRACE(file);
+        std::ofstream(outputDir() / file, std::ios::binary) << bytes;
         std::string text = sceneText;
-        text.replace(at, geoLine.size(), "geo " + ply.string());
-        const Scene fromPly = parse(text, baseDir);
-        ASSERT_EQ(fromPly.triangles.size(), parse(sceneText, baseDir).triangles.size());
-        expectSameFrame(reference, render(fromPly));
+        text.replace(at, geoLine.size(), "geo " + (outputDir() / file).string());
+        const Scene converted = parse(text, baseDir);
+        ASSERT_EQ(converted.triangles.size(), parse(sceneText, baseDir).triangles.size());
+        expectSameFrame(reference, render(converted));
     }
 }
 
-TEST(MeshFormats, AGeneratedMeshRendersTheSameAsPly) {
+TEST(MeshFormats, AGeneratedMeshRendersTheSameAsPlyAndGltf) {
     const std::string scene = "size 128 96\nmaxdepth 3\ncamera 0 1.6 2.6 0 0.3 0 0 1 0 40\n"
                               "point -2 3 2 0.8 0.8 0.8\ndirectional 1 1 0 0.3 0.3 0.3\n"
                               "diffuse 0.6 0.5 0.4\nspecular 0.3 0.3 0.3\nshininess 20\n"
                               "generate terrain 4000 7\n";
-    expectPlyRendersTheSame(scene, "generate terrain 4000 7", outputDir(), "terrain");
+    expectConvertedRendersTheSame(scene, "generate terrain 4000 7", outputDir(), "terrain");
 }
 
-TEST(MeshFormats, TheBunnyRendersTheSameAsObjAndAsPly) {
+TEST(MeshFormats, TheBunnyRendersTheSameAsObjPlyAndGltf) {
     const fs::path scenes = fs::path(VKRAY_SOURCE_DIR) / "scenes";
     if (!fs::exists(scenes / "meshes" / "bunny.obj"))
         GTEST_SKIP() << "scenes/meshes/bunny.obj absent: run scripts/fetch-scenes.sh";
     std::ifstream in(scenes / "bunny.scene");
     const std::string text{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-    expectPlyRendersTheSame(text, "geo meshes/bunny.obj", scenes, "bunny");
+    expectConvertedRendersTheSame(text, "geo meshes/bunny.obj", scenes, "bunny");
 }
 
 }  // namespace
