@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <bit>
+#include <charconv>
+#include <cmath>
 #include <cfloat>
 #include <cstring>
 #include <optional>
@@ -247,15 +249,15 @@ Body::Body(std::string_view bytes, const Header& header, std::string displayName
     : bytes_(bytes), encoding_(header.encoding), displayName_(std::move(displayName)), context_(std::move(context)),
       pos_(header.dataOffset), valueStart_(header.dataOffset), line_(header.dataLine), lineStart_(header.dataOffset) {}
 
-std::string Body::where() const {
+std::string Body::where(bool nameProperty) const {
     std::string s;
     if (element_) s = vkray::quoted(element_->name) + " " + std::to_string(index_) + " of " + std::to_string(element_->count);
-    if (property_) s += ", property " + vkray::quoted(property_->name);
+    if (property_ && nameProperty) s += ", property " + vkray::quoted(property_->name);
     return s;
 }
 
-void Body::fail(const std::string& what) const {
-    const std::string at = where();
+void Body::fail(const std::string& what, bool nameProperty) const {
+    const std::string at = where(nameProperty);
     const std::string message = (at.empty() ? "" : "element " + at + ": ") + what + context_;
     if (encoding_ == Encoding::Ascii) throw Error(FileLoc{displayName_, valueLine_, valueCol_}, message);
     throw Error(FileLoc{displayName_}, "byte " + std::to_string(valueStart_) + ": " + message);
@@ -293,6 +295,13 @@ double Body::value(const Property& p, Type type) {
             return double(v);
         }
         double v = 0.0;
+        if (type == Type::Float64) {
+            // A double may exceed the float range of parseReal; the loader checks the values it keeps.
+            const auto [end, ec] = std::from_chars(s.data(), s.data() + s.size(), v);
+            if (ec != std::errc() || end != s.data() + s.size() || !std::isfinite(v))
+                fail("expected a finite number for the value, got " + vkray::quoted(s));
+            return v;
+        }
         const NumberStatus status = parseReal(s, v);
         if (status != NumberStatus::Ok) fail(describeNumberError(status, s, "the value", "a number"));
         return type == Type::Float32 ? double(float(v)) : v;

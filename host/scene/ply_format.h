@@ -75,12 +75,12 @@ public:
     // Throws unless the body ends here.
     void finish();
 
-    // The error at the last value read.
-    [[noreturn]] void fail(const std::string& what) const;
+    // The error at the last value read, naming its element and (unless !nameProperty) its property.
+    [[noreturn]] void fail(const std::string& what, bool nameProperty = true) const;
 
 private:
     std::string_view token(const Property& p);
-    std::string where() const;
+    std::string where(bool nameProperty) const;
 
     std::string_view bytes_;
     Encoding encoding_;

@@ -99,7 +99,8 @@ glm::vec3 PlyReader::colour(const ply::Element& e, const PlyColourProps& c, cons
         const ply::Type t = e.properties[size_t(i)].type;
         const double v = values[size_t(i)] / ply::maxOf(t);
         if (!(v >= 0.0) || !std::isfinite(float(v)))
-            body_.fail("colour " + vkray::quoted(e.properties[size_t(i)].name) + " is negative or not a finite 32-bit float");
+            body_.fail("colour " + vkray::quoted(e.properties[size_t(i)].name) + " is negative or not a finite 32-bit float",
+                       false);
         rgb[k++] = float(v);
     }
     return rgb;
@@ -135,7 +136,7 @@ void PlyReader::vertices(const ply::Element& e) {
         const auto finite = [&](int a, int b, int d) {
             for (const int k : {a, b, d})
                 if (!std::isfinite(v[size_t(k)]) || std::abs(v[size_t(k)]) > double(FLT_MAX))
-                    body_.fail(vkray::quoted(e.properties[size_t(k)].name) + " is not a finite 32-bit float");
+                    body_.fail(vkray::quoted(e.properties[size_t(k)].name) + " is not a finite 32-bit float", false);
             return glm::dvec3(v[size_t(a)], v[size_t(b)], v[size_t(d)]);
         };
         positions_.push_back(request_.toWorld.point(finite(x, y, z)));
@@ -216,7 +217,7 @@ void PlyReader::faces(const ply::Element& e) {
             } else {
                 ok = out_.addFlat(p, m);
             }
-            if (!ok) body_.fail("a transformed vertex does not fit a 32-bit float");
+            if (!ok) body_.fail("a transformed vertex does not fit a 32-bit float", false);
         }
     }
 }

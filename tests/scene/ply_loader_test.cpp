@@ -258,6 +258,20 @@ TEST_F(PlyLoader, RefusesBadValues) {
     expect("0 0 0\n1 0 0\n0 1 0\n200 0 1 2\n", "a list of 200 items does not fit in the");
 }
 
+TEST_F(PlyLoader, ReadsDoublesPastTheFloatRangeInPropertiesItSkips) {
+    const Scene s = load(std::string(kHeaderStart) +
+                         "element vertex 3\nproperty double x\nproperty double y\nproperty double z\n"
+                         "property double time\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n"
+                         "0 0 0 1e300\n1 0 0 -2.5e-310\n0 1 0 0\n3 0 1 2\n");
+    ASSERT_EQ(s.triangles.size(), 1u);
+    EXPECT_NE(error(std::string(kHeaderStart) + "element vertex 1\nproperty double x\nproperty double y\n"
+                                                "property double z\nend_header\n1e300 0 0\n")
+                  .find(":8:9: element 'vertex' 0 of 1: 'x' is not a finite 32-bit float"),
+              std::string::npos)
+        << error(std::string(kHeaderStart) + "element vertex 1\nproperty double x\nproperty double y\n"
+                                             "property double z\nend_header\n1e300 0 0\n");
+}
+
 TEST_F(PlyLoader, RefusesANegativeListLength) {
     std::string ply = "ply\nformat binary_big_endian 1.0\nelement vertex 0\nproperty float x\nproperty float y\n"
                       "property float z\nelement face 1\nproperty list char int vertex_indices\nend_header\n";
