@@ -19,7 +19,7 @@ backports=bookworm-backports
 packages=(
   cmake make g++ pkg-config
   libvulkan-dev mesa-vulkan-drivers vulkan-validationlayers glslang-tools
-  libglm-dev libtinyobjloader-dev libstb-dev
+  libglm-dev libtinyobjloader-dev libtinygltf-dev libstb-dev
   libtbb-dev libcli11-dev nlohmann-json3-dev libgtest-dev libxxhash-dev libopenexr-dev zlib1g-dev
   libembree-dev
   # tests/slurm: a throwaway single-node Slurm (its own configuration and state in a temporary

@@ -51,6 +51,7 @@ RenderSession::Loaded RenderSession::load(const std::string& sceneFile) {
     const Clock::time_point t0 = Clock::now();
     ParseOptions parse;
     parse.progress = request_.progress.load;
+    parse.warn = request_.warn;
     Loaded l{loadScene(sceneFile, parse), {}, 0.0};
     if (request_.progress.lineDone) request_.progress.lineDone();
     l.loadMs = msSince(t0);

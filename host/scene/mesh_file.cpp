@@ -4,8 +4,10 @@
 #include <cctype>
 #include <string_view>
 
+#include "scene/gltf_loader.h"
 #include "scene/obj_loader.h"
 #include "scene/off_loader.h"
+#include "scene/ply_loader.h"
 
 namespace vkray {
 namespace {
@@ -21,6 +23,9 @@ struct MeshFormat {
 constexpr MeshFormat kMeshFormats[] = {
     {".obj", &loadObj},
     {".off", &loadOff},
+    {".ply", &loadPly},
+    {".gltf", &loadGltf},
+    {".glb", &loadGltf},
 };
 
 std::string lowerCase(std::string s) {

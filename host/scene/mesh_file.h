@@ -3,6 +3,7 @@
 #pragma once
 
 #include <filesystem>
+#include <functional>
 #include <string>
 #include <string_view>
 
@@ -22,16 +23,19 @@ struct MeshRequest {
     Transform toWorld;           // the current transform at that line
     Material defaultMaterial;    // the scene's material state, for faces the file gives none
     FileReader readFile;         // reads the mesh and the files it names (never empty)
+    // Told what a reader skips of a file that still loads (glTF textures, points and lines), one
+    // line per cause and file; may be empty.
+    std::function<void(const std::string& message)> warn;
 };
 
 // Appends the file's triangles in file order. Throws vkray::Error for an unsupported extension,
 // an unreadable file or bad content.
 void loadMeshFile(const MeshRequest& request, SceneBuilder& out);
 
-// Whether loadMeshFile reads files with this path's extension (.obj, .off, any case).
+// Whether loadMeshFile reads files with this path's extension (.obj, .off, .ply, any case).
 bool isMeshFile(const std::filesystem::path& file);
 
-// The error of a mesh reader that cannot read request.file (`format`: "OBJ", "OFF"), at the scene
+// The error of a mesh reader that cannot read request.file (`format`: "OBJ", "OFF", "PLY"), at the scene
 // line that asked for it. A missing file under a scenes/meshes/ folder, where the repository's scenes look
 // for the meshes scripts/fetch-scenes.sh downloads (they are not committed), names that script.
 Error meshOpenError(const MeshRequest& request, std::string_view format, const std::string& whyNot);

@@ -27,7 +27,7 @@ Scene loadMeshScene(const std::filesystem::path& file, const ParseOptions& optio
     Scene scene;
     SceneBuilder out(scene, options.maxTriangles);
     const MeshRequest request{file,           file.string(), FileLoc{file.string()}, Transform(),
-                              kMeshDefaultMaterial, options.readFile ? options.readFile : fileSystemReader()};
+                              kMeshDefaultMaterial, options.readFile ? options.readFile : fileSystemReader(), options.warn};
     if (options.progress) options.progress("mesh " + file.filename().string());
     loadMeshFile(request, out);
     out.finish();

@@ -39,7 +39,7 @@ class Parser {
 public:
     Parser(Scene& scene, std::string file, std::filesystem::path baseDir, const ParseOptions& options)
         : file_(std::move(file)), baseDir_(std::move(baseDir)), out_(scene, options.maxTriangles),
-          readFile_(options.readFile ? options.readFile : fileSystemReader()), progress_(options.progress),
+          readFile_(options.readFile ? options.readFile : fileSystemReader()), progress_(options.progress), warn_(options.warn),
           transforms_(1), exactTransforms_(1, glm::dmat4(1.0)) {}
 
     void parseLine(std::string_view text, int number);
@@ -102,6 +102,7 @@ private:
     SceneBuilder out_;
     FileReader readFile_;
     std::function<void(const std::string&)> progress_;
+    std::function<void(const std::string&)> warn_;
     MaterialState material_;
     std::optional<uint32_t> materialIndex_;
     std::vector<Transform> transforms_;  // back() is current; the first entry is never popped
@@ -427,7 +428,7 @@ void Parser::popTransform(const SceneLine& line) {
 void Parser::geo(const SceneLine& line) {
     const std::filesystem::path file = baseDir_ / std::filesystem::path(std::string(line.text(1)));
     MeshRequest request{file, file.lexically_normal().string(), FileLoc{file_, line.number(), 0}, transform(),
-                        material_.resolve(), readFile_};
+                        material_.resolve(), readFile_, warn_};
     if (progress_) progress_("mesh " + file.filename().string());
     loadMeshFile(request, out_);
 }

@@ -1,5 +1,5 @@
 // The .scene format of docs/scene-format.md: the UCSD CSE167 ray tracer format (whose *.test files load
-// unchanged), plus `refract`, `reflect`, `spheresteps`, `geo`/`obj` for Wavefront OBJ and OFF meshes and
+// unchanged), plus `refract`, `reflect`, `spheresteps`, `geo`/`obj` for Wavefront OBJ, OFF, PLY and glTF meshes and
 // `generate` for procedural ones (generators.h). Transforms, spheres and meshes are resolved here,
 // materials are deduplicated, and triangle order is load order (docs/scene-format.md, "Triangle
 // identity"). Geometry is transformed in double and stored relative to Scene::origin, rounded to float
@@ -50,10 +50,12 @@ struct ParseOptions {
     // Told before each step that may take seconds (a mesh file read, a mesh generated), for a
     // progress line: "mesh dragon.obj", "generate soup 16000000". May be empty.
     std::function<void(const std::string& step)> progress;
+    // Told what a mesh reader skips of a file that still loads (MeshRequest::warn). May be empty.
+    std::function<void(const std::string& message)> warn;
 };
 
 // Reads `file`; relative paths in it (geo/obj) are resolved against its directory. A mesh file
-// (.obj, .off: isMeshFile) is read as the scene loadMeshScene makes of it (scene/mesh_scene.h).
+// (.obj, .off, .ply, .gltf, .glb: isMeshFile) is read as the scene loadMeshScene makes of it (scene/mesh_scene.h).
 Scene loadScene(const std::filesystem::path& file, const ParseOptions& options = {});
 
 // Parses a scene from a stream; errors name `displayName`, `geo` paths are relative to `baseDir`.

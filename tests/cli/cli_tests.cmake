@@ -139,6 +139,15 @@ set_tests_properties(cli.compare_mesh_gpu_cpu PROPERTIES FIXTURES_REQUIRED mesh_
 add_test(NAME cli.render_mesh_obj COMMAND ${CLI_DIR}/expect_output.sh "output: +.*/materials-mesh\\.png"
                                        $<TARGET_FILE:vkray> render ${CMAKE_SOURCE_DIR}/tests/scene/data/materials.obj --size 32x24 --cpu -o ${CLI_OUT}/materials-mesh.png)
 vkray_expect_error(mesh_missing "no-such\\.obj: cannot open OBJ file '.*no-such\\.obj': no such file or directory" render ${CLI_DATA}/no-such.obj)
+# PLY and glTF meshes by themselves, and a bad one of each.
+add_test(NAME cli.render_mesh_ply COMMAND ${CLI_DIR}/expect_output.sh "output: +.*/quad\\.png"
+                                       $<TARGET_FILE:vkray> render ${CLI_DATA}/quad.ply --size 32x24 --cpu --out-dir ${CLI_OUT})
+add_test(NAME cli.render_mesh_gltf COMMAND ${CLI_DIR}/expect_output.sh "output: +.*/triangle\\.png"
+                                        $<TARGET_FILE:vkray> render ${CLI_DATA}/triangle.gltf --size 32x24 --cpu --out-dir ${CLI_OUT})
+vkray_expect_error(ply_bad_index "ply_bad_index\\.ply:13:7: element 'face' 0 of 1, property 'vertex_indices': vertex index 9 out of range"
+                   render ${CLI_DATA}/ply_bad_index.ply)
+vkray_expect_error(gltf_missing_bin "gltf_missing_bin\\.gltf: cannot open buffer file '.*gltf_missing\\.bin': no such file or directory"
+                   render ${CLI_DATA}/gltf_missing_bin.gltf)
 # A mesh of the repository's scenes, not fetched: the error names the scene line and the script.
 vkray_expect_error(mesh_not_fetched "missing_mesh\\.scene:3: cannot open OBJ file '.*scenes/meshes/no-such-mesh\\.obj': no such file or directory \\(.*scripts/fetch-scenes\\.sh"
                    render ${CLI_DATA}/missing_mesh.scene)

@@ -1,4 +1,4 @@
-// libFuzzer target of the .scene parser and, through `geo`, of the OBJ/MTL and OFF loaders.
+// libFuzzer target of the .scene parser and, through `geo`, of the OBJ/MTL, OFF, PLY and glTF loaders.
 //
 // The input is a scene, optionally followed by mesh files: a line "#@ NAME" starts the file NAME,
 // which runs to the next such line. To the scene the "#@" lines are comments, so every .scene file

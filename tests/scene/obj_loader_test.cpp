@@ -149,7 +149,7 @@ INSTANTIATE_TEST_SUITE_P(
     testing::Values(
         ObjErrorCase{"\ngeo nothere.obj\n", "test.scene:2: ", "cannot open OBJ file"},
         ObjErrorCase{"geo sub\n", "test.scene:1: ", "unsupported mesh format '(no extension)'"},
-        ObjErrorCase{"geo model.ply\n", "test.scene:1: ", "unsupported mesh format '.ply' (supported: .obj, .off)"},
+        ObjErrorCase{"geo model.stl\n", "test.scene:1: ", "unsupported mesh format '.stl' (supported: .obj, .off, .ply, .gltf, .glb)"},
         ObjErrorCase{"geo relative.scene\n", "test.scene:1: ", "unsupported mesh format '.scene'"},
         ObjErrorCase{"geo missing_mtl.obj\n", "test.scene:1: ", "cannot open material library"},
         ObjErrorCase{"geo missing_mtl.obj\n", "test.scene:1: ", "nothere.mtl"},
