@@ -166,6 +166,15 @@ GltfJsonCheck checkGltfJson(std::string_view text) {
         result.typeProblem = "the JSON is " + jsonTypeName(doc) + ", expected an object";
         return result;
     }
+    // glTF 1.0 (a different schema: scenes and meshes by name) fails the 2.0 checks below in some
+    // member or other; its version says what is wrong at once.
+    if (const auto asset = doc.find("asset"); asset != doc.end() && asset->is_object()) {
+        const auto version = asset->find("version");
+        if (version != asset->end() && version->is_string() && !version->get<std::string>().starts_with("2.")) {
+            result.typeProblem = "glTF version '" + version->get<std::string>() + "': vkray reads glTF 2.0";
+            return result;
+        }
+    }
     JsonTypeCheck check;
     check.object(doc, kTopMembers, "");
     result.typeProblem = check.problem;

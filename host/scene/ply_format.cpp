@@ -96,9 +96,8 @@ Header HeaderParser::parse() {
             header_.dataLine = line_ + 1;
             checkCounts(bytes_.size() - pos);
             return header_;
-        } else {
-            fail(t_[0].col, "unknown PLY header keyword " + vkray::quoted(t_[0].text) +
-                                " (expected format, element, property, comment, obj_info or end_header)");
+        } else if (header_.strayLines++ == 0) {
+            header_.firstStrayLine = line_;
         }
     }
     if (line_ == 0) fail(0, "not a PLY file: it is empty");

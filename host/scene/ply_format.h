@@ -44,10 +44,13 @@ struct Header {
     std::vector<Element> elements;
     size_t dataOffset = 0;  // the first byte after the end_header line
     int dataLine = 0;       // the line the ASCII body starts on
+    // Header lines with no PLY keyword, read past as comments (Blender 2.4x wrote "Created by
+    // Blender ..." without `comment`): how many, and the first one's line.
+    int strayLines = 0, firstStrayLine = 0;
 };
 
 // Reads the header of `bytes`. Throws vkray::Error at displayName:line:col, with `context` appended,
-// for a file that does not start with the line "ply", an unknown keyword, format or type, a
+// for a file that does not start with the line "ply", an unknown format or type, a
 // `property` before any `element`, a name used twice, a count that is not a non-negative integer,
 // no `format` or no `end_header`, and element counts that the body cannot hold at the fewest bytes
 // an element can take (so a header that lies about its counts reserves nothing).

@@ -71,6 +71,10 @@ private:
 };
 
 void PlyReader::read() {
+    if (header_.strayLines > 0 && request_.warn)
+        request_.warn("in '" + request_.displayName + "': " + std::to_string(header_.strayLines) +
+                      " header line(s) with no PLY keyword read as comments (the first: line " +
+                      std::to_string(header_.firstStrayLine) + ")");
     for (const ply::Element& e : header_.elements) {
         if (e.name == "vertex")
             vertices(e);

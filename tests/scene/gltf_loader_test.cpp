@@ -247,6 +247,8 @@ TEST_F(GltfLoader, RefusesWrongJsonTypesAndBadJson) {
     EXPECT_NE(notArray.find(": accessors is the integer 7, expected an array"), std::string::npos) << notArray;
     const std::string syntax = error("{\"asset\": {\"version\": \"2.0\"}, \"nodes\": [");
     EXPECT_NE(syntax.find(file() + ": tinygltf: "), std::string::npos) << syntax;
+    const std::string v1 = error("{\"asset\": {\"version\": \"1.0\"}, \"scene\": \"defaultScene\"}");
+    EXPECT_NE(v1.find(file() + ": glTF version '1.0': vkray reads glTF 2.0"), std::string::npos) << v1;
     const std::string glb = error(std::string("glTF\2\0\0\0\x40\0\0\0", 12), "m.glb");
     EXPECT_NE(glb.find(file("m.glb") + ": tinygltf: "), std::string::npos) << glb;
 }
