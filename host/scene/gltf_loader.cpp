@@ -350,13 +350,9 @@ void GltfReader::primitive(const tinygltf::Primitive& p, const Transform& toWorl
         else
             c = {seq[i + 1], seq[i + 2], seq[0]};
         const TriPoints t{points[c[0]], points[c[1]], points[c[2]]};
-        bool smooth = !normals.empty();
-        TriPoints n;
-        for (size_t k = 0; k < 3 && smooth; ++k) {
-            n[k] = normals[c[k]];
-            smooth = glm::length(n[k]) > 0.0;
-        }
-        if (!(smooth ? out_.addSmooth(t, n, m) : out_.addFlat(t, m)))
+        std::optional<TriPoints> n;
+        if (!normals.empty()) n = TriPoints{normals[c[0]], normals[c[1]], normals[c[2]]};
+        if (!out_.addShaded(t, n, m))
             fail(name + ": a transformed vertex does not fit a 32-bit float");
     }
 }

@@ -104,7 +104,7 @@ void appendMesh(const MeshRequest& request, const tinyobj::attrib_t& attrib, con
     for (size_t f = 0; f < mesh.num_face_vertices.size(); ++f) {
         if (mesh.num_face_vertices[f] != 3) fail("a face was not triangulated");
         TriPoints p, n;
-        bool smooth = true;
+        bool normals = true;
         for (size_t k = 0; k < 3; ++k) {
             const tinyobj::index_t& idx = mesh.indices[3 * f + k];
             // checkObjText has range-checked every index; this guards the reads regardless.
@@ -112,14 +112,13 @@ void appendMesh(const MeshRequest& request, const tinyobj::attrib_t& attrib, con
                 fail("face index out of range");
             p[k] = request.toWorld.point(element(attrib.vertices, idx.vertex_index));
             if (idx.normal_index < 0) {
-                smooth = false;
+                normals = false;
                 continue;
             }
             n[k] = request.toWorld.normal(element(attrib.normals, idx.normal_index));
-            if (glm::length(n[k]) == 0.0) smooth = false;  // a zero vn has no direction
         }
         const uint32_t material = table.index(mesh.material_ids.empty() ? -1 : mesh.material_ids[f]);
-        if (!(smooth ? out.addSmooth(p, n, material) : out.addFlat(p, material)))
+        if (!out.addShaded(p, normals ? std::optional<TriPoints>(n) : std::nullopt, material))
             fail("a transformed vertex does not fit a 32-bit float");
     }
 }

@@ -51,6 +51,7 @@ public:
 private:
     FileLoc headerLine(int line) const { return FileLoc{request_.displayName, line, 0}; }
     int scalar(const ply::Element& e, std::string_view name, bool required) const;
+    void record(const ply::Element& e, int64_t i, std::vector<double>& values, int list, std::vector<uint32_t>& corners);
     void vertices(const ply::Element& e);
     void faces(const ply::Element& e);
     glm::vec3 colour(const ply::Element& e, const PlyColourProps& c, const std::vector<double>& values);
@@ -110,6 +111,36 @@ glm::vec3 PlyReader::colour(const ply::Element& e, const PlyColourProps& c, cons
     return rgb;
 }
 
+// Element i of `e`: its scalars into `values` (by property), its lists read past, but for the list
+// property `list` (-1: none), the face's vertex indices, checked against the vertices read, into
+// `corners`.
+void PlyReader::record(const ply::Element& e, int64_t i, std::vector<double>& values, int list,
+                       std::vector<uint32_t>& corners) {
+    const int64_t vertexCount = int64_t(positions_.size());
+    body_.begin(e, i);
+    for (size_t k = 0; k < e.properties.size(); ++k) {
+        const ply::Property& p = e.properties[k];
+        if (!p.list) {
+            values[k] = body_.value(p, p.type);
+            continue;
+        }
+        const int64_t n = body_.listLength(p);
+        if (int(k) == list) {
+            if (n < 3) body_.fail("a face needs at least 3 vertices, got " + std::to_string(n));
+            if (const auto problem = out_.roomProblem(uint64_t(n) - 2)) body_.fail(*problem);
+            corners.clear();
+        }
+        for (int64_t j = 0; j < n; ++j) {
+            const double index = body_.value(p, p.type);
+            if (int(k) != list) continue;
+            if (index < 0 || index >= double(vertexCount))
+                body_.fail("vertex index " + std::to_string(int64_t(index)) + " out of range: the file has " +
+                           std::to_string(vertexCount) + " vertices (0-based)");
+            corners.push_back(uint32_t(index));
+        }
+    }
+}
+
 void PlyReader::vertices(const ply::Element& e) {
     const int x = scalar(e, "x", true), y = scalar(e, "y", true), z = scalar(e, "z", true);
     const int nx = scalar(e, "nx", false), ny = scalar(e, "ny", false), nz = scalar(e, "nz", false);
@@ -126,17 +157,9 @@ void PlyReader::vertices(const ply::Element& e) {
     if (nx >= 0) normals_.reserve(size_t(e.count));
     if (c.present()) colours_.reserve(size_t(e.count));
     std::vector<double> v(e.properties.size());
+    std::vector<uint32_t> none;
     for (int64_t i = 0; i < e.count; ++i) {
-        body_.begin(e, i);
-        for (size_t k = 0; k < e.properties.size(); ++k) {
-            const ply::Property& p = e.properties[k];
-            if (!p.list) {
-                v[k] = body_.value(p, p.type);
-                continue;
-            }
-            const int64_t n = body_.listLength(p);
-            for (int64_t j = 0; j < n; ++j) body_.value(p, p.type);
-        }
+        record(e, i, v, -1, none);
         const auto finite = [&](int a, int b, int d) {
             for (const int k : {a, b, d})
                 if (!std::isfinite(v[size_t(k)]) || std::abs(v[size_t(k)]) > double(FLT_MAX))
@@ -180,30 +203,8 @@ void PlyReader::faces(const ply::Element& e) {
 
     std::vector<double> v(e.properties.size());
     std::vector<uint32_t> corners;
-    const int64_t vertexCount = int64_t(positions_.size());
     for (int64_t i = 0; i < e.count; ++i) {
-        body_.begin(e, i);
-        for (size_t k = 0; k < e.properties.size(); ++k) {
-            const ply::Property& p = e.properties[k];
-            if (!p.list) {
-                v[k] = body_.value(p, p.type);
-                continue;
-            }
-            const int64_t n = body_.listLength(p);
-            if (int(k) == list) {
-                if (n < 3) body_.fail("a face needs at least 3 vertices, got " + std::to_string(n));
-                if (const auto problem = out_.roomProblem(uint64_t(n) - 2)) body_.fail(*problem);
-                corners.clear();
-            }
-            for (int64_t j = 0; j < n; ++j) {
-                const double index = body_.value(p, p.type);
-                if (int(k) != list) continue;
-                if (index < 0 || index >= double(vertexCount))
-                    body_.fail("vertex index " + std::to_string(int64_t(index)) + " out of range: the file has " +
-                               std::to_string(vertexCount) + " vertices (0-based)");
-                corners.push_back(uint32_t(index));
-            }
-        }
+        record(e, i, v, list, corners);
         std::optional<glm::vec3> diffuse;
         if (c.present())
             diffuse = colour(e, c, v);
@@ -213,15 +214,9 @@ void PlyReader::faces(const ply::Element& e) {
         // A fan around the first corner, as for OFF: predictable, and exact for convex faces.
         for (size_t k = 1; k + 1 < corners.size(); ++k) {
             const TriPoints p{positions_[corners[0]], positions_[corners[k]], positions_[corners[k + 1]]};
-            bool ok;
-            if (!normals_.empty()) {
-                const TriPoints n{normals_[corners[0]], normals_[corners[k]], normals_[corners[k + 1]]};
-                const bool smooth = glm::length(n[0]) > 0.0 && glm::length(n[1]) > 0.0 && glm::length(n[2]) > 0.0;
-                ok = smooth ? out_.addSmooth(p, n, m) : out_.addFlat(p, m);
-            } else {
-                ok = out_.addFlat(p, m);
-            }
-            if (!ok) body_.fail("a transformed vertex does not fit a 32-bit float", false);
+            std::optional<TriPoints> n;
+            if (!normals_.empty()) n = TriPoints{normals_[corners[0]], normals_[corners[k]], normals_[corners[k + 1]]};
+            if (!out_.addShaded(p, n, m)) body_.fail("a transformed vertex does not fit a 32-bit float", false);
         }
     }
 }

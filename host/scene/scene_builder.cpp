@@ -91,6 +91,11 @@ bool SceneBuilder::addSmooth(const TriPoints& p, const TriPoints& n, uint32_t ma
     return addSmooth(p, p, n, material);
 }
 
+bool SceneBuilder::addShaded(const TriPoints& p, const std::optional<TriPoints>& n, uint32_t material) {
+    const bool smooth = n && glm::length((*n)[0]) > 0.0 && glm::length((*n)[1]) > 0.0 && glm::length((*n)[2]) > 0.0;
+    return smooth ? addSmooth(p, *n, material) : addFlat(p, material);
+}
+
 bool SceneBuilder::addFlat(const TriPoints& p, const TriPoints& exact, uint32_t material) {
     if (!append(p, exact, material)) return false;
     if (scene_.hasSmoothNormals()) {

@@ -51,6 +51,9 @@ public:
     // it with its own file:line.
     [[nodiscard]] bool addFlat(const TriPoints& p, uint32_t material);
     [[nodiscard]] bool addSmooth(const TriPoints& p, const TriPoints& n, uint32_t material);
+    // Smooth with the vertex normals `n` where the file gives them all and each has a direction (a
+    // zero normal has none), flat otherwise: how every mesh loader shades its triangles.
+    [[nodiscard]] bool addShaded(const TriPoints& p, const std::optional<TriPoints>& n, uint32_t material);
     // The same, with `exact`: the corners computed from the file's decimal numbers read in double,
     // where `p` comes from them read as float (how every scene near the world's origin has always
     // been stored, kept bit for bit). A scene that moves to a local origin is stored from `exact`,
