@@ -2,7 +2,10 @@
 // (GL_EXT_ray_query over VK_KHR_acceleration_structure; in hardware on GPUs with ray-tracing units).
 // The host builds the structure over the triangle buffer in slot order (gpu/driver_structure.h), so
 // a hit's primitive index is its triangle slot and the shading reads it as for any accelerator.
-// The slots are in a Morton order; each triangle's identity is its GpuTriangle.original.
+// The slots are in a Morton order; each triangle's identity is its GpuTriangle.original, which the
+// shading reads (shading.glsl). Hit.original, which only vkray's tie rule (beats) needs, is left
+// unset: the driver breaks its ties itself, and a load per ray, shadow rays included, would buy
+// nothing.
 // The driver's triangle test and tie rule are its own, not Woop, Benthin and Wald's watertight test
 // (triangle.glsl) and beats(): where a ray grazes an edge or meets two triangles at the same t, its
 // answer may differ from brute force's (docs/stability.md has the measured agreement).
@@ -27,7 +30,6 @@ Hit driverTrace(vec3 origin, vec3 dir, float tmax, const uint flags) {
         h.t = rayQueryGetIntersectionTEXT(q, true);
         h.uv = rayQueryGetIntersectionBarycentricsEXT(q, true);
         h.triangle = rayQueryGetIntersectionPrimitiveIndexEXT(q, true);
-        h.original = loadTriangle(uint(h.triangle)).original;
     }
     return h;
 }
