@@ -56,6 +56,8 @@ RenderSession::Loaded RenderSession::load(const std::string& sceneFile) {
     if (request_.progress.lineDone) request_.progress.lineDone();
     l.loadMs = msSince(t0);
     checkRenderable(l.scene, sceneFile);
+    if (request_.warn)
+        if (const auto unlit = unlitMaterialsWarning(l.scene, sceneFile)) request_.warn(*unlit);
     l.scene.camera = viewCamera(l.scene, request_.view);
     l.settings = request_.settings(sceneFile, l.scene);
     if (l.settings.background) l.scene.background = *l.settings.background;

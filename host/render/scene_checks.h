@@ -3,6 +3,7 @@
 // device is open.
 #pragma once
 
+#include <optional>
 #include <string>
 
 #include "scene/scene.h"
@@ -11,5 +12,10 @@ namespace vkray::render {
 
 // Refuses a scene that has nothing to render: no camera, or no triangles.
 void checkRenderable(const Scene& scene, const std::string& file);
+
+// Why the scene's lights light nothing, for one warning: it has lights, and no triangle's material
+// has a diffuse or specular colour, a mirror or a refraction (CSE167's default material is black
+// diffuse, so an OBJ without colours under `geo` renders a flat silhouette). Nothing otherwise.
+std::optional<std::string> unlitMaterialsWarning(const Scene& scene, const std::string& file);
 
 }  // namespace vkray::render

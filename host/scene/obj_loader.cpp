@@ -158,6 +158,14 @@ void loadObj(const MeshRequest& request, SceneBuilder& out) {
                         " triangles instead of " + std::to_string(summary.triangles) +
                         " (a degenerate or self-overlapping polygon); split such polygons into triangles");
 
+    // Textures are not sampled (the Whitted model has none): say so once, as the glTF reader does.
+    size_t textured = 0;
+    for (const tinyobj::material_t& m : materials)
+        textured += !m.diffuse_texname.empty() || !m.ambient_texname.empty() || !m.specular_texname.empty();
+    if (textured > 0 && request.warn)
+        request.warn("in '" + request.displayName + "': " + std::to_string(textured) +
+                     " MTL material(s) with texture maps (map_Kd ...): not sampled, their Kd/Ka/Ks colours alone "
+                     "colour the surfaces");
     MaterialTable table(request, materials, out);
     for (const tinyobj::shape_t& shape : shapes) appendMesh(request, attrib, shape.mesh, table, out);
 }

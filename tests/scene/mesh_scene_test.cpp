@@ -1,9 +1,15 @@
 // A mesh file loaded by itself (scene/mesh_scene.h): its triangles as `geo` loads them, a camera
 // that sees all of them, lights, a visible default material and the OBJ's own materials; and the
 // error of a mesh a scene names but the repository does not hold.
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <vector>
+
 #include <gtest/gtest.h>
 
 #include "scene/mesh_scene.h"
+#include "scene/scene_parser.h"
 #include "scene_test_util.h"
 
 namespace vkray {
@@ -40,6 +46,22 @@ TEST(MeshScene, AnObjKeepsItsMaterialsAndFillsTheRest) {
     EXPECT_EQ(matte.diffuse, glm::vec3(0.8f, 0.2f, 0.2f));  // materials.mtl's Kd
     EXPECT_EQ(matte.shininess, 32.0f);
     test::expectFramed(s, test::triangleBox(s));
+}
+
+// MTL texture maps are not sampled: one warning for the file, and the material's colours stand.
+TEST(MeshScene, AnObjsTextureMapsAreWarnedOnceAndTheirColoursKept) {
+    const std::filesystem::path dir = std::filesystem::path(VKRAY_TEST_OUTPUT_DIR) / "mesh_scene_textures";
+    std::filesystem::create_directories(dir);
+    std::ofstream(dir / "t.mtl") << "newmtl a\nKd 0.5 0.25 0.125\nmap_Kd a.png\nnewmtl b\nKd 1 1 1\nmap_Kd b.png\n";
+    std::ofstream(dir / "t.obj") << "mtllib t.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl a\nf 1 2 3\n";
+    ParseOptions options;
+    std::vector<std::string> warnings;
+    options.warn = [&](const std::string& w) { warnings.push_back(w); };
+    const Scene s = loadScene(dir / "t.obj", options);
+    EXPECT_EQ(s.materials.at(s.triangles.at(0).material).diffuse, glm::vec3(0.5f, 0.25f, 0.125f));
+    ASSERT_EQ(warnings.size(), 1u);
+    EXPECT_NE(warnings[0].find("2 MTL material(s) with texture maps (map_Kd ...): not sampled"), std::string::npos)
+        << warnings[0];
 }
 
 TEST(MeshScene, ErrorsNameTheMeshFile) {
