@@ -11,6 +11,10 @@ BUILD ?= build
 JOBS ?= $(shell nproc)
 SCENE ?= scenes/default.scene
 OUT ?= default.png
+# A new build directory gets Ninja (ninja-build, from install-deps.sh): it compiles a library's sources
+# while the libraries it links are still building, where Make's generator waits for each one. A
+# directory configured earlier keeps the generator it has.
+generator = $(if $(wildcard $(1)/CMakeCache.txt),,-G Ninja)
 
 .PHONY: all deps configure build vkray meshes demo test sanitize fuzz clean
 all: build
@@ -19,7 +23,7 @@ deps:
 	@scripts/install-deps.sh
 
 configure: deps
-	@cmake -S . -B $(BUILD) -DCMAKE_BUILD_TYPE=Release >/dev/null
+	@cmake -S . -B $(BUILD) $(call generator,$(BUILD)) -DCMAKE_BUILD_TYPE=Release >/dev/null
 
 build: configure
 	@cmake --build $(BUILD) -j $(JOBS)
@@ -49,7 +53,7 @@ SANITIZE_TESTS = vkray_scene_tests vkray_image_tests vkray_geometry_tests vkray_
                  vkray_bench_tests vkray_cli_tests
 
 sanitize: deps meshes
-	@cmake -S . -B $(ASAN_BUILD) -DCMAKE_BUILD_TYPE=RelWithDebInfo -DVKRAY_SANITIZE=ON >/dev/null
+	@cmake -S . -B $(ASAN_BUILD) $(call generator,$(ASAN_BUILD)) -DCMAKE_BUILD_TYPE=RelWithDebInfo -DVKRAY_SANITIZE=ON >/dev/null
 	@cmake --build $(ASAN_BUILD) -j $(JOBS) --target $(SANITIZE_TESTS) vkray
 	@scripts/run-sanitized-tests.sh $(ASAN_BUILD) $(SANITIZE_TESTS)
 
@@ -62,7 +66,7 @@ FUZZER = $(FUZZ_BUILD)/tests/fuzz/vkray_fuzz_scene_parser
 # memory fails the run, which leaves the input in $(FUZZ_BUILD)/artifacts/ and prints the report.
 fuzz:
 	@scripts/install-deps.sh fuzz
-	@cmake -S . -B $(FUZZ_BUILD) -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+	@cmake -S . -B $(FUZZ_BUILD) $(call generator,$(FUZZ_BUILD)) -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BUILD_TYPE=RelWithDebInfo \
 	       -DVKRAY_FUZZ=ON -DVKRAY_BUILD_TESTS=OFF >/dev/null
 	@cmake --build $(FUZZ_BUILD) -j $(JOBS) --target vkray_fuzz_scene_parser
 	@tests/fuzz/make_corpus.sh $(FUZZ_BUILD)/corpus

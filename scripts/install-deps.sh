@@ -17,7 +17,7 @@ MESA_MIN=24.1
 backports=bookworm-backports
 
 packages=(
-  cmake make g++ pkg-config
+  cmake make ninja-build g++ pkg-config
   libvulkan-dev mesa-vulkan-drivers vulkan-validationlayers glslang-tools
   libglm-dev libtinyobjloader-dev libtinygltf-dev libstb-dev
   libtbb-dev libcli11-dev nlohmann-json3-dev libgtest-dev libxxhash-dev libopenexr-dev zlib1g-dev
