@@ -20,8 +20,9 @@ std::string benchJson(const BenchResults& results, const std::vector<ReportImage
 std::string pixelsFileName(const std::string& pngFileName);
 
 // Whether a report keeps its pictures' pixels, so that a merge can draw them again exactly (and
-// the heatmaps of a scene on one scale): the reports of `--shard I/N` with N > 1.
-inline bool keepsPixels(const BenchResults& r) { return r.shard.count > 1; }
+// the heatmaps of a scene on one scale), and `--resume` its finished scenes' pictures (bench_resume.h):
+// the reports of `--shard I/N` with N > 1, and incomplete ones.
+inline bool keepsPixels(const BenchResults& r) { return r.shard.count > 1 || !r.complete(); }
 
 // Reads DIR/bench.json (and the pixels it names under DIR/images/, where it kept them) back into the
 // results it was written from: every figure, and the images a report shows. Throws vkray::Error

@@ -291,6 +291,11 @@ BenchResults benchResults(const Json& j, const Pictures& pictures) {
     for (size_t i = 0; i < shards.size(); ++i) r.shards.push_back(shardInfo(shards[i], item("", "shards", i)));
     const Json& scenes = array(j, "scenes", "");
     for (size_t i = 0; i < scenes.size(); ++i) r.scenes.push_back(sceneResult(scenes[i], item("", "scenes", i), pictures));
+    // "complete" and "failure" are absent from reports written before runs saved partial results.
+    if (j.contains("complete") && !get<bool>(j, "complete", "")) {
+        r.failure = at(j, "failure", "").is_string() ? str(j, "failure", "") : "";
+        if (r.failure.empty()) r.failure = kStillRunning;
+    }
     return r;
 }
 

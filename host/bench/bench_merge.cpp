@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include "bench/bench_json.h"
+#include "bench/bench_resume.h"
 #include "bench/bench_shard.h"
 #include "bench/report.h"
 #include "core/error.h"
@@ -24,19 +25,6 @@ struct Shard {
 
 Error shardError(const Shard& s, const std::string& what) { return Error(FileLoc{s.file.string()}, what); }
 
-std::string versionText(const BenchResults& r) {
-    return "vkray " + r.vkrayVersion + (r.revision.empty() ? "" : " (revision " + r.revision + ")");
-}
-
-// The first setting in which two runs differ: "repeat is 1 here, 3 in FIRST".
-std::optional<std::string> settingsDifference(const BenchSettings& mine, const BenchSettings& theirs) {
-    const nlohmann::ordered_json a = settingsJson(mine), b = settingsJson(theirs);
-    for (const auto& [key, value] : a.items())
-        if (!b.contains(key) || b[key] != value)
-            return key + " is " + value.dump() + " here, " + (b.contains(key) ? b[key].dump() : "missing");
-    return std::nullopt;
-}
-
 // Every shard of one run, each once and none missing.
 void checkShards(const std::vector<Shard>& shards) {
     const Shard& first = shards.front();
@@ -46,8 +34,8 @@ void checkShards(const std::vector<Shard>& shards) {
         const BenchResults& r = s.results;
         const std::string there = " in " + first.file.string();
         if (!r.shards.empty()) throw shardError(s, "a merged report, not a shard (merge the shards themselves)");
-        if (versionText(r) != versionText(f))
-            throw shardError(s, "written by " + versionText(r) + ", not " + versionText(f) + " as" + there);
+        if (writtenBy(r) != writtenBy(f))
+            throw shardError(s, "written by " + writtenBy(r) + ", not " + writtenBy(f) + " as" + there);
         if (const auto diff = settingsDifference(r.settings, f.settings))
             throw shardError(s, "other settings: " + *diff + there);
         if (r.shard.count != f.shard.count)
@@ -64,8 +52,20 @@ void checkShards(const std::vector<Shard>& shards) {
     for (int i = 0; i < f.shard.count; ++i)
         if (!seen.contains(i)) missing += (missing.empty() ? "" : ", ") + std::to_string(i);
     if (!missing.empty())
-        throw Error("missing shard" + std::string(missing.find(',') == std::string::npos ? " " : "s ") + missing +
-                    " of " + std::to_string(f.shard.count));
+        missing = "missing shard" + std::string(missing.find(',') == std::string::npos ? " " : "s ") + missing +
+                  " of " + std::to_string(f.shard.count);
+    // A shard that stopped early (bench_resume.h) is named with what it lacks, so that it can be
+    // rerun alone with --resume; merging it would drop its scenes silently.
+    for (const auto& [index, s] : seen) {
+        const BenchResults& r = s->results;
+        if (r.complete()) continue;
+        std::string scenes;
+        for (const std::string& file : missingScenes(r)) scenes += (scenes.empty() ? "" : ", ") + file;
+        missing += std::string(missing.empty() ? "" : "; ") + "shard " + shardText(r.shard) + " (" + s->file.string() +
+                   ") is incomplete: " + r.failure + (scenes.empty() ? "" : "; not measured: " + scenes) +
+                   "; rerun it with --resume";
+    }
+    if (!missing.empty()) throw Error(missing);
 }
 
 const SceneResult* sceneOf(const BenchResults& r, int index) {

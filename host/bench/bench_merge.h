@@ -14,8 +14,9 @@ namespace vkray::bench {
 // Reads DIR/bench.json (and DIR/images/) of every folder and merges them. Throws vkray::Error, one
 // line naming the file and the difference, for: a folder without a readable bench.json, a merged
 // report given as a shard, another vkray version or revision, other settings, another shard count or
-// configuration list, a shard given twice, missing shards ("missing shards 1, 3 of 4"), a shard
-// without a configuration it should have measured.
+// configuration list, a shard given twice, missing shards ("missing shards 1, 3 of 4") and incomplete
+// ones (bench_resume.h: named with the scenes they lack), a shard without a configuration it should
+// have measured.
 //
 // What is not one shard's figure: the Pareto front is marked again over all the points of a scene,
 // and the scene's Embree summary is the median (min-max) of every shard's Embree samples together,

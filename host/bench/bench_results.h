@@ -258,6 +258,15 @@ struct BenchResults {
     size_t configurationCount = 0;        // of the whole run, every shard together
     std::string configurationHash;        // of that list (bench_shard.h)
     std::vector<ShardInfo> shards;        // a merged report: every shard; empty otherwise
+
+    // Why the run did not measure all it was to (the error of the scene it stopped at, or
+    // "interrupted by SIGTERM"); kStillRunning in the report a run saves after each scene, which a
+    // killed run leaves behind; empty when the run is complete. `vkray bench --resume` measures the
+    // rest (bench_resume.h).
+    std::string failure;
+    bool complete() const { return failure.empty(); }
 };
+
+inline constexpr const char* kStillRunning = "the run was still measuring when this report was saved (killed, or running)";
 
 }  // namespace vkray::bench

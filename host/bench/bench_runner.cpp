@@ -1,6 +1,7 @@
 #include "bench/bench_runner.h"
 
 #include <algorithm>
+#include <exception>
 #include <filesystem>
 #include <map>
 #include <memory>
@@ -8,6 +9,10 @@
 #include <thread>
 
 #include "accel/accel.h"
+#include "bench/bench_checks.h"
+#include "bench/bench_interrupt.h"
+#include "bench/bench_resume.h"
+#include "bench/bench_run_state.h"
 #include "bench/bench_shard.h"
 #include "bench/embree_baseline.h"
 #include "bench/host_facts.h"
@@ -22,7 +27,6 @@
 #include "render/structure.h"
 #include "scene/camera.h"
 #include "scene/scene_parser.h"
-#include "vkray_revision.h"  // generated at build time by scripts/revision.cmake
 
 namespace vkray::bench {
 namespace {
@@ -92,6 +96,7 @@ public:
 
 private:
     void step(const std::string& what, int repeat = 0, int repeats = 0) {
+        throwIfStopRequested();  // SIGINT, SIGTERM (bench_interrupt.h)
         if (!progress_) return;
         progress_(BenchProgress{sceneIndex_, sceneCount_, sceneName_, what, repeat, repeats,
                                 msSince(start_) / 1000.0});
@@ -508,69 +513,45 @@ public:
     const std::vector<int>& threads() const { return threads_; }
 };
 
-void checkOptions(const BenchOptions& o) {
-    if (o.shard.count < 1 || o.shard.index < 0 || o.shard.index >= o.shard.count)
-        throw Error("--shard " + shardText(o.shard) + ": expected I/N with 0 <= I < N");
-    if (o.scenes.empty()) throw Error("vkray bench: no scene given");
-    if (o.accels.empty()) throw Error("vkray bench: --accel names no accelerator");
-    if (o.repeat < 1 || o.repeat > 1000) throw Error("--repeat " + std::to_string(o.repeat) + ": expected 1..1000");
-    for (const std::string& a : o.accels) accel::resolveAccel(a);  // an unknown name fails before any work
-    for (int t : o.threads)
-        if (t < 1 || t > 1024) throw Error("--threads " + std::to_string(t) + ": expected 1..1024");
-    for (int d : o.deltas)
-        if (d < 1 || d > 1024) throw Error("--deltas " + std::to_string(d) + ": expected 1..1024");
-    for (int d : o.maxDepths)
-        if (d < 1 || d > 64) throw Error("--maxdepths " + std::to_string(d) + ": expected 1..64");
-}
-
 }  // namespace
 
-std::vector<int> defaultThreadCounts() {
-    const int all = int(std::max(1u, std::thread::hardware_concurrency()));
-    std::vector<int> counts;
-    for (int t = 1; t < all; t *= 2) counts.push_back(t);
-    counts.push_back(all);
-    return counts;
-}
-
 BenchResults runBench(render::Device& device, const BenchOptions& options, const std::string& commandLine,
-                      const BenchProgressFn& progress) {
-    checkOptions(options);
-    for (const std::string& file : options.scenes)
-        if (!std::filesystem::is_regular_file(file)) throw Error(file + ": no such scene file");
+                      const BenchProgressFn& progress, const BenchContinuation& continuation) {
+    checkBenchOptions(options);
     const auto start = Clock::now();
     const gpu::VulkanContext* ctx = device.get();
     if (!ctx) throw std::logic_error("runBench: a render::Device without a device");
-    BenchResults results;
-    results.vkrayVersion = VKRAY_VERSION;
-    results.revision = VKRAY_REVISION;
-    results.commandLine = commandLine;
-    results.startedAt = isoTimeUtc();
-    results.device = ctx->info().name;
-    results.driver = ctx->info().driver;
-    results.deviceType = ctx->info().type;
-    results.vulkanApi = ctx->info().apiVersion;
-    results.hardwareThreads = int(std::thread::hardware_concurrency());
-    results.loadAverageStart = loadAverage();
-    results.repeat = options.repeat;
-    results.node = hostName();
-    results.settings = benchSettings(options);
-    results.shard = options.shard;
-    const std::vector<Configuration> list = configurationList(results.settings);
-    results.configurationCount = list.size();
-    results.configurationHash = configurationHash(list);
+    BenchResults results = runHeader(*ctx, options, commandLine);
+    if (continuation.previous) continueFrom(*continuation.previous, continuation.previousFile, results);
+    const double before = continuation.previous ? continuation.previous->elapsedSeconds : 0.0;
+    const std::vector<SceneWork> work = shardWork(results.settings, options.shard);
+    std::vector<bool> measure(options.scenes.size());
+    for (size_t i = 0; i < measure.size(); ++i) measure[i] = !work[i].empty() && !hasScene(results, int(i));
+    checkBenchScenes(device, options, measure);  // every scene, before the first is measured
+
     Runner runner(device, options, progress);
     results.threadCounts = runner.threads();
-    const std::vector<SceneWork> work = shardWork(results.settings, options.shard);
-    for (size_t i = 0; i < options.scenes.size(); ++i) {
-        if (work[i].empty()) continue;  // none of this scene's configurations is in the shard
-        runner.startScene();
-        SceneResult scene = runner.runScene(options.scenes[i], int(i), int(options.scenes.size()), work[i]);
-        for (const std::string& label : work[i].labels) scene.configurations.push_back({label, options.shard.index});
-        results.scenes.push_back(std::move(scene));
+    // Nothing to measure (a complete report resumed): nothing to save either, the report stays as it is.
+    const bool anything = std::find(measure.begin(), measure.end(), true) != measure.end();
+    const BenchSaveFn save = anything ? continuation.save : BenchSaveFn{};
+    if (save) {  // from the start, --out holds this run's report, not an earlier one
+        stampResults(results, start, before, kStillRunning);
+        save(results);
     }
-    results.loadAverageEnd = loadAverage();
-    results.elapsedSeconds = msSince(start) / 1000.0;
+    for (size_t i = 0; i < options.scenes.size(); ++i) {
+        if (!measure[i]) continue;
+        try {
+            runner.startScene();
+            SceneResult scene = runner.runScene(options.scenes[i], int(i), int(options.scenes.size()), work[i]);
+            for (const std::string& label : work[i].labels) scene.configurations.push_back({label, options.shard.index});
+            results.scenes.push_back(std::move(scene));
+        } catch (...) {
+            saveAndRethrow(results, start, before, save);
+        }
+        stampResults(results, start, before, kStillRunning);
+        if (save) save(results);
+    }
+    stampResults(results, start, before, "");
     return results;
 }
 

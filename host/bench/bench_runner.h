@@ -50,10 +50,26 @@ using BenchProgressFn = std::function<void(const BenchProgress&)>;
 // The default build-scaling thread counts for this machine: 1, 2, 4, ... and all cores.
 std::vector<int> defaultThreadCounts();
 
-// Runs the whole benchmark, or the options' shard of it. Throws vkray::Error (a scene that does not load or does not fit the
-// device, an unknown accelerator, a render the device cuts short) before writing anything.
-// `device` must have a device; its pipelines serve every render of the run.
+// Receives the results of a run as it goes (bench_resume.h): at the start (no scene yet), after
+// every finished scene (both marked kStillRunning) and, before the error goes on, when a scene fails
+// or the run is interrupted (marked with the failure).
+using BenchSaveFn = std::function<void(const BenchResults&)>;
+
+struct BenchContinuation {
+    BenchSaveFn save;
+    // The report of an earlier, unfinished run of the same settings (bench_resume.h,
+    // checkResumable): its scenes are kept, and only the others are measured.
+    const BenchResults* previous = nullptr;
+    std::string previousFile = "bench.json";  // where it was read from, for errors
+};
+
+// Runs the whole benchmark, or the options' shard of it. Before measuring anything it throws
+// vkray::Error for bad options, a scene that does not load or does not fit the device, an
+// accelerator the device cannot run, or a `continuation.previous` of another run. A failure while
+// measuring (a render the device cuts short, SIGINT or SIGTERM under bench_interrupt.h's
+// StopOnSignals) gives the finished scenes to `continuation.save`, then throws. `device` must have
+// a device; its pipelines serve every render of the run.
 BenchResults runBench(render::Device& device, const BenchOptions& options, const std::string& commandLine,
-                      const BenchProgressFn& progress = {});
+                      const BenchProgressFn& progress = {}, const BenchContinuation& continuation = {});
 
 }  // namespace vkray::bench

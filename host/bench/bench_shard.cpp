@@ -135,4 +135,12 @@ BenchSettings settingsFromJson(const Json& j) {
     return s;
 }
 
+std::optional<std::string> settingsDifference(const BenchSettings& mine, const BenchSettings& theirs) {
+    const Json a = settingsJson(mine), b = settingsJson(theirs);
+    for (const auto& [key, value] : a.items())
+        if (!b.contains(key) || b[key] != value)
+            return key + " is " + value.dump() + " here, " + (b.contains(key) ? b[key].dump() : "missing");
+    return std::nullopt;
+}
+
 }  // namespace vkray::bench

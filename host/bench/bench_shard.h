@@ -5,6 +5,7 @@
 #pragma once
 
 #include <cstddef>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -70,5 +71,9 @@ std::vector<SceneWork> shardWork(const BenchSettings& settings, const ShardSpec&
 // malformed key.
 nlohmann::ordered_json settingsJson(const BenchSettings& settings);
 BenchSettings settingsFromJson(const nlohmann::ordered_json& json);
+
+// The first setting in which two runs differ, as "repeat is 1 here, 3" (`mine`'s, then `theirs`);
+// empty when they are equal. Shards merge, and a run resumes, only with equal settings.
+std::optional<std::string> settingsDifference(const BenchSettings& mine, const BenchSettings& theirs);
 
 }  // namespace vkray::bench

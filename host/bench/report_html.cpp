@@ -6,6 +6,7 @@
 #include <optional>
 #include <string>
 
+#include "bench/bench_resume.h"
 #include "bench/report.h"
 #include "bench/report_images.h"
 #include "bench/report_plots.h"
@@ -43,6 +44,7 @@ table.facts td { overflow-wrap: anywhere; }
 .verdict { background: #eef4fc; border-left: 4px solid #3b7dd8; padding: .5em .9em; }
 .warning { background: #fdf0e6; border-left: 4px solid #d55e00; padding: .5em .9em; margin: .5em 0; }
 .missing { color: #777; font-style: italic; }
+.incomplete { background: #fbe3e4; border: 2px solid #b2182b; padding: .6em .9em; margin: .5em 0; }
 .images { display: flex; flex-wrap: wrap; gap: 14px; align-items: flex-start; }
 .pair { display: flex; gap: 14px; align-items: flex-start; }
 figure { margin: 0; }
@@ -231,6 +233,8 @@ std::string benchHtml(const BenchResults& results, const std::vector<ReportImage
                       "<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">\n"
                       "<title>vkray bench: " + escapeXml(results.device) + "</title>\n<style>" + kStyle +
                       "</style>\n</head>\n<body>\n<h1>vkray bench</h1>\n";
+    if (!results.complete())
+        out += "<p class=\"incomplete\"><strong>Incomplete:</strong> " + escapeXml(incompleteNotice(results)) + "</p>\n";
     out += factTable(runFacts(results));
     out += warnings(results);
     out += shardsHtml(results);  // a merged report's shards, right after the run's facts

@@ -6,6 +6,7 @@
 #include <nlohmann/json.hpp>
 
 #include "bench/bench_json.h"
+#include "bench/bench_resume.h"
 #include "bench/bench_shard.h"
 #include "bench/report.h"
 #include "bench/report_tables.h"
@@ -233,6 +234,9 @@ std::string benchJson(const BenchResults& r, const std::vector<ReportImage>& ima
                                 {"gpu_clock", "Vulkan timestamp queries"},
                                 {"build_threads", r.threadCounts}}},
                     {"warnings", runWarnings(r)},
+                    {"complete", r.complete()},
+                    {"failure", r.complete() ? Json(nullptr) : Json(r.failure)},
+                    {"missing_scenes", missingScenes(r)},
                     {"scenes", scenes}};
     return j.dump(2) + "\n";
 }

@@ -3,6 +3,7 @@
 #include <optional>
 #include <string>
 
+#include "bench/bench_resume.h"
 #include "bench/report.h"
 #include "bench/report_tables.h"
 
@@ -57,7 +58,9 @@ std::string markdownTable(const Table& t) {
 
 std::string benchMarkdown(const BenchResults& results) {
     // A merged report lists its shards right after the run's facts.
-    std::string out = "# vkray bench\n\n" + factList(runFacts(results));
+    std::string out = "# vkray bench\n\n";
+    if (!results.complete()) out += "> **Incomplete:** " + cell(incompleteNotice(results)) + "\n\n";
+    out += factList(runFacts(results));
     for (const std::string& w : runWarnings(results)) out += "> **Warning:** " + cell(w) + "\n\n";
     out += shardsMarkdown(results);
     if (const std::optional<Table> summary = summaryTable(results)) out += "## Summary\n\n" + markdownTable(*summary);

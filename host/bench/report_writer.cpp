@@ -43,6 +43,14 @@ void writePixels(const BenchResults& results, const std::vector<ReportImage>& im
     }
 }
 
+// The pixels an incomplete report kept for `--resume` (keepsPixels): a report that keeps none
+// leaves none of an earlier one behind.
+void removePixels(const fs::path& images) {
+    std::error_code ec;
+    for (const fs::directory_entry& e : fs::directory_iterator(images, ec))
+        if (e.path().extension() == ".pfm") fs::remove(e.path(), ec);
+}
+
 }  // namespace
 
 void writeBenchReport(const BenchResults& results, const fs::path& dir) {
@@ -60,6 +68,7 @@ void writeBenchReport(const BenchResults& results, const fs::path& dir) {
     writeFileText(dir / "report.html", html);
     for (const ReportImage& im : images) writeFileBytes(dir / "images" / im.fileName, im.png.data(), im.png.size());
     if (keepsPixels(results)) writePixels(results, images, dir);
+    else removePixels(dir / "images");
 }
 
 }  // namespace vkray::bench

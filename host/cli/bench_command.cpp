@@ -1,6 +1,8 @@
 // `vkray bench SCENE...`: the accelerators against each other on one Vulkan device:
 // build and trace time, work per ray, error against run time; writes bench.json, bench.md,
-// report.html and images/ into --out. `--shard I/N` measures a share of the configurations,
+// report.html and images/ into --out, after every scene (marked incomplete until the last, and with
+// the failure when a scene fails or the run is interrupted); `--resume` measures only the scenes an
+// incomplete report in --out lacks. `--shard I/N` measures a share of the configurations,
 // `--merge DIR...` joins the shards' reports into one (docs/cluster.md).
 #include <unistd.h>
 
@@ -8,13 +10,16 @@
 #include <cstdio>
 #include <filesystem>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include <tbb/info.h>
 
 #include "accel/accel.h"
+#include "bench/bench_interrupt.h"
 #include "bench/bench_merge.h"
+#include "bench/bench_resume.h"
 #include "bench/bench_runner.h"
 #include "bench/bench_shard.h"
 #include "bench/report.h"
@@ -40,6 +45,7 @@ struct BenchArgs {
     std::string shard;
     std::vector<std::string> merge;
     bool quiet = false;
+    bool resume = false;
 };
 
 bench::BenchOptions resolveOptions(const BenchArgs& args) {
@@ -120,6 +126,40 @@ void prepareOutputDir(const std::filesystem::path& dir) {
     if (access(dir.c_str(), W_OK) != 0) throw Error("--out " + dir.string() + ": the folder is not writable");
 }
 
+// Measures, saving the report into `dir` after each scene; a failure leaves the finished scenes
+// there, marked incomplete, and a line saying so before the error's.
+bench::BenchResults measure(const BenchArgs& args, const bench::BenchOptions& options, const std::string& commandLine,
+                            const std::optional<bench::BenchResults>& previous) {
+    const std::filesystem::path dir = args.out;
+    const bool rayQuery = std::any_of(options.accels.begin(), options.accels.end(), [](const std::string& a) {
+        return accel::resolveAccel(a).family == accel::Family::Driver;
+    });
+    render::Device device(args.device, rayQuery);
+    ProgressLine progress(args.quiet);
+    bench::BenchContinuation continuation;
+    continuation.previous = previous ? &*previous : nullptr;
+    continuation.previousFile = (dir / "bench.json").string();
+    size_t saved = 0;
+    continuation.save = [&](const bench::BenchResults& r) {
+        bench::writeBenchReport(r, dir);
+        saved = r.scenes.size();
+    };
+    const bench::StopOnSignals stop;  // SIGINT, SIGTERM: save what is finished, then fail
+    bench::BenchResults results;
+    try {
+        results = bench::runBench(device, options, commandLine,
+                                  [&progress](const bench::BenchProgress& p) { progress(p); }, continuation);
+    } catch (...) {
+        progress.finish();  // the error message gets a line of its own
+        if (saved > 0)
+            std::fprintf(stderr, "bench: %s holds the %zu finished scene%s, marked incomplete; --resume measures the rest\n",
+                         dir.c_str(), saved, saved == 1 ? "" : "s");
+        throw;
+    }
+    progress.finish();
+    return results;
+}
+
 // `--merge DIR...`: no measuring, no device; the shards' reports become one.
 void mergeReports(const BenchArgs& args, const std::string& commandLine) {
     const std::vector<std::filesystem::path> dirs(args.merge.begin(), args.merge.end());
@@ -169,6 +209,9 @@ void registerBenchCommand(CLI::App& app, int& exitCode, int argc, const char* co
         ->type_name("DIR")
         ->expected(1, -1)
         ->excludes(scenes);
+    cmd->add_flag("--resume", args->resume,
+                  "Continue the run whose report is in --out (same options): measure only the scenes it lacks")
+        ->excludes("--merge");
     cmd->add_flag("--quiet", args->quiet, "No progress line and no summary: errors and warnings only");
     const std::string commandLine = joinCommandLine(argc, argv);
     cmd->callback([args, commandLine, &exitCode] {
@@ -184,20 +227,14 @@ void registerBenchCommand(CLI::App& app, int& exitCode, int argc, const char* co
             if (!std::filesystem::is_regular_file(file)) throw Error(file + ": no such scene file");
         const std::filesystem::path dir = args->out;
         prepareOutputDir(dir);
-        const bool rayQuery = std::any_of(options.accels.begin(), options.accels.end(), [](const std::string& a) {
-            return accel::resolveAccel(a).family == accel::Family::Driver;
-        });
-        render::Device device(args->device, rayQuery);
-        ProgressLine progress(args->quiet);
-        bench::BenchResults results;
-        try {
-            results = bench::runBench(device, options, commandLine,
-                                      [&progress](const bench::BenchProgress& p) { progress(p); });
-        } catch (...) {
-            progress.finish();  // the error message gets a line of its own
-            throw;
+        std::optional<bench::BenchResults> previous;
+        if (args->resume) previous = bench::readResumableReport(dir);
+        const bench::BenchResults results = measure(*args, options, commandLine, previous);
+        if (previous && previous->complete()) {  // checked by the run; nothing to measure, nothing to rewrite
+            if (!args->quiet) std::printf("%s: the run is complete: nothing left to measure\n", (dir / "bench.json").c_str());
+            exitCode = 0;
+            return;
         }
-        progress.finish();
         bench::writeBenchReport(results, dir);
         if (!args->quiet) printSummary(results, dir);
         printWarnings(results);

@@ -29,7 +29,25 @@ vkray_bench_error(bad_shard "--shard 4/4: expected I/N with 0 <= I < N" ${BENCH_
 vkray_bench_error(shard_not_a_fraction "--shard 1: expected I/N" ${BENCH_SCENE} --shard 1 --out ${BENCH_OUT}/x)
 vkray_bench_error(merge_no_report "nope/bench.json: no such file" --merge ${BENCH_OUT}/nope --out ${BENCH_OUT}/x)
 vkray_bench_error(merge_with_shard "--shard measures, --merge only merges" --merge ${BENCH_OUT}/nope --shard 0/2 --out ${BENCH_OUT}/x)
+vkray_bench_error(merge_with_resume "--resume excludes --merge|--merge excludes --resume" --merge ${BENCH_OUT}/nope --resume --out ${BENCH_OUT}/x)
 vkray_bench_error(merge_with_scenes "scenes excludes --merge|--merge excludes scenes" ${BENCH_SCENE} --merge ${BENCH_OUT}/nope --out ${BENCH_OUT}/x)
+# Every scene is checked before the first is measured: a missing or unloadable second scene is
+# refused at once, and --out gets no results.
+set(expect_refused ${CMAKE_CURRENT_SOURCE_DIR}/bench/expect_refused.sh)
+set(ONE_TRIANGLE ${CMAKE_SOURCE_DIR}/tests/cli/data/one_triangle.scene)
+add_test(NAME bench.cli.refuses.missing_second_scene
+         COMMAND ${expect_refused} ${BENCH_OUT}/refused-scene "nope\\.scene: no such scene file" $<TARGET_FILE:vkray>
+                 bench ${ONE_TRIANGLE} ${BENCH_OUT}/nope.scene --size 16x12 --repeat 1 --out ${BENCH_OUT}/refused-scene)
+add_test(NAME bench.cli.refuses.unreadable_mesh
+         COMMAND ${expect_refused} ${BENCH_OUT}/refused-mesh "missing_mesh\\.scene:3: cannot open OBJ file" $<TARGET_FILE:vkray>
+                 bench ${ONE_TRIANGLE} ${CMAKE_SOURCE_DIR}/tests/cli/data/missing_mesh.scene --size 16x12 --repeat 1
+                 --out ${BENCH_OUT}/refused-mesh)
+set_tests_properties(bench.cli.refuses.missing_second_scene bench.cli.refuses.unreadable_mesh PROPERTIES TIMEOUT 120)
+# SIGTERM after the first scene is saved leaves it marked incomplete; --resume measures the rest.
+add_test(NAME bench.cli.interrupt_resume
+         COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/bench/bench_interrupt_resume.sh $<TARGET_FILE:vkray>
+                 ${BENCH_OUT}/interrupted ${ONE_TRIANGLE} ${BENCH_SCENE} ${BENCH_SCENE})
+set_tests_properties(bench.cli.interrupt_resume PROPERTIES TIMEOUT 600 ENVIRONMENT "VKRAY_VALIDATION=1")
 # --quiet as render's: the report is written and nothing is printed.
 add_test(NAME bench.cli.quiet
          COMMAND bash -c "out=$(\"$0\" bench \"$1\" --size 16x12 --repeat 1 --threads 1 --accel bvh --deltas none --maxdepths none --quiet --out \"$2\") && test -z \"$out\" && test -s \"$2/bench.json\""

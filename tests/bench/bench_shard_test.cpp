@@ -307,6 +307,16 @@ TEST_F(BenchShards, MergeRefusesMissingDuplicateAndMismatchedShards) {
     EXPECT_NE(mergeError({shardDir(0), shardDir(1), kRoot / "all"}).find("all/bench.json: shard 0/1 of a run in 1 shard"),
               std::string::npos);
     EXPECT_NE(mergeError({shardDir(0), kRoot / "nowhere"}).find("nowhere/bench.json: no such file"), std::string::npos);
+    // A shard that stopped before its scene is finished: named with what it lacks, not merged.
+    const fs::path stopped = tampered("stopped", [](Json& j) {
+        j["complete"] = false;
+        j["failure"] = "interrupted by SIGTERM";
+        j["scenes"] = Json::array();
+    });
+    EXPECT_EQ(mergeError({shardDir(0), stopped}),
+              "missing shard 1 of 3; shard 2/3 (" + (stopped / "bench.json").string() +
+                  ") is incomplete: interrupted by SIGTERM; not measured: " + std::string(VKRAY_SOURCE_DIR) +
+                  "/scenes/objects.scene; rerun it with --resume");
     const fs::path cut = tampered("cut", [](Json& j) { j["scenes"][0].erase("accelerators"); });
     EXPECT_NE(mergeError({shardDir(0), shardDir(1), cut}).find("cut/bench.json: no \"scenes[0].accelerators\""),
               std::string::npos);

@@ -78,7 +78,8 @@ void expectNoStrayNulls(const Json& j, const std::string& path) {
         const bool allowed = path.ends_with(".psnr_db") || path.ends_with(".mrays_per_s") ||
                              path.ends_with(".concurrent_build") || path.ends_with(".embree_interleaved") ||
                              path.ends_with(".primary_vs_bvh") ||       // the run benches no bvh
-                             path.ends_with(".primary_vs_rayquery");   // nor rayquery
+                             path.ends_with(".primary_vs_rayquery") ||  // nor rayquery
+                             path == "bench.failure";                  // a complete run
         EXPECT_TRUE(allowed) << "null at " << path;
         return;
     }
@@ -138,6 +139,8 @@ TEST(BenchSmoke, ReportOnLavapipeIsComplete) {
     // bench.json: every figure.
     const Json j = Json::parse(readText(dir / "bench.json"));
     expectNoStrayNulls(j, "bench");
+    EXPECT_EQ(j["complete"], true);
+    EXPECT_EQ(j["missing_scenes"], Json::array());
     EXPECT_FALSE(j["device"]["name"].get<std::string>().empty());
     EXPECT_FALSE(j["vkray"]["revision"].get<std::string>().empty());
     EXPECT_EQ(j["command_line"], "bench_smoke_test");
