@@ -2,7 +2,8 @@
 # A `vkray bench` sweep through Slurm for real (docs/cluster.md): a throwaway single-node Slurm
 # (slurm_cluster.sh), scripts/slurm/submit-bench.sh with 4 shards and the merge, then checks that the
 # merged report lists exactly the configurations an unsharded run lists, each figure equal to the
-# figure of the shard that measured it (check_bench_merge.jq). Times are printed, never compared.
+# figure of the shard that measured it (check_bench_merge.jq); then a shard cut short, which the merge
+# must name and which, resubmitted alone, must complete the merge. Times are printed, never compared.
 # A Slurm that cannot start fails the test.
 # usage: slurm_bench_test.sh VKRAY SOURCE_DIR WORK_DIR
 set -euo pipefail
@@ -50,8 +51,41 @@ if [[ -n "$problems" ]]; then
   echo "$problems" >&2
   exit 1
 fi
+
+# A shard cut short (as a killed task leaves it: marked incomplete, its scene not saved): the merge
+# names it, and that array task alone, resubmitted, measures it again (--resume) and the merge
+# completes.
+jq '.complete = false | .failure = "interrupted by SIGTERM" | .scenes = []' "$work/sweep/shards/1/bench.json" \
+  >"$work/cut.json"
+mv "$work/cut.json" "$work/sweep/shards/1/bench.json"
+rm -r "$work/sweep/merged"
+if message=$("$vkray" bench --merge "$work"/sweep/shards/* --out "$work/partial" 2>&1); then
+  echo "FAIL: vkray bench --merge merged an incomplete shard" >&2
+  exit 1
+fi
+echo "merge with shard 1 cut short: $message"
+[[ $message == *"shard 1/4 ("*") is incomplete: interrupted by SIGTERM; not measured: $scene; rerun it with --resume" ]] || {
+  echo "FAIL: the merge did not name the incomplete shard and its scene" >&2
+  exit 1
+}
+VKRAY=$vkray POLL=0.25 "$src/scripts/slurm/submit-bench.sh" --tasks 1 4 "$work/sweep" "$scene" "${options[@]}"
+read -r array merge <"$work/sweep/jobs"
+slurm_wait "$array" "$merge"
+[[ "$(slurm_state "$merge")" == "1 COMPLETED" ]] || {
+  echo "FAIL: the merge after the resubmitted shard did not complete" >&2
+  tail -n 5 "$work"/sweep/logs/*.out >&2 || true
+  exit 1
+}
+jq -e '.complete and (.scenes | length) == 1' "$work/sweep/shards/1/bench.json" >/dev/null || {
+  echo "FAIL: the resubmitted shard is not complete" >&2
+  exit 1
+}
+problems=$(jq -r -s -f "$src/tests/slurm/check_bench_merge.jq" "$work/sweep/merged/bench.json" \
+             "$work/unsharded/bench.json" "${shards[@]}")
+[[ -z "$problems" ]] || { echo "FAIL: the merge after the resubmitted shard: $problems" >&2; exit 1; }
+
 configs=$(jq '[.scenes[].configurations[]] | length' "$work/sweep/merged/bench.json")
 grep -q "^## Shards" "$work/sweep/merged/bench.md" || { echo "FAIL: bench.md lists no shards" >&2; exit 1; }
 grep -q '<section id="shards">' "$work/sweep/merged/report.html" || { echo "FAIL: report.html lists no shards" >&2; exit 1; }
 awk -v c="$configs" -v a="$(awk -v x="$t0" -v y="$t1" 'BEGIN { print y - x }')" -v b="$(awk -v x="$t1" -v y="$t2" 'BEGIN { print y - x }')" \
-  'BEGIN { printf "PASS: %d configurations from 4 shards merged as the unsharded run lists them; unsharded run %.1f s, sweep through Slurm (submit to merged report) %.1f s\n", c, a, b }' 
+  'BEGIN { printf "PASS: %d configurations from 4 shards merged as the unsharded run lists them (a shard cut short named, then resumed alone); unsharded run %.1f s, sweep through Slurm (submit to merged report) %.1f s\n", c, a, b }' 
