@@ -52,8 +52,9 @@ bool isBuildTiming(const AccelStat& stat);
 void checkAccelFileTarget(const std::filesystem::path& path);
 
 // Writes `data` (built by `spec` over `scene`) and the structural figures of `stats` to `path`:
-// first to PATH.tmp, renamed over `path` once complete, so an interrupted write never leaves a
-// partial file under the name. Throws vkray::Error naming `path` on any failure.
+// streamed to a temporary beside it and renamed over `path` once complete (core/file_output.h), so a
+// failed or interrupted write never leaves a partial file under the name. Throws vkray::Error
+// naming `path` on any failure.
 void saveAccelFile(const std::filesystem::path& path, const AccelSpec& spec, const SceneGeometry& scene,
                    const GpuAccelData& data, const std::vector<AccelStat>& stats);
 

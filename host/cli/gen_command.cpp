@@ -2,7 +2,6 @@
 // camera, lights, a floor, materials) whose `generate` line makes the procedural mesh on load
 // (scene/generators.h). The scaling scenes of scenes/scaling/ are made by it.
 #include <cstdint>
-#include <fstream>
 #include <iostream>
 #include <memory>
 #include <sstream>
@@ -10,6 +9,7 @@
 
 #include "cli/commands.h"
 #include "core/error.h"
+#include "core/file_output.h"
 #include "scene/generators.h"
 
 namespace vkray::cli {
@@ -94,8 +94,7 @@ void run(const GenArgs& args, int& exitCode) {
     const std::string command = "vkray gen " + args.kind + " --triangles " + std::to_string(args.triangles) +
                                 " --seed " + std::to_string(args.seed) + " -o " + out.filename().string();
     const std::string text = sceneText(spec, command, out.stem().string() + ".png");
-    std::ofstream file(out, std::ios::binary);
-    if (!(file << text) || !file.flush()) throw Error("gen: cannot write " + args.output);
+    writeFileText(out, text);
     if (!args.quiet)
         std::cout << "wrote " << args.output << ": " << args.kind << ", " << generatedTriangleCount(spec)
                   << " triangles + 2 floor, seed " << args.seed << "\n";

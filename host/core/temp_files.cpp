@@ -1,0 +1,77 @@
+#include "core/temp_files.h"
+
+#include <unistd.h>
+
+#include <atomic>
+#include <cerrno>
+#include <csignal>
+#include <cstring>
+
+namespace vkray::temp_files {
+namespace {
+
+// Fixed storage: the handler may run at any instruction, so it reads only these slots, each guarded
+// by a lock-free atomic state (async-signal-safe, unlike any lock or allocation). A slot is filled
+// while Filling and read by the handler only when Live. Outputs are written a few at a time, so a
+// few dozen slots are plenty; a path longer than kPathBytes goes untracked.
+constexpr int kSlots = 64;
+constexpr size_t kPathBytes = 4096;
+enum State : int { Free, Filling, Live };
+
+struct Slot {
+    std::atomic<int> state{Free};
+    char path[kPathBytes];
+};
+Slot g_slots[kSlots];
+static_assert(std::atomic<int>::is_always_lock_free, "the signal handler needs lock-free atomics");
+
+constexpr int kSignals[] = {SIGINT, SIGTERM, SIGHUP};
+
+void removeTrackedAndReraise(int sig) {
+    const int savedErrno = errno;
+    for (Slot& slot : g_slots)
+        if (slot.state.load(std::memory_order_acquire) == Live) ::unlink(slot.path);
+    // Back to the default action and raised again: the signal is blocked while its handler runs, so
+    // it is delivered as soon as the handler returns and ends the process as if never caught.
+    struct sigaction dfl {};
+    dfl.sa_handler = SIG_DFL;
+    sigemptyset(&dfl.sa_mask);
+    ::sigaction(sig, &dfl, nullptr);
+    ::raise(sig);
+    errno = savedErrno;
+}
+
+}  // namespace
+
+void installInterruptCleanup() {
+    struct sigaction ours {};
+    ours.sa_handler = removeTrackedAndReraise;
+    sigemptyset(&ours.sa_mask);
+    for (int sig : kSignals) sigaddset(&ours.sa_mask, sig);  // one cleanup at a time
+    for (int sig : kSignals) {
+        struct sigaction current {};
+        if (::sigaction(sig, nullptr, &current) != 0) continue;
+        const bool isDefault = !(current.sa_flags & SA_SIGINFO) && current.sa_handler == SIG_DFL;
+        if (isDefault) ::sigaction(sig, &ours, nullptr);
+    }
+}
+
+int track(const char* absolutePath) {
+    installInterruptCleanup();
+    const size_t length = std::strlen(absolutePath);
+    if (length >= kPathBytes) return -1;
+    for (int i = 0; i < kSlots; ++i) {
+        int expected = Free;
+        if (!g_slots[i].state.compare_exchange_strong(expected, Filling, std::memory_order_acquire)) continue;
+        std::memcpy(g_slots[i].path, absolutePath, length + 1);
+        g_slots[i].state.store(Live, std::memory_order_release);
+        return i;
+    }
+    return -1;
+}
+
+void untrack(int slot) {
+    if (slot >= 0 && slot < kSlots) g_slots[slot].state.store(Free, std::memory_order_release);
+}
+
+}  // namespace vkray::temp_files
