@@ -56,7 +56,7 @@ public:
         sceneCount_ = count;
         sceneName_ = std::filesystem::path(file).stem().string();
         step("load");
-        Scene scene = loadScene(file);
+        Scene scene = loadScene(file, render::withinMemory(render::gpuRender()));
         render::checkRenderable(scene, file);
         scene.camera = viewCamera(scene, options_.view);
         device_.checkFits(scene);

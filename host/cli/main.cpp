@@ -8,6 +8,7 @@
 #include <vector>
 
 #include <CLI/CLI.hpp>
+#include <vulkan/vulkan.hpp>
 
 #include "accel/accel_spec.h"
 #include "cli/commands.h"
@@ -97,7 +98,13 @@ int main(int argc, char** argv) {
         std::fprintf(stderr, "error: %s\n", e.what());
         return 1;
     } catch (const std::bad_alloc&) {
-        std::fprintf(stderr, "error: out of host memory\n");
+        std::fprintf(stderr, "error: out of host memory (an allocation failed past the estimate that --stats shows)\n");
+        return 1;
+    } catch (const vk::OutOfDeviceMemoryError& e) {
+        std::fprintf(stderr, "error: out of device memory: %s\n", e.what());
+        return 1;
+    } catch (const vk::OutOfHostMemoryError& e) {
+        std::fprintf(stderr, "error: out of host memory: %s\n", e.what());
         return 1;
     } catch (const std::exception& e) {
         std::fprintf(stderr, "error: %s\n", e.what());

@@ -8,6 +8,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "render/memory_budget.h"
+
 namespace vkray::cli {
 namespace {
 
@@ -123,6 +125,21 @@ void printGpuStats(const gpu::GpuRenderReport& g) {
                 g.uploadMs, g.pipelineMs, g.pipelinesCreated == 0 ? " (an earlier scene's)" : "", g.gpuMs, g.renderMs);
 }
 
+nlohmann::json memoryJson(const render::MemoryReport& m) {
+    nlohmann::json j = {{"host_bytes", m.hostBytes}, {"device_bytes", m.deviceBytes}};
+    j["host_limit_bytes"] = m.hostLimit ? nlohmann::json(*m.hostLimit) : nlohmann::json(nullptr);
+    if (m.hostLimit) j["host_limit"] = m.hostLimitName;
+    j["device_limit_bytes"] = m.deviceLimit ? nlohmann::json(*m.deviceLimit) : nlohmann::json(nullptr);
+    return j;
+}
+
+// "1.23 GB (of 15.2 GB MemAvailable)"
+std::string memoryText(uint64_t bytes, const std::optional<uint64_t>& limit, const std::string& limitName) {
+    std::string text = render::formatBytes(bytes);
+    if (limit) text += " (of " + render::formatBytes(*limit) + " " + limitName + ")";
+    return text;
+}
+
 }  // namespace
 
 std::string reportJson(const RenderReport& r) {
@@ -140,6 +157,7 @@ std::string reportJson(const RenderReport& r) {
         j["accel"][loaded ? "load_ms" : "save_ms"] = r.accelFile->ms;
     }
     if (r.gpu) j["gpu"] = gpuJson(*r.gpu);
+    j["memory_estimate"] = memoryJson(r.memory);
     j["scene"] = r.scene;
     j["device"] = r.device;
     j["width"] = r.options.width;
@@ -197,6 +215,11 @@ void printReport(const RenderReport& r, bool stats) {
     if (r.origin != std::array<double, 3>{})
         std::printf("origin:      (%.17g, %.17g, %.17g), positions stored relative to it\n", r.origin[0],
                     r.origin[1], r.origin[2]);
+    std::printf("memory:      estimated peak %s host", memoryText(r.memory.hostBytes, r.memory.hostLimit,
+                                                                     r.memory.hostLimitName).c_str());
+    if (r.memory.deviceBytes > 0)
+        std::printf(", %s device", memoryText(r.memory.deviceBytes, r.memory.deviceLimit, "device-local").c_str());
+    std::printf("\n");
     if (r.accelFile && r.accelFile->loaded)
         std::printf("accel:       %s, loaded from %s in %.1f ms (not built)\n", r.accel.c_str(),
                     r.accelFile->path.c_str(), r.accelFile->ms);

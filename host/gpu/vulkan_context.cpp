@@ -104,10 +104,26 @@ DeviceInfo describe(const vk::raii::PhysicalDevice& pd, uint32_t index) {
     d.maxStorageBufferRange = props.limits.maxStorageBufferRange;
     d.maxTexelBufferElements = props.limits.maxTexelBufferElements;
     d.timestampPeriodNs = props.limits.timestampPeriod;
-    auto mem = pd.getMemoryProperties();
-    for (uint32_t h = 0; h < mem.memoryHeapCount; ++h)
-        if (mem.memoryHeaps[h].flags & vk::MemoryHeapFlagBits::eDeviceLocal)
-            d.deviceLocalBytes = std::max<uint64_t>(d.deviceLocalBytes, mem.memoryHeaps[h].size);
+    // VK_EXT_memory_budget: what of each heap this process may still allocate (other processes use
+    // the rest); its properties may be queried wherever the device has the extension.
+    const bool budget = hasExtension(pd.enumerateDeviceExtensionProperties(), VK_EXT_MEMORY_BUDGET_EXTENSION_NAME);
+    vk::PhysicalDeviceMemoryProperties mem;
+    vk::PhysicalDeviceMemoryBudgetPropertiesEXT budgets;
+    if (budget) {
+        const auto props = pd.getMemoryProperties2<vk::PhysicalDeviceMemoryProperties2,
+                                                   vk::PhysicalDeviceMemoryBudgetPropertiesEXT>();
+        mem = props.get<vk::PhysicalDeviceMemoryProperties2>().memoryProperties;
+        budgets = props.get<vk::PhysicalDeviceMemoryBudgetPropertiesEXT>();
+    } else {
+        mem = pd.getMemoryProperties();
+    }
+    for (uint32_t h = 0; h < mem.memoryHeapCount; ++h) {
+        const vk::MemoryHeap& heap = mem.memoryHeaps[h];
+        if (!(heap.flags & vk::MemoryHeapFlagBits::eDeviceLocal) || heap.size <= d.deviceLocalBytes) continue;
+        d.deviceLocalBytes = heap.size;
+        d.deviceLocalBudget = budget && budgets.heapBudget[h] > 0 ? std::min<uint64_t>(budgets.heapBudget[h], heap.size)
+                                                                 : heap.size;
+    }
     d.hasCompute = computeQueueFamily(pd).has_value();
     d.rayQuery = supportsRayQuery(pd);
     return d;

@@ -25,6 +25,9 @@ struct DeviceInfo {
     uint64_t maxStorageBufferRange = 0;
     uint64_t maxTexelBufferElements = 0;
     uint64_t deviceLocalBytes = 0;
+    // What of that heap the process may allocate now: VK_EXT_memory_budget's heapBudget where the
+    // device has the extension, else deviceLocalBytes.
+    uint64_t deviceLocalBudget = 0;
     float timestampPeriodNs = 0.0f;
     bool hasCompute = false;
     // Subgroup vote and arithmetic operations in compute shaders (the kernels' subgroupAll and

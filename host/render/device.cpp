@@ -32,9 +32,14 @@ const gpu::VulkanContext& Device::opened() {
     return *ctx;
 }
 
-const gpu::VulkanContext& Device::checkFits(const Scene& scene) {
+const gpu::VulkanContext& Device::checkFits(const Scene& scene, MemoryUse use, MemoryReport* memory) {
     const gpu::VulkanContext& ctx = opened();
     gpu::checkSceneFits(ctx, scene);
+    use.deviceSharesHost = ctx.info().type == "cpu";
+    MemoryLimits limits = hostMemoryLimits();
+    if (ctx.info().deviceLocalBudget > 0) limits.deviceHeap = ctx.info().deviceLocalBudget;
+    const MemoryReport report = checkSceneMemory(scene, use, limits);
+    if (memory) *memory = report;
     return ctx;
 }
 

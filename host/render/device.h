@@ -16,6 +16,7 @@
 #include "gpu/gpu_render_report.h"
 #include "gpu/kernel_cache.h"
 #include "gpu/vulkan_context.h"
+#include "render/memory_budget.h"
 #include "scene/scene.h"
 
 namespace vkray::render {
@@ -38,9 +39,11 @@ public:
     // Its pipelines; null until get() opened the device, or without one.
     gpu::KernelCache* kernels() { return kernels_ ? &*kernels_ : nullptr; }
 
-    // The opened device (get()), after checking that `scene` fits its limits (gpu::checkSceneFits
-    // throws vkray::Error): before a long build, not after it. Needs a device.
-    const gpu::VulkanContext& checkFits(const Scene& scene);
+    // The opened device (get()), after checking that `scene` fits its limits (gpu::checkSceneFits)
+    // and that a render of it as `use` says fits the device's memory and the host's
+    // (checkSceneMemory, whose estimate goes to `memory` when given); throws vkray::Error: before a
+    // long build, not after it. Needs a device.
+    const gpu::VulkanContext& checkFits(const Scene& scene, MemoryUse use = gpuRender(), MemoryReport* memory = nullptr);
     // A frame of `scene` traced through the structure arrays `data` with this device's pipelines
     // (gpu::renderOnGpu); `report` gets the GPU's figures. Needs a device.
     Frame render(const Scene& scene, const RenderOptions& options, const accel::GpuAccelData& data,

@@ -4,6 +4,7 @@
 
 #include <array>
 #include <cstddef>
+#include <cstdint>
 #include <map>
 #include <optional>
 #include <string>
@@ -12,6 +13,7 @@
 #include "accel/accel.h"
 #include "frame/render_options.h"
 #include "gpu/gpu_render_report.h"
+#include "render/memory_budget.h"
 
 namespace vkray::render {
 
@@ -44,6 +46,7 @@ struct RenderReport {
     double totalMs = 0.0;  // the whole scene until the images are written: load, build, render, output
     std::optional<gpu::GpuRenderReport> gpu;  // GPU renders only
     bool buildOnly = false;  // the structure built and saved, nothing rendered
+    MemoryReport memory;
 };
 
 }  // namespace vkray::render

@@ -10,6 +10,7 @@
 #include "cpu/reference_renderer.h"
 #include "gpu/kernel_cache.h"
 #include "image/image_io.h"
+#include "render/memory_budget.h"
 #include "render/outputs.h"
 #include "render/scene_checks.h"
 #include "scene/camera.h"
@@ -52,7 +53,7 @@ RenderSession::Loaded RenderSession::load(const std::string& sceneFile) {
     ParseOptions parse;
     parse.progress = request_.progress.load;
     parse.warn = request_.warn;
-    Loaded l{loadScene(sceneFile, parse), {}, 0.0};
+    Loaded l{loadScene(sceneFile, withinMemory(memoryUseOf(request_), parse)), {}, 0.0};
     if (request_.progress.lineDone) request_.progress.lineDone();
     l.loadMs = msSince(t0);
     checkRenderable(l.scene, sceneFile);
@@ -72,16 +73,17 @@ RenderSession::Loaded RenderSession::load(const std::string& sceneFile) {
     return l;
 }
 
-// The device before the build: a missing or unknown device, or a scene too large for it, fails
-// before a long build.
+// The device before the build: a missing or unknown device, or a scene too large for it or for the
+// host's memory, fails before a long build.
 void RenderSession::openDevice(const Scene& scene, RenderReport& report) {
     const Clock::time_point opening = Clock::now();
     if (device_.get()) {
         report.deviceMs = msSince(opening);
-        const gpu::VulkanContext& ctx = device_.checkFits(scene);
+        const gpu::VulkanContext& ctx = device_.checkFits(scene, memoryUseOf(request_), &report.memory);
         report.device = ctx.info().name + " (" + ctx.info().driver + ")";
     } else {
         report.device = request_.buildOnly ? "none (--build-only)" : "CPU reference (double precision)";
+        report.memory = checkSceneMemory(scene, memoryUseOf(request_), hostMemoryLimits());
     }
 }
 

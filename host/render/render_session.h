@@ -6,7 +6,8 @@
 //
 // Per scene: load; checkRenderable(); the camera of request.view; request.settings(); the output
 // paths checked; a file to load checked against the scene; the device opened and the scene checked
-// against its limits (gpu::checkSceneFits), once, before a long build; the structure and, on the
+// against its limits (gpu::checkSceneFits) and its memory and the host's (render/memory_budget.h,
+// also asked while the scene loads), once, before a long build; the structure and, on the
 // GPU, the kernel's pipeline on a thread meanwhile; the frame; the files.
 #pragma once
 

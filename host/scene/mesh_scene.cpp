@@ -25,7 +25,7 @@ void addLights(Scene& scene) {
 
 Scene loadMeshScene(const std::filesystem::path& file, const ParseOptions& options) {
     Scene scene;
-    SceneBuilder out(scene, options.maxTriangles);
+    SceneBuilder out(scene, options.maxTriangles, options.memoryProblem);
     const MeshRequest request{file,           file.string(), FileLoc{file.string()}, Transform(),
                               kMeshDefaultMaterial, options.readFile ? options.readFile : fileSystemReader(), options.warn};
     if (options.progress) options.progress("mesh " + file.filename().string());

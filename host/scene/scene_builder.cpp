@@ -27,8 +27,8 @@ bool SceneBuilder::MaterialLess::operator()(const Material& a, const Material& b
     return std::lexicographical_compare(ka.begin(), ka.end(), kb.begin(), kb.end());
 }
 
-SceneBuilder::SceneBuilder(Scene& scene, int64_t maxTriangles)
-    : scene_(scene), maxTriangles_(maxTriangles), mayMove_(scene.triangles.empty()),
+SceneBuilder::SceneBuilder(Scene& scene, int64_t maxTriangles, MemoryCheck memory)
+    : scene_(scene), maxTriangles_(maxTriangles), memory_(std::move(memory)), mayMove_(scene.triangles.empty()),
       lo_(std::numeric_limits<double>::infinity()), hi_(-std::numeric_limits<double>::infinity()) {
     for (size_t i = 0; i < scene_.materials.size(); ++i) index_.emplace(scene_.materials[i], uint32_t(i));
 }
@@ -53,7 +53,8 @@ void SceneBuilder::reserve(size_t triangles) {
 
 std::optional<std::string> SceneBuilder::roomProblem(uint64_t more) const {
     const uint64_t have = scene_.triangles.size();
-    if (more <= uint64_t(maxTriangles_) && have <= uint64_t(maxTriangles_) - more) return std::nullopt;
+    if (more <= uint64_t(maxTriangles_) && have <= uint64_t(maxTriangles_) - more)
+        return memory_ ? memory_(have + more) : std::nullopt;
     const uint64_t total = have + more >= have ? have + more : UINT64_MAX;  // saturating
     std::string msg = "the scene would have ";
     msg.append(std::to_string(total))

@@ -12,6 +12,7 @@
 
 #include <array>
 #include <cstdint>
+#include <functional>
 #include <map>
 #include <optional>
 #include <string>
@@ -26,10 +27,14 @@ namespace vkray {
 
 using TriPoints = std::array<glm::dvec3, 3>;
 
+// Why a scene of `triangles` triangles would not fit in memory (render/memory_budget.h), or nothing.
+using MemoryCheck = std::function<std::optional<std::string>(uint64_t triangles)>;
+
 class SceneBuilder {
 public:
-    // At most `maxTriangles` triangles in the scene (kMaxSceneTriangles; tests and the fuzzer set less).
-    explicit SceneBuilder(Scene& scene, int64_t maxTriangles = kMaxSceneTriangles);
+    // At most `maxTriangles` triangles in the scene (kMaxSceneTriangles; tests and the fuzzer set less),
+    // and, with `memory`, no more than it lets fit.
+    explicit SceneBuilder(Scene& scene, int64_t maxTriangles = kMaxSceneTriangles, MemoryCheck memory = {});
 
     Scene& scene() { return scene_; }
 
@@ -40,7 +45,8 @@ public:
     // that know their count up front.
     void reserve(size_t triangles);
 
-    // Why `more` triangles do not fit under the scene's triangle limit, or nothing when they do.
+    // Why `more` triangles do not fit under the scene's triangle limit or in memory (the MemoryCheck),
+    // or nothing when they do.
     // Callers ask before they make the triangles and report the answer with their file:line; an
     // append past the limit throws a vkray::Error without a location (a caller that did not ask).
     std::optional<std::string> roomProblem(uint64_t more) const;
@@ -83,6 +89,7 @@ private:
 
     Scene& scene_;
     int64_t maxTriangles_;
+    MemoryCheck memory_;
     std::map<Material, uint32_t, MaterialLess> index_;
 
     // What finish() needs when the origin moves, kept while it still may (see the top).

@@ -38,7 +38,7 @@ struct MaterialState {
 class Parser {
 public:
     Parser(Scene& scene, std::string file, std::filesystem::path baseDir, const ParseOptions& options)
-        : file_(std::move(file)), baseDir_(std::move(baseDir)), out_(scene, options.maxTriangles),
+        : file_(std::move(file)), baseDir_(std::move(baseDir)), out_(scene, options.maxTriangles, options.memoryProblem),
           readFile_(options.readFile ? options.readFile : fileSystemReader()), progress_(options.progress), warn_(options.warn),
           transforms_(1), exactTransforms_(1, glm::dmat4(1.0)) {}
 

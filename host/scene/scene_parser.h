@@ -29,6 +29,7 @@
 #include <string_view>
 
 #include "scene/scene.h"
+#include "scene/scene_builder.h"
 #include "scene/text_input.h"
 
 namespace vkray {
@@ -52,6 +53,10 @@ struct ParseOptions {
     std::function<void(const std::string& step)> progress;
     // Told what a mesh reader skips of a file that still loads (MeshRequest::warn). May be empty.
     std::function<void(const std::string& message)> warn;
+    // Asked before a line or a mesh file makes its triangles, with the scene's count after them (a
+    // generator line's, a mesh file's from its header): why they would not fit in memory, refused at
+    // that line before they are made. May be empty.
+    MemoryCheck memoryProblem;
 };
 
 // Reads `file`; relative paths in it (geo/obj) are resolved against its directory. A mesh file

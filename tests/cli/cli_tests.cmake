@@ -373,3 +373,21 @@ add_test(NAME cli.stats_sah_units
          COMMAND ${CLI_DIR}/expect_output.sh "SAH cost relative to the root's surface area, Ct=1 a node, Ci=20 a triangle"
                  $<TARGET_FILE:vkray> render ${CMAKE_SOURCE_DIR}/scenes/cornell.scene --cpu --size 8x6 --accel kd-stack --stats
                  -o ${CLI_OUT}/sah-units.png)
+# A scene that does not fit in the memory `ulimit -v` leaves is refused with one line at its
+# generate line, before any of its triangles is made (docs/outputs.md, "Memory: the estimate and the
+# refusal"): a GPU render, a CPU render and bench alike, in well under a second.
+set(MEMORY_REFUSAL "many_triangles\\.scene:7[:0-9]*: 30000000 triangles need an estimated [0-9.]+ GB of host memory with --accel bvh, but the process's limit \\(ulimit -v\\) leaves [0-9.]+ [MG]B")
+foreach(run "render;-o;${CLI_OUT}/memory.png" "render;--cpu;-o;${CLI_OUT}/memory.png" "bench;--out;${CLI_OUT}/bench-memory")
+  list(GET run 0 command)
+  list(FIND run "--cpu" cpu)
+  set(name ${command})
+  if(cpu GREATER -1)
+    set(name ${command}_cpu)
+  endif()
+  list(REMOVE_AT run 0)
+  add_test(NAME cli.error.memory_ulimit_${name}
+           COMMAND ${CLI_DIR}/expect_error.sh "${MEMORY_REFUSAL}"
+                   sh -c "ulimit -v 1500000; exec \"$0\" \"$@\"" $<TARGET_FILE:vkray> ${command}
+                   ${CLI_DATA}/many_triangles.scene ${run})
+  set_tests_properties(cli.error.memory_ulimit_${name} PROPERTIES TIMEOUT 60)
+endforeach()
