@@ -48,7 +48,7 @@ ASAN_BUILD ?= build-asan
 # accelerator and the bench pipeline (lavapipe's JIT-compiled shaders run uninstrumented; the
 # validation layer loads), then the sanitized vkray binary through CTest's tests/cli (every bad
 # input of the command line), tests/bench and tests/golden.
-SANITIZE_TESTS = vkray_scene_tests vkray_image_tests vkray_geometry_tests vkray_cpu_tests vkray_accel_tests \
+SANITIZE_TESTS = vkray_core_tests vkray_scene_tests vkray_image_tests vkray_geometry_tests vkray_cpu_tests vkray_accel_tests \
                  vkray_accel_bvh_tests vkray_accel_kd_tests vkray_gpu_tests vkray_stress_tests \
                  vkray_bench_tests vkray_cli_tests
 
