@@ -22,6 +22,7 @@
 #include "core/file_output.h"
 #include "image/exr_io.h"
 #include "image/tone.h"
+#include "scene/text_input.h"
 
 namespace fs = std::filesystem;
 
@@ -143,24 +144,31 @@ void checkBmpLength(const fs::path& path, const std::vector<unsigned char>& byte
                                   std::to_string(bytes.size()) + " found");
 }
 
+// stb's reason for the last failure, one line: some reasons quote the file's bytes ("XXXX PNG chunk
+// not known" with the chunk's type).
+std::string stbFailure() {
+    const char* reason = stbi_failure_reason();
+    return reason ? escapedControls(reason) : "no reason given";
+}
+
 Image decodeWithStb(const fs::path& path, const std::vector<unsigned char>& bytes) {
     const auto* buf = bytes.data();
     const int len = int(bytes.size());  // at most kMaxFileBytes
     int w = 0, h = 0, comp = 0;
     if (!stbi_info_from_memory(buf, len, &w, &h, &comp))
-        throw fileError(path, std::string("cannot decode: ") + stbi_failure_reason());
+        throw fileError(path, "cannot decode: " + stbFailure());
     checkDimensions(path, w, h);  // before stb allocates anything for the pixels
     Image image;
     if (stbi_is_16_bit_from_memory(buf, len)) {
         std::unique_ptr<stbi_us, void (*)(void*)> px(stbi_load_16_from_memory(buf, len, &w, &h, &comp, 3),
                                                      stbi_image_free);
-        if (!px) throw fileError(path, std::string("cannot decode: ") + stbi_failure_reason());
+        if (!px) throw fileError(path, "cannot decode: " + stbFailure());
         image = Image(w, h, 3);
         for (size_t i = 0; i < image.data.size(); ++i) image.data[i] = float(px.get()[i]) / 65535.0f;
     } else {
         std::unique_ptr<stbi_uc, void (*)(void*)> px(stbi_load_from_memory(buf, len, &w, &h, &comp, 3),
                                                      stbi_image_free);
-        if (!px) throw fileError(path, std::string("cannot decode: ") + stbi_failure_reason());
+        if (!px) throw fileError(path, "cannot decode: " + stbFailure());
         image = Image(w, h, 3);
         for (size_t i = 0; i < image.data.size(); ++i) image.data[i] = float(px.get()[i]) / 255.0f;
     }

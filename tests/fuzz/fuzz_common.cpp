@@ -1,6 +1,7 @@
 #include "fuzz_common.h"
 
 #include <algorithm>
+#include <cstdio>
 #include <filesystem>
 #include <optional>
 
@@ -66,7 +67,10 @@ void expectOnlyErrors(const std::function<void()>& load) {
     try {
         load();
     } catch (const Error& e) {
-        if (std::string_view(e.what()).find('\n') != std::string_view::npos) __builtin_trap();
+        if (std::string_view(e.what()).find('\n') != std::string_view::npos) {
+            std::fprintf(stderr, "vkray::Error of more than one line: %s\n", e.what());
+            __builtin_trap();
+        }
     }
 }
 
