@@ -6,7 +6,7 @@
 #               the machine has no GPU)
 # More checks (CI runs them after `make test`), each in its own build directory:
 #   make sanitize   the unit and GPU tests built with AddressSanitizer + UndefinedBehaviorSanitizer (g++)
-#   make fuzz       the scene-parser fuzzer (clang, libFuzzer) on its seed corpus for FUZZ_SECONDS
+#   make fuzz       a libFuzzer target per reader (clang): each on its seed corpus for FUZZ_SECONDS
 BUILD ?= build
 JOBS ?= $(shell nproc)
 SCENE ?= scenes/default.scene
@@ -60,24 +60,21 @@ sanitize: deps meshes
 # ---- make fuzz ------------------------------------------------------------------------------------
 FUZZ_BUILD ?= build-fuzz
 FUZZ_SECONDS ?= 60
-FUZZER = $(FUZZ_BUILD)/tests/fuzz/vkray_fuzz_scene_parser
+# Targets run at once (each is one process): two keep a 2-core machine busy.
+FUZZ_PARALLEL ?= 2
+# One libFuzzer target per reader (tests/fuzz/NAME_fuzz.cpp): scene, obj, off, ply, gltf, image.
+FUZZ_TARGETS ?=
 
-# Seeds: tests/fuzz/make_corpus.sh. A crash, a sanitizer report, a leak, a 10 s input or 2 GiB of
-# memory fails the run, which leaves the input in $(FUZZ_BUILD)/artifacts/ and prints the report.
+# Seeds and dictionaries: tests/fuzz/make_corpus.sh. Each target runs FUZZ_SECONDS (tests/fuzz/run_fuzz.sh);
+# a crash, a sanitizer report, a leak, a 10 s input or 2 GiB of memory fails the run, which leaves the
+# input in $(FUZZ_BUILD)/artifacts/ and prints the report.
 fuzz:
 	@scripts/install-deps.sh fuzz
 	@cmake -S . -B $(FUZZ_BUILD) $(call generator,$(FUZZ_BUILD)) -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BUILD_TYPE=RelWithDebInfo \
 	       -DVKRAY_FUZZ=ON -DVKRAY_BUILD_TESTS=OFF >/dev/null
-	@cmake --build $(FUZZ_BUILD) -j $(JOBS) --target vkray_fuzz_scene_parser
+	@cmake --build $(FUZZ_BUILD) -j $(JOBS) --target vkray_fuzz_targets
 	@tests/fuzz/make_corpus.sh $(FUZZ_BUILD)/corpus
-	@mkdir -p $(FUZZ_BUILD)/artifacts
-	@echo "fuzz: $(FUZZ_SECONDS) s of vkray_fuzz_scene_parser (log: $(FUZZ_BUILD)/fuzz.log)"
-	@$(FUZZER) -max_total_time=$(FUZZ_SECONDS) -dict=tests/fuzz/scene.dict -max_len=32768 -timeout=10 \
-	    -rss_limit_mb=2048 -print_final_stats=1 -artifact_prefix=$(FUZZ_BUILD)/artifacts/ \
-	    $(FUZZ_BUILD)/corpus >$(FUZZ_BUILD)/fuzz.log 2>&1; \
-	  rc=$$?; if [ $$rc -eq 0 ]; then grep -E '^(Done|stat::)' $(FUZZ_BUILD)/fuzz.log; \
-	  else cat $(FUZZ_BUILD)/fuzz.log; echo "fuzz: FAILED (exit $$rc), input in $(FUZZ_BUILD)/artifacts/"; fi; \
-	  exit $$rc
+	@tests/fuzz/run_fuzz.sh $(FUZZ_BUILD) $(FUZZ_SECONDS) $(FUZZ_PARALLEL) $(FUZZ_TARGETS)
 
 clean:
 	rm -rf $(BUILD)

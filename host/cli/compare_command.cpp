@@ -1,6 +1,7 @@
 // `vkray compare A B`: difference metrics between two images (PNG, BMP, PFM or EXR; see
-// image/compare.h for the metrics and their inf/NaN rules). Values are compared as stored: an 8-bit
-// file's levels / 255 (no transfer function undone), a float file's raw values. Exit code 1 when a
+// image/compare.h for the metrics and their inf/NaN rules). Two 8-bit files are compared as stored
+// (levels / 255), two float files as their raw values, an 8-bit file with a float one in linear
+// radiance, the 8-bit one decoded with --encoding/--exposure (toCommonSpace). Exit code 1 when a
 // limit given with --max-rmse or --max-bad-fraction is exceeded, so scripts and CI can gate on it.
 #include <charconv>
 #include <cmath>
@@ -26,6 +27,8 @@ struct CompareArgs {
                                       // a channel by one level; more than two is a real difference
     double maxRmse = 0.0, maxBadFraction = 0.0;
     std::string diff;
+    std::string encoding = "srgb";  // of an 8-bit file compared with a float one
+    double exposure = 0.0;
     bool json = false;
     bool quiet = false;  // no output: the exit status alone
 };
@@ -57,8 +60,11 @@ nlohmann::json finiteOrNull(double v) { return std::isfinite(v) ? nlohmann::json
 
 void run(const CompareArgs& args, bool hasMaxRmse, bool hasMaxBad, int& exitCode) {
     const double threshold = parseThreshold(args.threshold);
-    const Image a = readImage(args.a);
-    const Image b = readImage(args.b);
+    const Encoding eightBit = parseEncoding(args.encoding, args.exposure);
+    const ImageFormat formatA = readImageFormat(args.a), formatB = readImageFormat(args.b);
+    Image a = readImage(args.a);
+    Image b = readImage(args.b);
+    const CompareSpace space = toCommonSpace(a, formatA, b, formatB, eightBit);
     CompareStats s;
     try {
         s = compareImages(a, b, threshold);
@@ -91,6 +97,9 @@ void run(const CompareArgs& args, bool hasMaxRmse, bool hasMaxBad, int& exitCode
         j["width"] = a.width;
         j["height"] = a.height;
         j["channels"] = a.channels;
+        j["space"] = space.linear ? "linear" : "levels";
+        j["compared_in"] = space.description;
+        j["eight_bit_encoding"] = space.decoded ? nlohmann::json(args.encoding) : nlohmann::json(nullptr);
         j["rmse"] = s.rmse;
         j["psnr"] = finiteOrNull(s.psnr);           // null: infinite (identical images)
         j["max_error"] = finiteOrNull(s.maxError);  // null: infinite (a non-finite mismatch)
@@ -109,6 +118,7 @@ void run(const CompareArgs& args, bool hasMaxRmse, bool hasMaxBad, int& exitCode
     } else {
         std::cout << "compare " << args.a << " " << args.b << ": " << a.width << "x" << a.height << ", " << a.channels
                   << (a.channels == 1 ? " channel\n" : " channels\n");
+        std::cout << "  compared in " << space.description << "\n";
         std::cout << "  RMSE        " << fmt(s.rmse) << "\n";
         std::cout << "  PSNR        " << fmt(s.psnr) << " dB\n";
         std::cout << "  max error   " << fmt(s.maxError);
@@ -147,6 +157,11 @@ void registerCompareCommand(CLI::App& app, int& exitCode) {
         cmd->add_option("--max-bad-fraction", args->maxBadFraction,
                         "Fail (exit 1) when a larger fraction of the pixels is bad")
             ->check(CLI::Range(0.0, 1.0));
+    cmd->add_option("--encoding", args->encoding,
+                    "How an 8-bit file (PNG, BMP) compared with a float one (PFM, EXR) was encoded: srgb or linear; "
+                    "it is decoded to linear radiance (two 8-bit files are compared as stored)")
+        ->capture_default_str();
+    cmd->add_option("--exposure", args->exposure, "The exposure (EV) that 8-bit file was written with");
     cmd->add_option("--diff", args->diff, "Write a difference image here (PNG, BMP, PFM or EXR by extension)");
     CLI::Option* json = cmd->add_flag("--json", args->json, "Print the figures as JSON");
     cmd->add_flag("--quiet", args->quiet, "Print nothing: the exit status alone says pass (0) or fail (1)")

@@ -3,10 +3,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <string>
 
 #include "core/error.h"
+#include "image/tone.h"
 
 namespace vkray {
 namespace {
@@ -44,7 +46,38 @@ double pixelError(const Image& a, const Image& b, size_t i) {
 
 bool isBad(double pixelErr, double threshold) { return pixelErr > threshold + kThresholdSlack; }
 
+// "[0, 1]", or "[0, 0.5]" at exposure +1: the linear values an 8-bit image at that exposure holds.
+std::string heldRange(const Encoding& e) {
+    char buf[64];
+    std::snprintf(buf, sizeof buf, "[0, %g]", std::exp2(-double(e.exposure)));
+    return buf;
+}
+
+// What writing `image` as 8-bit levels keeps of its linear values: [0, top], NaN as 0.
+void clampToHeld(Image& image, const Encoding& e) {
+    const float top = float(std::exp2(-double(e.exposure)));
+    for (float& v : image.data) v = std::isnan(v) ? 0.0f : std::clamp(v, 0.0f, top);
+}
+
 }  // namespace
+
+CompareSpace toCommonSpace(Image& a, ImageFormat formatA, Image& b, ImageFormat formatB, const Encoding& eightBit) {
+    const bool eightA = isEightBit(formatA), eightB = isEightBit(formatB);
+    const std::string names = std::string("A: ") + formatName(formatA) + ", B: " + formatName(formatB);
+    if (eightA && eightB) return {false, false, "8-bit levels as stored (" + names + ")"};
+    if (!eightA && !eightB) return {true, false, "linear values as stored (" + names + ")"};
+    Image& levels = eightA ? a : b;
+    Image& floats = eightA ? b : a;
+    levels = decodeLevels(levels, eightBit);
+    clampToHeld(floats, eightBit);
+    char exposure[64] = "";
+    if (eightBit.exposure != 0.0f) std::snprintf(exposure, sizeof exposure, " at exposure %+g", double(eightBit.exposure));
+    const std::string decoded = std::string(eightA ? "A: " : "B: ") + (eightBit.srgb ? "sRGB " : "linear ") +
+                                formatName(eightA ? formatA : formatB) + exposure + " decoded";
+    const std::string clamped = std::string(eightA ? "B: " : "A: ") + formatName(eightA ? formatB : formatA) +
+                                " clamped to " + heldRange(eightBit) + " as 8 bits hold it";
+    return {true, true, "linear radiance (" + (eightA ? decoded + "; " + clamped : clamped + "; " + decoded) + ")"};
+}
 
 CompareStats compareImages(const Image& a, const Image& b, double pixelThreshold) {
     checkComparable(a, b, pixelThreshold);

@@ -1,7 +1,7 @@
 // Image difference metrics for `vkray compare` and for tests that check one renderer against another.
 //
-// Values are compared as stored in Image: PNG/BMP in [0, 1] units, PFM raw (so for depth AOVs the
-// errors are in scene units). Per channel, err = |a - b|, with these rules for non-finite values
+// Values are compared as stored in Image (toCommonSpace below brings two files into one space first):
+// PNG/BMP in [0, 1] units, PFM raw (so for depth AOVs the errors are in scene units). Per channel, err = |a - b|, with these rules for non-finite values
 // (AOVs hold +inf for a miss, and a broken shader may leave NaN):
 //   - both values identical (the same infinity, or both NaN): err = 0, like any equal pair;
 //   - otherwise, if either is non-finite (inf vs finite, +inf vs -inf, NaN vs a number): a
@@ -11,8 +11,11 @@
 #pragma once
 
 #include <cstdint>
+#include <string>
 
 #include "image/image.h"
+#include "image/image_io.h"
+#include "image/image_meta.h"
 
 namespace vkray {
 
@@ -31,6 +34,24 @@ struct CompareStats {
     int64_t pixels = 0;
     int64_t nonFiniteMismatches = 0;     // channel values, not pixels
 };
+
+// How `vkray compare` puts two image files in one space before comparing them (docs/outputs.md,
+// "Comparing images"):
+//  - both 8-bit (PNG, BMP): their levels / 255 as stored, whatever encoding wrote them;
+//  - both float (PFM, EXR): their raw values (linear radiance, or an AOV's data);
+//  - one of each: linear radiance. The 8-bit image's levels are decoded with `eightBit` (decodeLevels,
+//    tone.h): the file alone does not say whether it was written with the sRGB curve or without, nor
+//    at which exposure. The float image is clamped to what the 8-bit one can hold, [0, 2^-exposure],
+//    NaN as 0, as writing it as 8-bit would have done; so a PNG and the EXR of one render agree to
+//    within the PNG's quantisation.
+struct CompareSpace {
+    bool linear = false;      // true: linear radiance (a float file is involved); false: 8-bit levels
+    bool decoded = false;     // an 8-bit image was decoded with the encoding
+    std::string description;  // "linear radiance (A: sRGB PNG decoded; B: EXR clamped to [0, 1])"
+};
+
+// Brings `a` and `b`, read from files of these formats, into the space above (in place) and says which.
+CompareSpace toCommonSpace(Image& a, ImageFormat formatA, Image& b, ImageFormat formatB, const Encoding& eightBit);
 
 // Throws vkray::Error when the sizes or channel counts differ. pixelThreshold >= 0.
 CompareStats compareImages(const Image& a, const Image& b, double pixelThreshold);

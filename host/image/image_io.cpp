@@ -22,6 +22,7 @@
 #include "core/file_output.h"
 #include "image/exr_io.h"
 #include "image/tone.h"
+#include "scene/text_input.h"
 
 namespace fs = std::filesystem;
 
@@ -81,9 +82,13 @@ uint32_t byteSwap(uint32_t v) {
 
 // ---- Reading ----------------------------------------------------------------------------------
 
-// Whole file into memory, refusing anything bigger than the largest image we accept could need.
+// The largest file the largest image we accept could need (+ EXR offsets); well below INT_MAX, what
+// stb_image's lengths are.
+constexpr size_t kMaxFileBytes = kMaxReadPixels * 3 * sizeof(float) + (size_t(1) << 20);
+const char* const kTooLarge = "file too large to be an image we accept";
+
+// Whole file into memory, refusing anything bigger than kMaxFileBytes.
 std::vector<unsigned char> readBytes(const fs::path& path) {
-    constexpr size_t kMaxFileBytes = kMaxReadPixels * 3 * sizeof(float) + (size_t(1) << 20);  // + EXR offsets
     std::error_code ec;
     if (fs::is_directory(path, ec)) throw fileError(path, "cannot read: is a directory");
     std::FILE* f = std::fopen(path.c_str(), "rb");
@@ -93,7 +98,7 @@ std::vector<unsigned char> readBytes(const fs::path& path) {
     unsigned char chunk[1 << 16];
     size_t n;
     while ((n = std::fread(chunk, 1, sizeof chunk, f)) > 0) {
-        if (bytes.size() + n > kMaxFileBytes) throw fileError(path, "file too large to be an image we accept");
+        if (bytes.size() + n > kMaxFileBytes) throw fileError(path, kTooLarge);
         bytes.insert(bytes.end(), chunk, chunk + n);
     }
     if (std::ferror(f)) throw fileError(path, std::string("read failed: ") + std::strerror(errno));
@@ -139,24 +144,31 @@ void checkBmpLength(const fs::path& path, const std::vector<unsigned char>& byte
                                   std::to_string(bytes.size()) + " found");
 }
 
+// stb's reason for the last failure, one line: some reasons quote the file's bytes ("XXXX PNG chunk
+// not known" with the chunk's type).
+std::string stbFailure() {
+    const char* reason = stbi_failure_reason();
+    return reason ? escapedControls(reason) : "no reason given";
+}
+
 Image decodeWithStb(const fs::path& path, const std::vector<unsigned char>& bytes) {
     const auto* buf = bytes.data();
-    const int len = int(bytes.size());  // readBytes caps the size well below INT_MAX
+    const int len = int(bytes.size());  // at most kMaxFileBytes
     int w = 0, h = 0, comp = 0;
     if (!stbi_info_from_memory(buf, len, &w, &h, &comp))
-        throw fileError(path, std::string("cannot decode: ") + stbi_failure_reason());
+        throw fileError(path, "cannot decode: " + stbFailure());
     checkDimensions(path, w, h);  // before stb allocates anything for the pixels
     Image image;
     if (stbi_is_16_bit_from_memory(buf, len)) {
         std::unique_ptr<stbi_us, void (*)(void*)> px(stbi_load_16_from_memory(buf, len, &w, &h, &comp, 3),
                                                      stbi_image_free);
-        if (!px) throw fileError(path, std::string("cannot decode: ") + stbi_failure_reason());
+        if (!px) throw fileError(path, "cannot decode: " + stbFailure());
         image = Image(w, h, 3);
         for (size_t i = 0; i < image.data.size(); ++i) image.data[i] = float(px.get()[i]) / 65535.0f;
     } else {
         std::unique_ptr<stbi_uc, void (*)(void*)> px(stbi_load_from_memory(buf, len, &w, &h, &comp, 3),
                                                      stbi_image_free);
-        if (!px) throw fileError(path, std::string("cannot decode: ") + stbi_failure_reason());
+        if (!px) throw fileError(path, "cannot decode: " + stbFailure());
         image = Image(w, h, 3);
         for (size_t i = 0; i < image.data.size(); ++i) image.data[i] = float(px.get()[i]) / 255.0f;
     }
@@ -296,6 +308,16 @@ void writeColorImage(const fs::path& path, int width, int height, const std::vec
     writeImage(path, image, meta, encoding);
 }
 
+const char* formatName(ImageFormat f) {
+    switch (f) {
+    case ImageFormat::Png: return "PNG";
+    case ImageFormat::Bmp: return "BMP";
+    case ImageFormat::Pfm: return "PFM";
+    case ImageFormat::Exr: return "EXR";
+    }
+    return "?";
+}
+
 ImageFormat imageFormatForPath(const fs::path& path) {
     const std::string ext = lowerExtension(path);
     if (ext.empty() || ext == ".png") return ImageFormat::Png;
@@ -323,8 +345,10 @@ ImageFormat readImageFormat(const fs::path& path) {
     return sniffFormat(path, head);
 }
 
-Image readImage(const fs::path& path, ImageMeta* meta) {
-    const std::vector<unsigned char> bytes = readBytes(path);
+Image readImage(const fs::path& path, ImageMeta* meta) { return decodeImage(path, readBytes(path), meta); }
+
+Image decodeImage(const fs::path& path, const std::vector<unsigned char>& bytes, ImageMeta* meta) {
+    if (bytes.size() > kMaxFileBytes) throw fileError(path, kTooLarge);
     const ImageFormat format = sniffFormat(path, bytes);
     if (format == ImageFormat::Exr) return decodeExr(path, bytes, meta);
     if (format == ImageFormat::Bmp) checkBmpLength(path, bytes);

@@ -54,6 +54,8 @@ enum class ImageFormat { Png, Bmp, Pfm, Exr };
 ImageFormat readImageFormat(const std::filesystem::path& path);
 ImageFormat imageFormatForPath(const std::filesystem::path& path);
 inline bool isEightBit(ImageFormat f) { return f == ImageFormat::Png || f == ImageFormat::Bmp; }
+// "PNG", "BMP", "PFM", "EXR".
+const char* formatName(ImageFormat f);
 
 // Reads a PNG or BMP (8- or 16-bit; returns 3 channels, the stored levels / 255 (or / 65535), with
 // no transfer function undone: grey is replicated, alpha dropped), a PFM (1 or 3 channels, raw
@@ -63,6 +65,8 @@ inline bool isEightBit(ImageFormat f) { return f == ImageFormat::Png || f == Ima
 // an EXR's display window, data window origin and string attributes; for other formats the image
 // itself (display window = its size, origin 0) and no attributes.
 Image readImage(const std::filesystem::path& path, ImageMeta* meta = nullptr);
+// The same for a file's bytes already in memory (the fuzzer's entry point); errors name `path`.
+Image decodeImage(const std::filesystem::path& path, const std::vector<unsigned char>& bytes, ImageMeta* meta = nullptr);
 
 // Throws the vkray::Error that writeColorImage / writeAov would throw for this path's name (an
 // unsupported extension, an AOV file that is not .pfm or .exr, a directory that does not exist), so a

@@ -12,6 +12,15 @@
 #include "core/error.h"
 
 namespace vkray {
+namespace {
+
+void checkExposure(float exposure) {
+    if (!std::isfinite(exposure) || std::fabs(exposure) > kMaxExposureStops)
+        throw Error("exposure " + std::to_string(exposure) + " is not a number of stops within +-" +
+                    std::to_string(int(kMaxExposureStops)));
+}
+
+}  // namespace
 
 Encoding parseEncoding(std::string_view name, double exposure) {
     Encoding e;
@@ -33,11 +42,19 @@ Encoding parseEncoding(std::string_view name, double exposure) {
 
 double srgbEncode(double v) { return v <= 0.0031308 ? 12.92 * v : 1.055 * std::pow(v, 1.0 / 2.4) - 0.055; }
 
+double srgbDecode(double v) { return v <= 0.04045 ? v / 12.92 : std::pow((v + 0.055) / 1.055, 2.4); }
+
+Image decodeLevels(const Image& levels, const Encoding& encoding) {
+    checkExposure(encoding.exposure);
+    const double scale = std::exp2(-double(encoding.exposure));
+    Image out = levels;
+    for (float& v : out.data) v = float((encoding.srgb ? srgbDecode(double(v)) : double(v)) * scale);
+    return out;
+}
+
 LevelEncoder::LevelEncoder(const Encoding& encoding)
     : srgb_(encoding.srgb), scale_(std::exp2(double(encoding.exposure))) {
-    if (!std::isfinite(encoding.exposure) || std::fabs(encoding.exposure) > kMaxExposureStops)
-        throw Error("exposure " + std::to_string(encoding.exposure) + " is not a number of stops within +-" +
-                    std::to_string(int(kMaxExposureStops)));
+    checkExposure(encoding.exposure);
     // Positive doubles order as their bit patterns: bisect on those, between +0 (level 0) and 1
     // (level 255), for the least double of level k or more.
     threshold_[0] = 0.0;

@@ -43,8 +43,14 @@ private:
     std::array<uint8_t, kBuckets> bucket_{};
 };
 
-// sRGB transfer function of IEC 61966-2-1 (linear to encoded), for v in [0, 1].
+// sRGB transfer function of IEC 61966-2-1 (linear to encoded), for v in [0, 1], and its inverse.
 double srgbEncode(double v);
+double srgbDecode(double v);
+
+// The linear values an 8-bit image's levels (read as level / 255) stand for under `encoding`: the
+// sRGB curve undone (when srgb), then divided by 2^exposure. The inverse of LevelEncoder within a
+// level, for the values it did not clamp. Throws like LevelEncoder for a bad exposure.
+Image decodeLevels(const Image& levels, const Encoding& encoding);
 
 // `image` with its finite values mapped linearly from [lowest, highest] (over all channels) to
 // [0, 1], and every non-finite value (a depth AOV's misses: +inf) to 0. An image whose finite

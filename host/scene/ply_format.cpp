@@ -331,8 +331,17 @@ int64_t Body::listLength(const Property& p) {
 void Body::skip(const Element& element) {
     const bool fixed = std::none_of(element.properties.begin(), element.properties.end(), [](const Property& p) { return p.list; });
     if (encoding_ != Encoding::Ascii && fixed) {
-        // parseHeader checked that the counts fit in the body.
-        pos_ += size_t(element.count) * minElementBytes(element, encoding_);
+        // parseHeader checked the counts against the body at each element's least size, but a list
+        // before this element may have taken more than its least: check what is left.
+        const uint64_t each = minElementBytes(element, encoding_);
+        element_ = nullptr;  // the message names the element itself, not the last value read
+        property_ = nullptr;
+        valueStart_ = pos_;
+        if (each > 0 && uint64_t(element.count) > (bytes_.size() - pos_) / each)
+            fail(std::to_string(element.count) + " elements " + vkray::quoted(element.name) + " of " +
+                 std::to_string(each) + " bytes each do not fit in the " + std::to_string(bytes_.size() - pos_) +
+                 " bytes left in the file");
+        pos_ += size_t(uint64_t(element.count) * each);
         return;
     }
     if (element.properties.empty()) return;

@@ -106,14 +106,14 @@ std::string tooLarge(uint64_t bytes) {
            " (2 GiB) vkray reads";
 }
 
-// `s`, or its first bytes and its length, between `quote`s.
+// `s`, or its first bytes and its length, between `quote`s, control bytes escaped.
 std::string shortened(std::string_view s, size_t maxBytes, std::string_view quote) {
     // Built with append: GCC 12 warns falsely (-Wrestrict) on chains of std::string operator+.
     std::string q(quote);
-    if (s.size() <= maxBytes) return q.append(s).append(quote);
+    if (s.size() <= maxBytes) return q.append(escapedControls(s)).append(quote);
     size_t cut = maxBytes;
     while (cut > 0 && (static_cast<unsigned char>(s[cut]) & 0xC0) == 0x80) --cut;  // not inside a UTF-8 character
-    q.append(s.substr(0, cut)).append("...").append(quote);
+    q.append(escapedControls(s.substr(0, cut))).append("...").append(quote);
     return q.append(" (").append(std::to_string(s.size())).append(" bytes)");
 }
 
@@ -206,6 +206,23 @@ std::optional<std::string> readFileBytes(const std::filesystem::path& file) {
 
 FileReader fileSystemReader() {
     return [](const std::filesystem::path& file, std::string& whyNot) { return readFileBytes(file, whyNot); };
+}
+
+std::string escapedControls(std::string_view s) {
+    std::string out;
+    out.reserve(s.size());
+    for (const char c : s) {
+        const auto u = static_cast<unsigned char>(c);
+        if (u >= 0x20 && u != 0x7F) {
+            out += c;
+        } else if (c == '\n' || c == '\r' || c == '\t') {
+            out.append(c == '\n' ? "\\n" : c == '\r' ? "\\r" : "\\t");
+        } else {
+            static constexpr char kHex[] = "0123456789abcdef";
+            out.append("\\x").append(1, kHex[u >> 4]).append(1, kHex[u & 15]);
+        }
+    }
+    return out;
 }
 
 std::string quoted(std::string_view s, size_t maxBytes) { return shortened(s, maxBytes, "'"); }

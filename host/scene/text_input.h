@@ -31,8 +31,13 @@ using FileReader = std::function<std::optional<std::string>(const std::filesyste
 FileReader fileSystemReader();
 
 // `s` quoted for an error message: 'text', or its first bytes and its length when it is long, so
-// a 10 MB token makes a readable one-line message ('11111111...' (10000000 bytes)).
+// a 10 MB token makes a readable one-line message ('11111111...' (10000000 bytes)); control bytes
+// are escaped ('a\nb', '\x01'), so the message stays one line whatever the file held.
 std::string quoted(std::string_view s, size_t maxBytes = 48);
+// `s` with its control bytes written as C escapes (\n, \t, \x01): text taken from a file (a glTF
+// URI, a PNG chunk type in a decoder's message, an EXR channel name) may hold any byte, and an error
+// message is one line.
+std::string escapedControls(std::string_view s);
 // The same without the quotes, for numbers: 1.5, or 0.00000000...1 (60000 bytes).
 std::string excerpt(std::string_view s, size_t maxBytes = 48);
 

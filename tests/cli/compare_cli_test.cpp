@@ -1,5 +1,6 @@
 // `vkray compare` through its CLI11 registration, as main() wires it: exit codes for the limits,
-// the printed block and JSON, the diff image, and errors for missing files and bad thresholds.
+// the printed block and JSON, the diff image, the space an 8-bit and a float file are compared in, and
+// errors for missing files and bad thresholds.
 #include <filesystem>
 #include <string>
 #include <utility>
@@ -98,6 +99,45 @@ TEST(CompareCli, JsonAndDiffImage) {
     EXPECT_TRUE(js["psnr"].is_null());  // infinite
     EXPECT_EQ(js["rmse"], 0.0);
     EXPECT_TRUE(js["pass"].get<bool>());
+}
+
+// A render written as an sRGB PNG and as an EXR: compared in linear radiance, the PNG decoded, they
+// agree within the PNG's quantisation (a level near white spans 0.009 in linear units).
+TEST(CompareCli, SrgbPngAgainstItsExr) {
+    std::vector<glm::vec3> render(64 * 4);
+    for (size_t i = 0; i < render.size(); ++i)
+        render[i] = glm::vec3(float(i) / 255.0f, float(i % 64) / 48.0f, 0.18f);  // up to 1.33: a highlight
+    writeColorImage(out("render.exr"), 64, 4, render);
+    writeColorImage(out("render.png"), 64, 4, render);  // sRGB, the default
+    const std::string png = out("render.png").string(), exr = out("render.exr").string();
+    const Result r = runCompare({png, exr, "--max-bad-fraction", "0"});
+    EXPECT_EQ(r.exitCode, 0) << r.stdoutText;
+    EXPECT_TRUE(contains(r.stdoutText,
+                         "compared in linear radiance (A: sRGB PNG decoded; B: EXR clamped to [0, 1] as 8 bits hold it)"))
+        << r.stdoutText;
+    const auto j = nlohmann::json::parse(runCompare({exr, png, "--json"}).stdoutText);
+    EXPECT_EQ(j["space"], "linear");
+    EXPECT_EQ(j["eight_bit_encoding"], "srgb");
+    EXPECT_EQ(j["compared_in"], "linear radiance (A: EXR clamped to [0, 1] as 8 bits hold it; B: sRGB PNG decoded)");
+    EXPECT_LT(j["max_error"].get<double>(), 0.0045);
+
+    // The same PNG taken for a linear one fails, and says what it assumed.
+    const Result wrong = runCompare({png, exr, "--encoding", "linear", "--max-bad-fraction", "0"});
+    EXPECT_EQ(wrong.exitCode, 1);
+    EXPECT_TRUE(contains(wrong.stdoutText, "A: linear PNG decoded")) << wrong.stdoutText;
+    // A PNG written linear at exposure -1 (the file does not say so) with the flags that wrote it.
+    writeColorImage(out("render-lin.png"), 64, 4, render, {}, Encoding{false, -1.0f});
+    EXPECT_EQ(runCompare({out("render-lin.png").string(), exr, "--encoding", "linear", "--exposure", "-1",
+                          "--max-bad-fraction", "0"})
+                  .exitCode,
+              0);
+    // Two PNGs: levels as stored, whatever --encoding says.
+    const Result levels = runCompare({png, png, "--encoding", "linear", "--json"});
+    const auto jl = nlohmann::json::parse(levels.stdoutText);
+    EXPECT_EQ(jl["space"], "levels");
+    EXPECT_TRUE(jl["eight_bit_encoding"].is_null());
+    EXPECT_EQ(jl["compared_in"], "8-bit levels as stored (A: PNG, B: PNG)");
+    EXPECT_THROW(runCompare({png, exr, "--encoding", "log"}), Error);
 }
 
 TEST(CompareCli, NonFiniteMismatchFailsRmseLimit) {

@@ -55,6 +55,16 @@ TEST(ConvertCli, ExrToSrgbPngAndBackToFloat) {
     // An 8-bit input's levels are copied unchanged by default.
     runVkray({"convert", out("r.png").string(), out("r.bmp").string()});
     EXPECT_EQ(readImage(out("r.bmp")).data, png.data);
+    // To a float file the levels are decoded (sRGB unless told otherwise): the linear values back,
+    // within a level, and clamped as the PNG holds them.
+    const Result back = runVkray({"convert", out("r.png").string(), out("back.exr").string()});
+    EXPECT_HAS(back.stdoutText, "decoded as srgb, exposure 0");
+    const Image exr = readImage(out("back.exr"));
+    EXPECT_NEAR(exr.at(0, 0, 0), 0.5f, 0.003f);
+    EXPECT_NEAR(exr.at(0, 0, 1), 0.18f, 0.002f);
+    EXPECT_EQ(exr.at(0, 0, 2), 1.0f);
+    runVkray({"convert", out("lin.png").string(), out("lin.pfm").string(), "--encoding", "linear", "--exposure", "-1"});
+    EXPECT_FLOAT_EQ(readImage(out("lin.pfm")).at(0, 0, 0), 2.0f * 64.0f / 255.0f);  // level 64, times 2
 }
 
 TEST(ConvertCli, DepthAovNormalizedForViewing) {

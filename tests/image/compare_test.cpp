@@ -1,5 +1,6 @@
 // Comparison metrics on hand-made images whose RMSE, PSNR, max error and bad pixels are known,
-// the inf/NaN rules of compare.h, mismatch errors, and the diff image's colour classes.
+// the inf/NaN rules of compare.h, mismatch errors, the diff image's colour classes, and the space two
+// files are compared in (an 8-bit file decoded against a float one).
 #include <cmath>
 #include <limits>
 #include <string>
@@ -8,6 +9,7 @@
 
 #include "core/error.h"
 #include "image/compare.h"
+#include "image/tone.h"
 
 using namespace vkray;
 
@@ -141,4 +143,79 @@ TEST(Compare, DiffImageColourClasses) {
     EXPECT_EQ(d.at(4, 0, 0), 1.0f);
     EXPECT_EQ(d.at(4, 0, 1), 1.0f);
     for (float v : d.data) EXPECT_TRUE(v >= 0.0f && v <= 1.0f);
+}
+
+namespace {
+
+// A render-like linear image: a ramp over [0, 1.25] (past white, as highlights are), NaN in one value.
+Image linearRamp() {
+    Image im(64, 4, 3);
+    for (size_t i = 0; i < im.data.size(); ++i) im.data[i] = float(i % 257) / 256.0f * 1.25f;
+    im.data[5] = kNan;
+    return im;
+}
+
+// `linear` as the levels / 255 an 8-bit file written with `e` reads back as.
+Image asLevels(const Image& linear, const Encoding& e) {
+    const LevelEncoder encode(e);
+    Image out = linear;
+    for (float& v : out.data) v = float(encode(v)) / 255.0f;
+    return out;
+}
+
+// The largest linear error rounding to a level can make under `e`: half a step at the curve's steepest,
+// the top level.
+double halfLevelAtTop(const Encoding& e) {
+    const double top = e.srgb ? srgbDecode(1.0) - srgbDecode(254.5 / 255.0) : 0.5 / 255.0;
+    return top * std::exp2(-double(e.exposure));
+}
+
+}  // namespace
+
+TEST(CompareSpace, SrgbPngAgainstItsExrAgreesWithinQuantisation) {
+    for (const Encoding& e : {Encoding{}, Encoding{true, 1.0f}, Encoding::linear()}) {
+        const Image exr = linearRamp();
+        Image a = asLevels(exr, e), b = exr;
+        const CompareSpace space = toCommonSpace(a, ImageFormat::Png, b, ImageFormat::Exr, e);
+        EXPECT_TRUE(space.linear);
+        EXPECT_TRUE(space.decoded);
+        const CompareStats s = compareImages(a, b, 0.0);
+        EXPECT_LE(s.maxError, halfLevelAtTop(e) + 1e-6) << space.description;
+        EXPECT_EQ(s.nonFiniteMismatches, 0);  // NaN is 0 in both, as the 8-bit file stores it
+    }
+    // The words: which file was decoded with which curve, and what the float one was clamped to.
+    Image a = asLevels(linearRamp(), Encoding{}), b = linearRamp();
+    EXPECT_EQ(toCommonSpace(a, ImageFormat::Png, b, ImageFormat::Exr, Encoding{}).description,
+              "linear radiance (A: sRGB PNG decoded; B: EXR clamped to [0, 1] as 8 bits hold it)");
+    Image c = linearRamp(), d = asLevels(linearRamp(), Encoding{false, -1.0f});
+    EXPECT_EQ(toCommonSpace(c, ImageFormat::Pfm, d, ImageFormat::Bmp, Encoding{false, -1.0f}).description,
+              "linear radiance (A: PFM clamped to [0, 2] as 8 bits hold it; B: linear BMP at exposure -1 decoded)");
+}
+
+TEST(CompareSpace, WrongEncodingShowsAsADifference) {
+    // The sRGB PNG taken for a linear one: its mid-tones are far too bright (what comparing the
+    // levels as stored used to report without a word).
+    const Image exr = linearRamp();
+    Image a = asLevels(exr, Encoding{}), b = exr;
+    toCommonSpace(a, ImageFormat::Png, b, ImageFormat::Exr, Encoding::linear());
+    EXPECT_GT(compareImages(a, b, 0.0).rmse, 0.1);
+}
+
+TEST(CompareSpace, SameKindsCompareAsStored) {
+    const Image levels = asLevels(linearRamp(), Encoding{});
+    Image a = levels, b = levels;
+    const CompareSpace eight = toCommonSpace(a, ImageFormat::Png, b, ImageFormat::Bmp, Encoding{});
+    EXPECT_FALSE(eight.linear);
+    EXPECT_FALSE(eight.decoded);
+    EXPECT_EQ(eight.description, "8-bit levels as stored (A: PNG, B: BMP)");
+    EXPECT_EQ(a.data, levels.data);
+    const Image floats = linearRamp();
+    Image c = floats, d = floats;
+    const CompareSpace hdr = toCommonSpace(c, ImageFormat::Exr, d, ImageFormat::Pfm, Encoding{});
+    EXPECT_TRUE(hdr.linear);
+    EXPECT_FALSE(hdr.decoded);
+    EXPECT_EQ(hdr.description, "linear values as stored (A: EXR, B: PFM)");
+    EXPECT_EQ(c.data[6], floats.data[6]);
+    EXPECT_GT(c.data[256], 1.0f);  // not clamped
+    EXPECT_TRUE(std::isnan(c.data[5]));
 }

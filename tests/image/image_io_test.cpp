@@ -357,3 +357,33 @@ TEST(ImageIo, CorruptedFilesNeverCrash) {
         }
     }
 }
+
+// Inputs the fuzzer (tests/fuzz, image target) found, kept there as regressions/image/: each read
+// ends in a one-line vkray::Error or an image, never a message broken over lines or undefined behaviour.
+TEST(ImageIo, FuzzFindingsGiveOneLineErrors) {
+    const auto finding = [](const std::string& name) {
+        return fileBytes(fs::path(VKRAY_SOURCE_DIR) / "tests/fuzz/regressions/image" / name);
+    };
+    const auto oneLineError = [](const std::vector<unsigned char>& bytes) {
+        try {
+            decodeImage("finding", bytes);
+        } catch (const Error& e) {
+            EXPECT_EQ(std::string(e.what()).find('\n'), std::string::npos) << e.what();
+            return std::string(e.what());
+        }
+        return std::string("(no error)");
+    };
+    // stb names an unknown PNG chunk by its type's four bytes, here two of them line ends.
+    const std::string chunk = oneLineError(finding("png-chunk-type-line-feed.png"));
+    EXPECT_NE(chunk.find("finding: cannot decode: "), std::string::npos) << chunk;
+    // An EXR whose only channels are named "\n" and "G".
+    const std::string channels = oneLineError(finding("exr-channel-name-line-feed.exr"));
+    EXPECT_NE(channels.find("EXR without R, G, B or Y channels (it has: \\n, G)"), std::string::npos) << channels;
+    // A zero-length IDAT chunk first (stb copies 0 bytes into a buffer it has not allocated).
+    try {
+        const Image image = decodeImage("finding", finding("png-empty-idat.png"));
+        EXPECT_EQ(image.data.size(), image.pixelCount() * 3);
+    } catch (const Error& e) {
+        EXPECT_EQ(std::string(e.what()).find('\n'), std::string::npos) << e.what();
+    }
+}

@@ -52,6 +52,20 @@ TEST(Tone, ExposureScalesBeforeEncoding) {
     EXPECT_EQ(LevelEncoder(Encoding{false, 3.0f})(0.2f), 255);   // 1.6, clamped
 }
 
+// decodeLevels undoes LevelEncoder: every level decodes to a value that encodes back to it.
+TEST(Tone, DecodeLevelsInvertsTheEncoder) {
+    for (const Encoding& e : {Encoding{}, Encoding::linear(), Encoding{true, 1.5f}, Encoding{false, -2.0f}}) {
+        Image levels(256, 1, 1);
+        for (int k = 0; k <= 255; ++k) levels.data[size_t(k)] = float(k) / 255.0f;
+        const Image linear = decodeLevels(levels, e);
+        const LevelEncoder encode(e);
+        for (int k = 0; k <= 255; ++k) EXPECT_EQ(encode(linear.data[size_t(k)]), k) << "level " << k;
+    }
+    EXPECT_NEAR(srgbDecode(srgbEncode(0.18)), 0.18, 1e-12);
+    EXPECT_NEAR(srgbDecode(0.04045), 0.0031308, 1e-6);  // where the two pieces meet
+    EXPECT_THROW(decodeLevels(Image(1, 1, 1), Encoding{true, 100.0f}), Error);
+}
+
 // Encoding::linear() stores exactly the levels vkray stored before encodings existed.
 TEST(Tone, LinearIsRound255OfTheClampedValue) {
     const LevelEncoder linear(Encoding::linear());

@@ -211,6 +211,9 @@ TEST_F(GltfLoader, RefusesAMissingBufferFile) {
     const std::string e = error(f.w.json(f.meshes() + ", \"nodes\": [{\"mesh\": 0}]", "gone.bin"));
     EXPECT_NE(e.find(file() + ": cannot open buffer file '"), std::string::npos) << e;
     EXPECT_NE(e.find("gone.bin': no such file or directory"), std::string::npos) << e;
+    // A URI that percent-decodes to a line feed: the name is escaped, the message one line (error()).
+    const std::string lf = error(f.w.json(f.meshes() + ", \"nodes\": [{\"mesh\": 0}]", "a%0Ab.bin"));
+    EXPECT_NE(lf.find("a\\nb.bin': no such file or directory"), std::string::npos) << lf;
 }
 
 TEST_F(GltfLoader, RefusesAnIndexOutOfRange) {

@@ -62,6 +62,15 @@ TEST(Quoted, LongTextKeepsItsStartAndLength) {
     EXPECT_EQ(quoted("ab\xC3\xA9" + std::string(10, 'c'), 3), "'ab...' (14 bytes)");
 }
 
+// A name read from a file (a glTF buffer URI percent-decoded to a line feed, say) keeps the
+// message it is quoted in on one line.
+TEST(Quoted, ControlBytesAreEscaped) {
+    EXPECT_EQ(quoted("a\nb\r\tc"), "'a\\nb\\r\\tc'");
+    EXPECT_EQ(vkray::quoted(std::string("\x01\x7f\0", 3)), "'\\x01\\x7f\\x00'");
+    EXPECT_EQ(excerpt("1\n2"), "1\\n2");
+    EXPECT_EQ(quoted("\n\n\nxyz", 2), "'\\n\\n...' (6 bytes)");
+}
+
 TEST(ReadFileBytes, SaysWhyAFileCannotBeRead) {
     std::string why;
     EXPECT_FALSE(readFileBytes("no/such/file.scene", why));

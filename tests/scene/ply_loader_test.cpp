@@ -3,6 +3,7 @@
 // input, each a vkray::Error naming the file, where in it, and the cause.
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <string>
 
 #include <gtest/gtest.h>
@@ -159,6 +160,20 @@ TEST_F(PlyLoader, RefusesATruncatedBinaryFileAtItsByteOffset) {
               std::string::npos)
         << e;
     EXPECT_NE(e.find("(PLY loaded at test.scene:1)"), std::string::npos) << e;
+}
+
+// Found by the fuzzer (tests/fuzz/regressions/ply): the header's check counts each element at its
+// least size, but the face's list takes 13 bytes, not 1, so the elements read past after it no longer
+// fit; skipping them must not move past the end of the file (and read there).
+TEST_F(PlyLoader, RefusesElementsReadPastThatALongerListLeftNoRoomFor) {
+    std::ifstream in(fs::path(VKRAY_SOURCE_DIR) / "tests/fuzz/regressions/ply/list-then-skipped-elements.ply",
+                     std::ios::binary);
+    const std::string ply((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    const std::string e = error(ply);
+    EXPECT_NE(e.find(file() + ": byte " + std::to_string(ply.size()) +
+                     ": 1 elements 'extra' of 4 bytes each do not fit in the 0 bytes left in the file"),
+              std::string::npos)
+        << e;
 }
 
 TEST_F(PlyLoader, RefusesAFaceIndexOutOfRange) {
