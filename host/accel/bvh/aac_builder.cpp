@@ -309,14 +309,17 @@ private:
 // a burst of triangles around one centre clusters the large with the small. Such runs are ordered
 // by box surface area instead (then by primitive index): the middle split becomes a median split
 // by size, which keeps small boxes in subtrees of small boxes, as a binned-SAH build over the
-// boxes' extents would. Runs of at most delta primitives form one leaf range whose clustering
-// reads no order, and are left as sorted.
+// boxes' extents would. Only runs longer than kLongTiedRun (and than delta) are reordered: at 2^30
+// cells a dense mesh puts a few centroids in a cell, a run the clustering of its leaf range
+// handles whatever its order, and its tree stays the paper's; a run of hundreds is a burst.
+constexpr size_t kLongTiedRun = 256;
+
 void orderTiedRuns(BuildArray<MortonKey>& keys, const PrimitiveSet& prims, size_t delta) {
     const size_t n = keys.size();
     for (size_t begin = 0; begin < n;) {
         size_t end = begin + 1;
         while (end < n && keyCode(keys[end]) == keyCode(keys[begin])) ++end;
-        if (end - begin > delta)
+        if (end - begin > std::max(delta, kLongTiedRun))
             std::sort(keys.begin() + std::ptrdiff_t(begin), keys.begin() + std::ptrdiff_t(end), [&](MortonKey a, MortonKey b) {
                 const float areaA = prims.boxes[keyPrimitive(a)].halfArea(), areaB = prims.boxes[keyPrimitive(b)].halfArea();
                 return areaA != areaB ? areaA < areaB : keyPrimitive(a) < keyPrimitive(b);
