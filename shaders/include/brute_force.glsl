@@ -18,16 +18,16 @@ uint slotTriangle(uint slot) { return slot; }
 Hit bruteTrace(vec3 origin, vec3 dir, float tmax, const bool anyHit) {
     Hit best = noHit(tmax);
     uint slot = 0u;
-    if (RESUMABLE && gBruteResumeSlot > 0u) {
-        slot = gBruteResumeSlot;
-        best = gBruteResumeBest;
+    if (RESUMABLE && gResumeSlot > 0u) {
+        slot = gResumeSlot;
+        best = gResumeBest;
     }
     const uint begin = slot;
     const bool complete =
         testSlotsFrom(slot, params.counts.x, makeWatertightRay(origin, dir), anyHit, kBruteSlotsPerIteration, best);
     if (RESUMABLE) {
-        gBruteResumeSlot = complete ? 0u : slot;
-        gBruteResumeBest = best;
+        gResumeSlot = complete ? 0u : slot;
+        gResumeBest = best;
         if (slot > begin) gProgress = true;
     }
     return best;

@@ -36,7 +36,20 @@ int bvhNextChild(bvec4 hit, vec4 tEnter, int from) {
     return next;
 }
 
-// Closest hit in (0, tmax), or with anyHit (a constant at both calls below) the first hit found.
+// Resumable variant (render_main.glsl, "Resumable pixels"): the walk's whole state is its position,
+// a node and the slot it came back from, so an interrupted walk saves that, packed in one word that
+// is never 0 (node << 3 | from + 2, from in -1..3), its best hit and its node steps so far (the
+// cap counts over all dispatches), and goes on from there in the next dispatch.
+uint bvhResumeWord(uint node, int from) { return node << 3 | uint(from + 2); }
+
+void bvhSaveWalk(uint node, int from, int steps, int firstStep, Hit best) {
+    gResumeSlot = bvhResumeWord(node, from);
+    gResumeBest = best;
+    gResumeSteps = uint(steps);
+    if (steps > firstStep) gProgress = true;
+}
+
+// Closest hit in (0, tmax), or with anyHit (a constant at every call) the first hit found.
 // A loop over leaves around a loop over node steps, as the stack walk (bvh_traversal.glsl).
 Hit bvhStacklessTrace(vec3 origin, vec3 dir, float tmax, const bool anyHit) {
     Hit best = noHit(tmax);
@@ -47,10 +60,26 @@ Hit bvhStacklessTrace(vec3 origin, vec3 dir, float tmax, const bool anyHit) {
     int from = -1;   // the slot of `node` the walk came back from
     bool done = false;
     int iteration = 0;
+    if (RESUMABLE && gResumeSlot > 0u) {  // where the interrupted walk stopped
+        node = gResumeSlot >> 3;
+        from = int(gResumeSlot & 7u) - 2;
+        iteration = int(gResumeSteps);
+        best = gResumeBest;
+    }
+    const int firstStep = iteration;
+    // The position before the step that found the leaf being tested: a leaf loop cut short is
+    // taken again from there (its triangles tested twice find the same hits).
+    uint stepNode = node;
+    int stepFrom = from, stepIteration = iteration;
     while (budgetLeft() && !done && iteration < VKRAY_BVH_MAX_ITERATIONS) {
         // Down, sideways and up until a leaf is next or the walk climbed past the root.
         uint leaf = VKRAY_BVH_NO_CHILD;
         for (; budgetLeft() && !done && leaf == VKRAY_BVH_NO_CHILD && iteration < VKRAY_BVH_MAX_ITERATIONS; ++iteration) {
+            if (RESUMABLE) {
+                stepNode = node;
+                stepFrom = from;
+                stepIteration = iteration;
+            }
             countNode();
             const BvhNode n = loadBvhNode(node);
             vec4 tEnter;
@@ -68,12 +97,18 @@ Hit bvhStacklessTrace(vec3 origin, vec3 dir, float tmax, const bool anyHit) {
         ++iteration;
         countNode();
         countLeaf();
-        // Cut short by the driver (flagged there), or an occluder found: the walk ends.
-        if (!testSlots(leafFirst(leaf), leafFirst(leaf) + leafCount(leaf), ray, anyHit, LEAF_SLOTS, best) ||
-            (anyHit && best.triangle >= 0))
+        // Cut short by the driver (flagged there; the resumable variant goes on at this leaf), or an
+        // occluder found: the walk ends.
+        const bool complete = testSlots(leafFirst(leaf), leafFirst(leaf) + leafCount(leaf), ray, anyHit, LEAF_SLOTS, best);
+        if (!complete || (anyHit && best.triangle >= 0)) {
+            if (RESUMABLE && complete) gResumeSlot = 0u;
+            if (RESUMABLE && !complete) bvhSaveWalk(stepNode, stepFrom, stepIteration, firstStep, best);
             return best;
+        }
     }
     bvhEndLoop(done, iteration);
+    if (RESUMABLE && (done || iteration >= VKRAY_BVH_MAX_ITERATIONS)) gResumeSlot = 0u;
+    else if (RESUMABLE) bvhSaveWalk(node, from, iteration, firstStep, best);
     return best;
 }
 

@@ -137,8 +137,15 @@ Hit bvhTrace(vec3 origin, vec3 dir, float tmax) {
 }
 
 // The stack kernels' two queries (bvh and its presets, bvh-sphere): closest hits by the stack walk,
-// shadow rays by the stackless one.
-Hit traceClosest(vec3 origin, vec3 dir, float tmax) { return bvhTrace(origin, dir, tmax); }
+// shadow rays by the stackless one. The resumable variant walks closest hits stackless too: an
+// interrupted stackless walk is resumed from a node and a slot (bvh_stackless.glsl), where the
+// stack walk would have to save its whole stack, up to VKRAY_BVH_STACK_SIZE entries, per pixel.
+// Both walks find the same closest hit (every hit that beats the best is kept, ties by beats(),
+// triangle.glsl), so a resumed tile's image is the plain kernel's; only its node steps differ.
+Hit traceClosest(vec3 origin, vec3 dir, float tmax) {
+    if (RESUMABLE) return bvhStacklessTrace(origin, dir, tmax, false);
+    return bvhTrace(origin, dir, tmax);
+}
 bool traceAny(vec3 origin, vec3 dir, float tmax) { return bvhStacklessTrace(origin, dir, tmax, true).triangle >= 0; }
 
 #endif

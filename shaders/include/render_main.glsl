@@ -31,8 +31,8 @@ struct PendingRay {
 // host only for tiles the plain kernel could not finish) keeps its pending rays in a buffer
 // instead of registers, counts its loops' passes itself (budgetLeft(), trace_status.glsl) and,
 // when its own budget is spent, before the driver's, saves where the pixel is: the rays still to
-// trace, or the hit whose lights are being shaded and the next light, and brute force's next
-// triangle and best hit. The host dispatches the tile again until every pixel is done; a pixel
+// trace, or the hit whose lights are being shaded and the next light, and the interrupted
+// traversal's position and best hit: brute force's next triangle, the BVH walk's node and slot. The host dispatches the tile again until every pixel is done; a pixel
 // that got nothing done in a whole dispatch is flagged cut short, as the plain kernel does.
 layout(std430, set = 0, binding = VKRAY_BINDING_RESUME) buffer Resume {
     GpuPixelResume resume[];
@@ -270,8 +270,9 @@ uint resumePixel(uint resumeIndex, uint outIndex, uvec2 pixel, uvec2 imageSize, 
     gTrianglesTested = px.triangles;
     gRestarts = px.restarts;
     gCappedRays = px.capped;
-    gBruteResumeSlot = r.bruteSlot;
-    gBruteResumeBest = Hit(r.bruteTuv.x, r.bruteTuv.yz, r.bruteTriangle, r.bruteOriginal);
+    gResumeSlot = r.walkSlot;
+    gResumeBest = Hit(r.walkTuv.x, r.walkTuv.yz, r.walkTriangle, r.walkOriginal);
+    gResumeSteps = r.walkSteps;
     return r.stage;
 }
 
@@ -332,10 +333,9 @@ void renderResumable() {
     storePixel(outIndex, pt, cutShort ? VKRAY_PIXEL_CUT_SHORT : unfinished ? VKRAY_PIXEL_UNFINISHED : 0u);
     resume[resumeIndex] = GpuPixelResume(pt.color, cutShort ? VKRAY_RESUME_DONE : stage,
                                          vec3(pt.hit.t, pt.hit.uv), pt.hit.triangle,
-                                         vec3(gBruteResumeBest.t, gBruteResumeBest.uv),
-                                         gBruteResumeBest.triangle, uint(pt.stackTop), uint(pt.rays),
-                                         pt.light, gBruteResumeSlot, gBruteResumeBest.original,
-                                         pt.hit.original, 0u, 0u);
+                                         vec3(gResumeBest.t, gResumeBest.uv), gResumeBest.triangle,
+                                         uint(pt.stackTop), uint(pt.rays), pt.light, gResumeSlot,
+                                         gResumeBest.original, pt.hit.original, gResumeSteps, 0u);
 }
 
 // Pixels per invocation (the plain kernel). A pixel's rays are a loop, and llvmpipe runs the 8

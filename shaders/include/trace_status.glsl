@@ -25,10 +25,13 @@ const bool RESUMABLE = false;
 #endif
 
 bool gLoopCutShort = false;
-// Resumable variant: brute force's interrupted traversal (the next slot, 0 = none, and the best hit
-// so far), saved with the pixel and handed to the first traversal of the next dispatch.
-uint gBruteResumeSlot = 0u;
-Hit gBruteResumeBest;
+// Resumable variant: the interrupted traversal of brute force or the BVH (where it goes on, 0 =
+// none; the best hit so far; the BVH walk's node steps so far), saved with the pixel and handed to
+// the first traversal of the next dispatch, the one that was interrupted (a pixel stops at its
+// first interrupted traversal).
+uint gResumeSlot = 0u;
+Hit gResumeBest;
+uint gResumeSteps = 0u;
 // Resumable variant: some work of this dispatch is kept (a traversal ended, or brute force got on).
 bool gProgress = false;
 

@@ -41,12 +41,13 @@
 // Most triangles a leaf holds (accel/bvh: leaf collapse).
 #define VKRAY_BVH_MAX_LEAF_SIZE 8
 // Hang guard per traversal (lavapipe has no watchdog), counting node steps, leaves and the pushes'
-// passes: a traversal visits each node at most once, so only a corrupt tree or a scene of hundreds
-// of thousands of overlapping triangles reaches it; such a ray counts in GpuPixel.capped. A ray
-// resumed on lavapipe walks again from its start, so the cap must end a runaway walk within one
-// dispatch's loop budget (VKRAY_RESUMABLE_LOOP_BUDGET): tests/stress/iteration_cap_test.cpp's cyclic
-// tree ends there up to a cap of 22528.
-#define VKRAY_BVH_MAX_ITERATIONS 20480
+// passes: a traversal visits each node at most once, so only a corrupt tree or a ray inside a
+// scene of hundreds of thousands of overlapping triangles reaches it; such a ray counts in
+// GpuPixel.capped. A walk cut short by llvmpipe's loop budget resumes with its count
+// (render_main.glsl, "Resumable pixels"), so the cap need not fit one dispatch: it is set above the
+// walks of the degenerate meshes (20,000 triangles around one point, seen from inside), which a
+// cap of 20480 cut off on the binned-SAH tree.
+#define VKRAY_BVH_MAX_ITERATIONS 262144
 
 // Child references: bit 31 set for a leaf, bits 28-30 its triangle count - 1, bits 0-27 its first
 // slot; an inner node's index otherwise.

@@ -168,16 +168,16 @@ VKRAY_STRUCT(GpuPixelResume) {  // 80 bytes
     uint stage;         // VKRAY_RESUME_*
     vec3 hitTuv;        // stage LIGHTS: the hit (t, u, v) being shaded
     int hitTriangle;
-    vec3 bruteTuv;      // brute force: best hit so far of the interrupted traversal
-    int bruteTriangle;
+    vec3 walkTuv;       // the interrupted traversal (brute force, BVH): its best hit so far
+    int walkTriangle;
     uint stackTop;      // pending rays (GpuPendingRay, VKRAY_BINDING_RESUME_RAYS)
     uint rays;          // closest-hit rays traced so far
     uint light;         // stage LIGHTS: the next light
-    uint bruteSlot;     // brute force: the interrupted traversal's next triangle; 0 = none
-    uint bruteOriginal;
+    uint walkSlot;      // where it goes on (brute force: next triangle; BVH: bvhResumeWord); 0 = none
+    uint walkOriginal;
     uint hitOriginal;
+    uint walkSteps;     // BVH: its node steps so far, against VKRAY_BVH_MAX_ITERATIONS
     uint pad0;
-    uint pad1;
 };
 
 VKRAY_STRUCT(GpuPendingRay) {  // 48 bytes
@@ -257,9 +257,9 @@ static_assert(sizeof(GpuPixelColor) == 16 && offsetof(GpuPixelColor, flags) == 1
                   offsetof(GpuTileCounts, shadowRaysLow) == 8 && offsetof(GpuTileCounts, cappedLow) == 16,
               "compact records and tile counts share the pixel buffer's 16-byte units");
 static_assert(sizeof(GpuPixelResume) == 80 && offsetof(GpuPixelResume, stage) == 12 &&
-              offsetof(GpuPixelResume, hitTriangle) == 28 && offsetof(GpuPixelResume, bruteTriangle) == 44 &&
-              offsetof(GpuPixelResume, stackTop) == 48 && offsetof(GpuPixelResume, bruteSlot) == 60 &&
-              offsetof(GpuPixelResume, bruteOriginal) == 64);
+              offsetof(GpuPixelResume, hitTriangle) == 28 && offsetof(GpuPixelResume, walkTriangle) == 44 &&
+              offsetof(GpuPixelResume, stackTop) == 48 && offsetof(GpuPixelResume, walkSlot) == 60 &&
+              offsetof(GpuPixelResume, walkOriginal) == 64);
 static_assert(sizeof(GpuPendingRay) == 48 && offsetof(GpuPendingRay, depth) == 12 &&
               offsetof(GpuPendingRay, dir) == 16 && offsetof(GpuPendingRay, weight) == 32);
 static_assert(sizeof(GpuFrameParams) == 128 && offsetof(GpuFrameParams, imageTile) == 80 &&

@@ -303,6 +303,31 @@ private:
     size_t leafReduction_;             // f(delta), computed once: every range of at most delta primitives asks for it
 };
 
+// Morton codes cannot order primitives whose centroids share a cell: a run of equal codes longer
+// than delta is split by the downward phase in the middle of its order (Gu et al. 2013, section
+// 4.1, splits only by the codes' bits), so in primitive order its halves are arbitrary mixes, and
+// a burst of triangles around one centre clusters the large with the small. Such runs are ordered
+// by box surface area instead (then by primitive index): the middle split becomes a median split
+// by size, which keeps small boxes in subtrees of small boxes, as a binned-SAH build over the
+// boxes' extents would. Only runs longer than kLongTiedRun (and than delta) are reordered: at 2^30
+// cells a dense mesh puts a few centroids in a cell, a run the clustering of its leaf range
+// handles whatever its order, and its tree stays the paper's; a run of hundreds is a burst.
+constexpr size_t kLongTiedRun = 256;
+
+void orderTiedRuns(BuildArray<MortonKey>& keys, const PrimitiveSet& prims, size_t delta) {
+    const size_t n = keys.size();
+    for (size_t begin = 0; begin < n;) {
+        size_t end = begin + 1;
+        while (end < n && keyCode(keys[end]) == keyCode(keys[begin])) ++end;
+        if (end - begin > std::max(delta, kLongTiedRun))
+            std::sort(keys.begin() + std::ptrdiff_t(begin), keys.begin() + std::ptrdiff_t(end), [&](MortonKey a, MortonKey b) {
+                const float areaA = prims.boxes[keyPrimitive(a)].halfArea(), areaB = prims.boxes[keyPrimitive(b)].halfArea();
+                return areaA != areaB ? areaA < areaB : keyPrimitive(a) < keyPrimitive(b);
+            });
+        begin = end;
+    }
+}
+
 }  // namespace
 
 AacReduction::AacReduction(int delta, double epsilon)
@@ -330,7 +355,10 @@ void validateAacConfig(const Config& config) {
 BinaryTree buildAac(const PrimitiveSet& prims, const Config& config, PhaseLog& log, CollapsedTree* collapsed) {
     validateAacConfig(config);
     BuildArray<MortonKey> keys = log.run("morton", 0.1, [&] { return mortonKeys(prims.centroids, prims.centroidBounds); });
-    log.run("sort", 0.2, [&] { radixSortByCode(keys); });
+    log.run("sort", 0.2, [&] {
+        radixSortByCode(keys);
+        orderTiedRuns(keys, prims, size_t(config.delta));
+    });
     return log.run("cluster", 0.85, [&] { return AacBuilder(prims, config, std::move(keys), collapsed).build(); });
 }
 

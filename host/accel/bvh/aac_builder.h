@@ -7,7 +7,8 @@
 // 2. Downward phase (the paper's BuildTree): a range of more than delta primitives is split at the
 //    highest bit in which its first and last codes differ, found by binary search (the codes are
 //    sorted, so the range holds all codes with that bit clear, then all with it set); a range whose
-//    codes are all equal is split in the middle.
+//    codes are all equal is split in the middle, its primitives ordered by box area after the sort
+//    (aac_builder.cpp, orderTiedRuns).
 // 3. Upward phase: every range clusters the clusters of its two halves agglomeratively (the
 //    paper's CombineClusters: merge the pair whose merged box has the smallest surface area,
 //    with each cluster's closest partner cached and recomputed only when that partner merges) until

@@ -109,6 +109,46 @@ inline Scene equalCentroids(uint32_t seed, int count) {
     return s;
 }
 
+// All triangles in the plane z = 0, overlapping: random triangles in [-1, 1]^2 (every box flat on
+// one axis; many Morton codes, but every box spans many cells).
+inline Scene coplanarOverlapping(uint32_t seed, int count) {
+    Scene s;
+    s.materials.push_back(Material{});
+    std::mt19937 rng(seed);
+    std::uniform_real_distribution<float> u(-1.0f, 1.0f);
+    for (int k = 0; k < count; ++k)
+        s.triangles.push_back({{u(rng), u(rng), 0.0f}, {u(rng), u(rng), 0.0f}, {u(rng), u(rng), 0.0f}, 0});
+    return s;
+}
+
+// One triangle spanning [-100, 100]^2 among `count` - 1 tiny ones (size 0.01) in [-1, 1]^3: the
+// huge box covers every other, and its centroid lies among theirs.
+inline Scene hugeAmongTiny(uint32_t seed, int count) {
+    Scene s = randomSoup(seed, count - 1, 0.01f);
+    s.triangles.push_back({{-100.0f, -100.0f, 0.1f}, {100.0f, -100.0f, -0.1f}, {0.0f, 100.0f, 0.0f}, 0});
+    return s;
+}
+
+// `copies` exact copies of each of `count` / `copies` random triangles, a triangle's copies in a row
+// (equal boxes and Morton codes: no split separates them, ties in t everywhere).
+inline Scene duplicated(uint32_t seed, int count, int copies) {
+    Scene s = randomSoup(seed, count / copies, 0.2f);
+    Scene out;
+    out.materials = s.materials;
+    for (const Triangle& t : s.triangles)
+        for (int c = 0; c < copies; ++c) out.triangles.push_back(t);
+    return out;
+}
+
+// The degenerate cases of a Morton-ordered build (ties in the codes, boxes covering boxes), for the
+// AAC-against-binned-SAH quality bounds and the GPU hit checks.
+inline std::vector<NamedMesh> degenerateMeshes(int count) {
+    return {{"equal_centroids", equalCentroids(5, count)},
+            {"coplanar", coplanarOverlapping(6, count)},
+            {"huge_among_tiny", hugeAmongTiny(7, count)},
+            {"duplicated", duplicated(8, count, 50)}};
+}
+
 inline std::vector<NamedMesh> testMeshes() {
     return {{"cornell", cornellBox()},
             {"sphere", uvSphere({0.1f, -0.2f, 0.3f}, 0.9f, 24, 48)},
