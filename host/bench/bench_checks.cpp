@@ -10,6 +10,7 @@
 #include "accel/accel.h"
 #include "bench/bench_shard.h"
 #include "core/error.h"
+#include "render/memory_budget.h"
 #include "render/scene_checks.h"
 #include "scene/camera.h"
 #include "scene/scene_parser.h"
@@ -41,12 +42,17 @@ void checkBenchOptions(const BenchOptions& o) {
         if (!std::filesystem::is_regular_file(file)) throw Error(file + ": no such scene file");
 }
 
+void checkBenchScenesOnHost(const BenchOptions& options) {
+    for (const std::string& file : options.scenes)
+        render::checkRenderable(loadScene(file, render::withinMemory(render::gpuRender())), file);
+}
+
 void checkBenchScenes(render::Device& device, const BenchOptions& options, const std::vector<bool>& measure) {
     if (!device.get()) throw std::logic_error("checkBenchScenes: a render::Device without a device");
     for (size_t i = 0; i < options.scenes.size() && i < measure.size(); ++i) {
         if (!measure[i]) continue;
         const std::string& file = options.scenes[i];
-        Scene scene = loadScene(file);
+        Scene scene = loadScene(file, render::withinMemory(render::gpuRender()));
         render::checkRenderable(scene, file);
         scene.camera = viewCamera(scene, options.view);
         device.checkFits(scene);

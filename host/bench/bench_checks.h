@@ -13,6 +13,12 @@ namespace vkray::bench {
 // Refuses (vkray::Error) options out of range, an unknown accelerator or tuning, no scene.
 void checkBenchOptions(const BenchOptions& options);
 
+// Loads every scene with the host memory check (render::withinMemory) and refuses the first that
+// does not load, would not fit the process's memory or has nothing to render
+// (render::checkRenderable). Before the device is waited for: starting a Vulkan driver needs memory
+// of its own, so under a tight limit the scene's one-line refusal must come first.
+void checkBenchScenesOnHost(const BenchOptions& options);
+
 // Loads each scene i with `measure[i]` (meshes and all), with the run's view, and refuses the first
 // that does not load, has nothing to render (render::checkRenderable) or does not fit the device
 // (render::Device::checkFits): each error names its file (and line). Opens the device, which refuses

@@ -518,6 +518,7 @@ public:
 BenchResults runBench(render::Device& device, const BenchOptions& options, const std::string& commandLine,
                       const BenchProgressFn& progress, const BenchContinuation& continuation) {
     checkBenchOptions(options);
+    checkBenchScenesOnHost(options);
     const auto start = Clock::now();
     const gpu::VulkanContext* ctx = device.get();
     if (!ctx) throw std::logic_error("runBench: a render::Device without a device");

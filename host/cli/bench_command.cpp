@@ -210,7 +210,7 @@ void registerBenchCommand(CLI::App& app, int& exitCode, int argc, const char* co
         ->expected(1, -1)
         ->excludes(scenes);
     cmd->add_flag("--resume", args->resume,
-                  "Continue the run whose report is in --out (same options): measure only the scenes it lacks")
+                  "Continue the run in --out: measure only the scenes it lacks")
         ->excludes("--merge");
     cmd->add_flag("--quiet", args->quiet, "No progress line and no summary: errors and warnings only");
     const std::string commandLine = joinCommandLine(argc, argv);

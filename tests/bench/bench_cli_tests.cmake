@@ -44,9 +44,10 @@ add_test(NAME bench.cli.refuses.unreadable_mesh
                  --out ${BENCH_OUT}/refused-mesh)
 set_tests_properties(bench.cli.refuses.missing_second_scene bench.cli.refuses.unreadable_mesh PROPERTIES TIMEOUT 120)
 # SIGTERM after the first scene is saved leaves it marked incomplete; --resume measures the rest.
+# Four scenes after the first, so that on a busy machine the run cannot end before the signal lands.
 add_test(NAME bench.cli.interrupt_resume
          COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/bench/bench_interrupt_resume.sh $<TARGET_FILE:vkray>
-                 ${BENCH_OUT}/interrupted ${ONE_TRIANGLE} ${BENCH_SCENE} ${BENCH_SCENE})
+                 ${BENCH_OUT}/interrupted ${ONE_TRIANGLE} ${BENCH_SCENE} ${BENCH_SCENE} ${BENCH_SCENE} ${BENCH_SCENE})
 set_tests_properties(bench.cli.interrupt_resume PROPERTIES TIMEOUT 600 ENVIRONMENT "VKRAY_VALIDATION=1")
 # --quiet as render's: the report is written and nothing is printed.
 add_test(NAME bench.cli.quiet

@@ -3,7 +3,7 @@
 # run exits non-zero and leaves the finished scenes marked incomplete in all three files; the
 # resumed run measures only the missing scenes, keeps the saved ones' figures and completes the
 # report; a third --resume finds nothing to measure; --resume with other settings is refused.
-# usage: bench_interrupt_resume.sh VKRAY OUT SCENE1 SCENE2 SCENE3
+# usage: bench_interrupt_resume.sh VKRAY OUT SCENE...  (three or more)
 set -euo pipefail
 vkray=$1 out=$2
 shift 2
