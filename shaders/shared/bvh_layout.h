@@ -44,9 +44,9 @@
 // passes: a traversal visits each node at most once, so only a corrupt tree or a ray inside a
 // scene of hundreds of thousands of overlapping triangles reaches it; such a ray counts in
 // GpuPixel.capped. A walk cut short by llvmpipe's loop budget resumes with its count
-// (render_main.glsl, "Resumable pixels"), so the cap need not fit one dispatch: it is set above the
-// walks of the degenerate meshes (20,000 triangles around one point, seen from inside), which a
-// cap of 20480 cut off on the binned-SAH tree.
+// (render_main.glsl, "Resumable pixels"), so the cap need not fit one dispatch: it is set well above
+// the walks of the degenerate meshes of docs/bvh.md (20,000 triangles around one point, seen from
+// inside, in the binned-SAH tree).
 #define VKRAY_BVH_MAX_ITERATIONS 262144
 
 // Child references: bit 31 set for a leaf, bits 28-30 its triangle count - 1, bits 0-27 its first
