@@ -12,7 +12,6 @@
 #include "core/error.h"
 #include "render/memory_budget.h"
 #include "render/scene_checks.h"
-#include "scene/camera.h"
 #include "scene/scene_parser.h"
 
 namespace vkray::bench {
@@ -42,20 +41,28 @@ void checkBenchOptions(const BenchOptions& o) {
         if (!std::filesystem::is_regular_file(file)) throw Error(file + ": no such scene file");
 }
 
-void checkBenchScenesOnHost(const BenchOptions& options) {
-    for (const std::string& file : options.scenes)
-        render::checkRenderable(loadScene(file, render::withinMemory(render::gpuRender())), file);
-}
-
-void checkBenchScenes(render::Device& device, const BenchOptions& options, const std::vector<bool>& measure) {
-    if (!device.get()) throw std::logic_error("checkBenchScenes: a render::Device without a device");
+std::vector<render::SceneSize> checkBenchScenesOnHost(const BenchOptions& options, const std::vector<bool>& measure) {
+    std::vector<render::SceneSize> sizes;
+    const ParseOptions parse = render::withinMemory(render::gpuRender());
     for (size_t i = 0; i < options.scenes.size() && i < measure.size(); ++i) {
         if (!measure[i]) continue;
-        const std::string& file = options.scenes[i];
-        Scene scene = loadScene(file, render::withinMemory(render::gpuRender()));
-        render::checkRenderable(scene, file);
-        scene.camera = viewCamera(scene, options.view);
-        device.checkFits(scene);
+        const Scene scene = loadScene(options.scenes[i], parse);
+        render::checkRenderable(scene, options.scenes[i]);
+        sizes.push_back(render::sizeOf(scene));
+        sizes.back().sourceFile = options.scenes[i];  // as the user named it
+    }
+    return sizes;
+}
+
+void checkBenchScenesOnDevice(render::Device& device, const std::vector<render::SceneSize>& scenes) {
+    if (!device.get()) throw std::logic_error("checkBenchScenesOnDevice: a render::Device without a device");
+    for (const render::SceneSize& scene : scenes) {
+        try {
+            device.checkFits(scene);
+        } catch (const Error& e) {
+            if (e.hasLocation()) throw;
+            throw fileError(scene.sourceFile, e.what());  // the device's limits, which name no file
+        }
     }
 }
 

@@ -51,22 +51,32 @@ std::optional<BenchResults> readResumableReport(const fs::path& dir) {
     return readBenchReport(dir);
 }
 
-void checkResumable(const BenchResults& previous, const BenchResults& run, const fs::path& file) {
-    const std::string afresh = "; to start afresh, run without --resume or with another --out";
-    auto refuse = [&](const std::string& what) { throw Error(FileLoc{file.string()}, "--resume: " + what + afresh); };
-    if (!previous.shards.empty()) refuse("a merged report, not the report of a run");
+namespace {
+
+[[noreturn]] void refuse(const fs::path& file, const std::string& what) {
+    throw Error(FileLoc{file.string()}, "--resume: " + what + "; to start afresh, run without --resume or with another --out");
+}
+
+}  // namespace
+
+void checkResumableSettings(const BenchResults& previous, const BenchResults& run, const fs::path& file) {
+    if (!previous.shards.empty()) refuse(file, "a merged report, not the report of a run");
     if (writtenBy(previous) != writtenBy(run))
-        refuse("written by " + writtenBy(previous) + ", this is " + writtenBy(run));
-    if (previous.device != run.device || previous.driver != run.driver)
-        refuse("measured on " + previous.device + " (" + previous.driver + "), this run's device is " + run.device +
-               " (" + run.driver + ")");
+        refuse(file, "written by " + writtenBy(previous) + ", this is " + writtenBy(run));
     if (const auto diff = settingsDifference(previous.settings, run.settings))
-        refuse("other settings: " + *diff + " in this run");
+        refuse(file, "other settings: " + *diff + " in this run");
     if (previous.shard.index != run.shard.index || previous.shard.count != run.shard.count)
-        refuse("measured shard " + shardText(previous.shard) + ", this run is shard " + shardText(run.shard));
+        refuse(file, "measured shard " + shardText(previous.shard) + ", this run is shard " + shardText(run.shard));
     if (previous.configurationHash != run.configurationHash)
-        refuse("another configuration list (hash " + previous.configurationHash + ", this run's " +
-               run.configurationHash + ")");
+        refuse(file, "another configuration list (hash " + previous.configurationHash + ", this run's " +
+                         run.configurationHash + ")");
+}
+
+void checkResumable(const BenchResults& previous, const BenchResults& run, const fs::path& file) {
+    checkResumableSettings(previous, run, file);
+    if (previous.device != run.device || previous.driver != run.driver)
+        refuse(file, "measured on " + previous.device + " (" + previous.driver + "), this run's device is " +
+                         run.device + " (" + run.driver + ")");
 }
 
 }  // namespace vkray::bench

@@ -37,5 +37,7 @@ std::optional<BenchResults> readResumableReport(const std::filesystem::path& dir
 // `run` (its facts and settings, no scenes yet) when the two would not make one run: a merged report,
 // another vkray version or revision, another device or driver, other settings, another shard.
 void checkResumable(const BenchResults& previous, const BenchResults& run, const std::filesystem::path& file);
+// The same without the device, for a run whose device is not open yet (its scenes are checked first).
+void checkResumableSettings(const BenchResults& previous, const BenchResults& run, const std::filesystem::path& file);
 
 }  // namespace vkray::bench

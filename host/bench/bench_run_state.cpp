@@ -13,16 +13,12 @@
 
 namespace vkray::bench {
 
-BenchResults runHeader(const gpu::VulkanContext& ctx, const BenchOptions& options, const std::string& commandLine) {
+BenchResults runHeader(const BenchOptions& options, const std::string& commandLine) {
     BenchResults results;
     results.vkrayVersion = VKRAY_VERSION;
     results.revision = VKRAY_REVISION;
     results.commandLine = commandLine;
     results.startedAt = isoTimeUtc();
-    results.device = ctx.info().name;
-    results.driver = ctx.info().driver;
-    results.deviceType = ctx.info().type;
-    results.vulkanApi = ctx.info().apiVersion;
     results.hardwareThreads = int(std::thread::hardware_concurrency());
     results.loadAverageStart = loadAverage();
     results.repeat = options.repeat;
@@ -35,8 +31,15 @@ BenchResults runHeader(const gpu::VulkanContext& ctx, const BenchOptions& option
     return results;
 }
 
+void setDevice(BenchResults& results, const gpu::VulkanContext& ctx) {
+    results.device = ctx.info().name;
+    results.driver = ctx.info().driver;
+    results.deviceType = ctx.info().type;
+    results.vulkanApi = ctx.info().apiVersion;
+}
+
 void continueFrom(const BenchResults& previous, const std::string& file, BenchResults& results) {
-    checkResumable(previous, results, file);
+    checkResumableSettings(previous, results, file);
     results.scenes = previous.scenes;
     results.startedAt = previous.startedAt;
 }

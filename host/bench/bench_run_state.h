@@ -12,11 +12,13 @@
 
 namespace vkray::bench {
 
-// The run's facts before it measures: vkray, the machine, the device, the settings, the shard.
-BenchResults runHeader(const gpu::VulkanContext& ctx, const BenchOptions& options, const std::string& commandLine);
+// The run's facts before it measures: vkray, the machine, the settings, the shard. The device's
+// come with setDevice, once it is open.
+BenchResults runHeader(const BenchOptions& options, const std::string& commandLine);
+void setDevice(BenchResults& results, const gpu::VulkanContext& ctx);
 
-// A run that continues `previous`, read from `file` (bench_resume.h: checkResumable refuses another
-// run's), keeps its scenes and its start.
+// A run that continues `previous`, read from `file` (bench_resume.h: checkResumableSettings refuses
+// another run's), keeps its scenes and its start. Its device is checked once open (checkResumable).
 void continueFrom(const BenchResults& previous, const std::string& file, BenchResults& results);
 
 // The results as the run stands: scenes in run order, the time since `start` after `before` seconds

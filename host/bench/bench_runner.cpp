@@ -518,17 +518,20 @@ public:
 BenchResults runBench(render::Device& device, const BenchOptions& options, const std::string& commandLine,
                       const BenchProgressFn& progress, const BenchContinuation& continuation) {
     checkBenchOptions(options);
-    checkBenchScenesOnHost(options);
     const auto start = Clock::now();
-    const gpu::VulkanContext* ctx = device.get();
-    if (!ctx) throw std::logic_error("runBench: a render::Device without a device");
-    BenchResults results = runHeader(*ctx, options, commandLine);
+    BenchResults results = runHeader(options, commandLine);
     if (continuation.previous) continueFrom(*continuation.previous, continuation.previousFile, results);
     const double before = continuation.previous ? continuation.previous->elapsedSeconds : 0.0;
     const std::vector<SceneWork> work = shardWork(results.settings, options.shard);
     std::vector<bool> measure(options.scenes.size());
     for (size_t i = 0; i < measure.size(); ++i) measure[i] = !work[i].empty() && !hasScene(results, int(i));
-    checkBenchScenes(device, options, measure);  // every scene, before the first is measured
+    // Every scene, before the first is measured: on the host, then on the device.
+    const std::vector<render::SceneSize> sizes = checkBenchScenesOnHost(options, measure);
+    const gpu::VulkanContext* ctx = device.get();
+    if (!ctx) throw std::logic_error("runBench: a render::Device without a device");
+    setDevice(results, *ctx);
+    if (continuation.previous) checkResumable(*continuation.previous, results, continuation.previousFile);
+    checkBenchScenesOnDevice(device, sizes);
 
     Runner runner(device, options, progress);
     results.threadCounts = runner.threads();

@@ -133,9 +133,9 @@ SceneBuffers uploadScene(const VulkanContext& ctx, const PackedScene& packed, in
     return b;
 }
 
-void checkSceneFits(const VulkanContext& ctx, const Scene& scene) {
-    checkTexelArrayFits(ctx, uint64_t(scene.triangles.size()) * VKRAY_TRIANGLE_TEXELS, kTriangles);
-    checkTexelArrayFits(ctx, uint64_t(scene.normals.size()) * VKRAY_NORMAL_TEXELS, kNormals);
+void checkSceneFits(const VulkanContext& ctx, uint64_t triangles, uint64_t normals) {
+    checkTexelArrayFits(ctx, triangles * VKRAY_TRIANGLE_TEXELS, kTriangles);
+    checkTexelArrayFits(ctx, normals * VKRAY_NORMAL_TEXELS, kNormals);
 }
 
 AccelBuffers uploadAccel(const VulkanContext& ctx, const accel::GpuAccelData& data, const PackedScene& packed,

@@ -35,9 +35,10 @@ struct SceneBuffers {
 // texels; 0: one view each.
 SceneBuffers uploadScene(const VulkanContext& ctx, const PackedScene& packed, int viewBits = 0);
 
-// Whether the scene's own arrays fit the device's texel views, checked before anything is built or
-// packed: a scene too large fails in milliseconds, not after a long build.
-void checkSceneFits(const VulkanContext& ctx, const Scene& scene);
+// Whether the own arrays of a scene of `triangles` triangles, `normals` of them with vertex normals,
+// fit the device's texel views, checked before anything is built or packed: a scene too large
+// fails in milliseconds, not after a long build.
+void checkSceneFits(const VulkanContext& ctx, uint64_t triangles, uint64_t normals);
 
 // The acceleration structure's arrays (accel::GpuAccelData), one texel view per binding, and for
 // rayquery the driver's structure (VKRAY_BINDING_SCENE_STRUCTURE), built by the caller.

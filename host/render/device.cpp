@@ -32,9 +32,9 @@ const gpu::VulkanContext& Device::opened() {
     return *ctx;
 }
 
-const gpu::VulkanContext& Device::checkFits(const Scene& scene, MemoryUse use, MemoryReport* memory) {
+const gpu::VulkanContext& Device::checkFits(const SceneSize& scene, MemoryUse use, MemoryReport* memory) {
     const gpu::VulkanContext& ctx = opened();
-    gpu::checkSceneFits(ctx, scene);
+    gpu::checkSceneFits(ctx, scene.triangles, scene.normals);
     use.deviceSharesHost = ctx.info().type == "cpu";
     MemoryLimits limits = hostMemoryLimits();
     if (ctx.info().deviceLocalBudget > 0) limits.deviceHeap = ctx.info().deviceLocalBudget;

@@ -10,6 +10,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <utility>
 
 #include "accel/accel.h"
 #include "frame/frame.h"
@@ -43,7 +44,11 @@ public:
     // and that a render of it as `use` says fits the device's memory and the host's
     // (checkSceneMemory, whose estimate goes to `memory` when given); throws vkray::Error: before a
     // long build, not after it. Needs a device.
-    const gpu::VulkanContext& checkFits(const Scene& scene, MemoryUse use = gpuRender(), MemoryReport* memory = nullptr);
+    const gpu::VulkanContext& checkFits(const SceneSize& scene, MemoryUse use = gpuRender(),
+                                        MemoryReport* memory = nullptr);
+    const gpu::VulkanContext& checkFits(const Scene& scene, MemoryUse use = gpuRender(), MemoryReport* memory = nullptr) {
+        return checkFits(sizeOf(scene), std::move(use), memory);
+    }
     // A frame of `scene` traced through the structure arrays `data` with this device's pipelines
     // (gpu::renderOnGpu); `report` gets the GPU's figures. Needs a device.
     Frame render(const Scene& scene, const RenderOptions& options, const accel::GpuAccelData& data,

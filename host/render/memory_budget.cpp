@@ -202,10 +202,10 @@ ParseOptions withinMemory(const MemoryUse& use, ParseOptions options) {
     return options;
 }
 
-MemoryReport checkSceneMemory(const Scene& scene, const MemoryUse& use, const MemoryLimits& limits) {
-    if (const auto problem = memoryProblem(scene.triangles.size(), scene.normals.size(), use, limits))
+MemoryReport checkSceneMemory(const SceneSize& scene, const MemoryUse& use, const MemoryLimits& limits) {
+    if (const auto problem = memoryProblem(scene.triangles, scene.normals, use, limits))
         throw scene.sourceFile.empty() ? Error(*problem) : fileError(scene.sourceFile, *problem);
-    const MemoryEstimate e = estimateMemory(scene, use);
+    const MemoryEstimate e = estimateMemory(scene.triangles, scene.normals, use);
     const auto host = limits.host();
     return MemoryReport{.hostBytes = e.hostBytes,
                         .deviceBytes = e.deviceBytes,

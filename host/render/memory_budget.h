@@ -11,6 +11,7 @@
 #pragma once
 
 #include <cstdint>
+#include <filesystem>
 #include <functional>
 #include <optional>
 #include <string>
@@ -38,6 +39,18 @@ struct MemoryEstimate {
     uint64_t deviceBytes = 0;    // device-local buffers, 0 without a device
     uint64_t structureBytes = 0; // of both, the structure's arrays in the kernel's layout
 };
+
+// What the memory of a scene's render depends on: its size, and the file to name when it does not
+// fit. Kept where a scene is checked long before it is rendered (`vkray bench` checks every scene
+// before its first measurement but holds one in memory at a time).
+struct SceneSize {
+    uint64_t triangles = 0;
+    uint64_t normals = 0;  // triangles with vertex normals
+    std::filesystem::path sourceFile;
+};
+inline SceneSize sizeOf(const Scene& scene) {
+    return SceneSize{scene.triangles.size(), scene.normals.size(), scene.sourceFile};
+}
 
 // The estimate for a scene of `triangles` triangles, `normals` of them with vertex normals.
 MemoryEstimate estimateMemory(uint64_t triangles, uint64_t normals, const MemoryUse& use);
@@ -87,9 +100,9 @@ struct MemoryReport {
 ParseOptions withinMemory(const MemoryUse& use, ParseOptions options = {});
 
 // The check of a loaded scene before its structure is built: throws vkray::Error ("FILE: " and
-// memoryProblem's sentence, FILE from scene.sourceFile) when it does not fit, else gives the
+// memoryProblem's sentence, FILE from its sourceFile) when it does not fit, else gives the
 // estimate and the limits for --stats.
-MemoryReport checkSceneMemory(const Scene& scene, const MemoryUse& use, const MemoryLimits& limits);
+MemoryReport checkSceneMemory(const SceneSize& scene, const MemoryUse& use, const MemoryLimits& limits);
 
 // "1.23 GB", "456 MB": decimal units.
 std::string formatBytes(uint64_t bytes);

@@ -83,7 +83,7 @@ void RenderSession::openDevice(const Scene& scene, RenderReport& report) {
         report.device = ctx.info().name + " (" + ctx.info().driver + ")";
     } else {
         report.device = request_.buildOnly ? "none (--build-only)" : "CPU reference (double precision)";
-        report.memory = checkSceneMemory(scene, memoryUseOf(request_), hostMemoryLimits());
+        report.memory = checkSceneMemory(sizeOf(scene), memoryUseOf(request_), hostMemoryLimits());
     }
 }
 
