@@ -5,6 +5,7 @@
 #include <string>
 
 #include "core/error.h"
+#include "core/temp_files.h"
 
 namespace vkray::bench {
 namespace {
@@ -12,19 +13,34 @@ namespace {
 volatile std::sig_atomic_t caught = 0;
 struct sigaction previousInt, previousTerm;
 
-extern "C" void recordSignal(int sig) { caught = sig; }
+// The first signal is recorded; a second one gets the handler from before the run (the output
+// cleanup of core/temp_files.h, so an output being written is not left as a temporary), raised
+// again once this handler returns (the signal is blocked while it runs). sigaction and raise are
+// async-signal-safe.
+extern "C" void recordSignal(int sig) {
+    if (caught == 0) {
+        caught = sig;
+        return;
+    }
+    ::sigaction(SIGINT, &previousInt, nullptr);
+    ::sigaction(SIGTERM, &previousTerm, nullptr);
+    ::raise(sig);
+}
 
 }  // namespace
 
 StopOnSignals::StopOnSignals() {
+    temp_files::installInterruptCleanup();  // the handler a second signal gets
     caught = 0;
     struct sigaction action {};
     action.sa_handler = recordSignal;
     sigemptyset(&action.sa_mask);
-    // SA_RESETHAND: the first signal is recorded, a second one gets the default action.
-    action.sa_flags = SA_RESETHAND;
-    sigaction(SIGINT, &action, &previousInt);
-    sigaction(SIGTERM, &action, &previousTerm);
+    action.sa_flags = 0;
+    // A signal the process ignores (nohup, a background job's SIGINT) stays ignored.
+    sigaction(SIGINT, nullptr, &previousInt);
+    sigaction(SIGTERM, nullptr, &previousTerm);
+    if (previousInt.sa_handler != SIG_IGN) sigaction(SIGINT, &action, nullptr);
+    if (previousTerm.sa_handler != SIG_IGN) sigaction(SIGTERM, &action, nullptr);
 }
 
 StopOnSignals::~StopOnSignals() {

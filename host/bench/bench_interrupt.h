@@ -1,7 +1,7 @@
 // SIGINT and SIGTERM during `vkray bench`: instead of ending the process at once, which would lose
 // every figure measured so far, the signal asks the run to stop at its next step; the runner then
 // saves the finished scenes as an incomplete report (bench_runner.h) and fails. A second signal
-// ends the process as the default action does.
+// ends the process as the default action does, removing any output being written.
 #pragma once
 
 namespace vkray::bench {

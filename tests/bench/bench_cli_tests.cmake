@@ -49,6 +49,11 @@ add_test(NAME bench.cli.interrupt_resume
          COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/bench/bench_interrupt_resume.sh $<TARGET_FILE:vkray>
                  ${BENCH_OUT}/interrupted ${ONE_TRIANGLE} ${BENCH_SCENE} ${BENCH_SCENE} ${BENCH_SCENE} ${BENCH_SCENE})
 set_tests_properties(bench.cli.interrupt_resume PROPERTIES TIMEOUT 600 ENVIRONMENT "VKRAY_VALIDATION=1")
+# A second SIGTERM ends the run at once, and --out stays whole.
+add_test(NAME bench.cli.second_signal
+         COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/bench/bench_second_signal.sh $<TARGET_FILE:vkray>
+                 ${BENCH_OUT}/second-signal ${ONE_TRIANGLE} ${BENCH_SCENE} ${BENCH_SCENE} ${BENCH_SCENE})
+set_tests_properties(bench.cli.second_signal PROPERTIES TIMEOUT 600)
 # --quiet as render's: the report is written and nothing is printed.
 add_test(NAME bench.cli.quiet
          COMMAND bash -c "out=$(\"$0\" bench \"$1\" --size 16x12 --repeat 1 --threads 1 --accel bvh --deltas none --maxdepths none --quiet --out \"$2\") && test -z \"$out\" && test -s \"$2/bench.json\""
