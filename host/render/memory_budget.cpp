@@ -96,6 +96,17 @@ std::optional<uint64_t> minOf(std::optional<uint64_t> a, std::optional<uint64_t>
     return a ? a : b;
 }
 
+MemoryLimits readHostMemoryLimits() {
+    MemoryLimits l;
+    l.hostAvailable = readProcValue("/proc/meminfo", "MemAvailable:");
+    l.processLimit = minOf(rlimitLeft(RLIMIT_AS, "VmSize:"), rlimitLeft(RLIMIT_DATA, "VmData:"));
+    if (const auto max = cgroupValue("memory.max")) {
+        const uint64_t used = cgroupValue("memory.current").value_or(0);
+        l.cgroupLimit = *max > used ? *max - used : 0;
+    }
+    return l;
+}
+
 // The accelerators compared in a refusal, one of each family; of those that need as little, the first is named.
 std::vector<std::string> candidates(bool device) {
     std::vector<std::string> names{"bvh", "kd-restart", "brute"};
@@ -176,14 +187,8 @@ std::optional<std::pair<uint64_t, std::string>> MemoryLimits::host() const {
 }
 
 MemoryLimits hostMemoryLimits() {
-    MemoryLimits l;
-    l.hostAvailable = readProcValue("/proc/meminfo", "MemAvailable:");
-    l.processLimit = minOf(rlimitLeft(RLIMIT_AS, "VmSize:"), rlimitLeft(RLIMIT_DATA, "VmData:"));
-    if (const auto max = cgroupValue("memory.max")) {
-        const uint64_t used = cgroupValue("memory.current").value_or(0);
-        l.cgroupLimit = *max > used ? *max - used : 0;
-    }
-    return l;
+    static const MemoryLimits limits = readHostMemoryLimits();
+    return limits;
 }
 
 std::optional<std::string> memoryProblem(uint64_t triangles, uint64_t normals, const MemoryUse& use,
