@@ -35,6 +35,10 @@ constexpr uint64_t kParsing = 3 * sizeof(glm::dvec3) + sizeof(Triangle);
 constexpr uint64_t kProcessBase = uint64_t(96) << 20;
 // The device's own buffers besides the scene's: the tiles' pixels, counters, materials, lights.
 constexpr uint64_t kDeviceBase = uint64_t(64) << 20;
+// Counts past this (a petabyte of scene arrays alone) are counted as this: the estimate's products
+// (a few kB a triangle at the most) stay far from wrapping around 2^64, so no count, however absurd,
+// gets a small estimate.
+constexpr uint64_t kMaxCounted = uint64_t(1) << 40;
 
 // The kd-tree's arrays: the nodes and leaf lists every traversal reads (kd_layout.h), and with them
 // the parent links and node boxes of kd-backtrack, or the leaves' boxes and six ropes of kd-ropes.
@@ -151,6 +155,8 @@ std::string alternative(uint64_t triangles, uint64_t normals, const MemoryUse& u
 }  // namespace
 
 MemoryEstimate estimateMemory(uint64_t triangles, uint64_t normals, const MemoryUse& use) {
+    triangles = std::min(triangles, kMaxCounted);
+    normals = std::min(normals, kMaxCounted);
     const AccelModel m = modelOf(use.accel);
     MemoryEstimate e;
     const uint64_t scene = triangles * kSceneTriangle + normals * kSceneNormals;
