@@ -58,24 +58,20 @@ std::string fmt(double v) {
 
 nlohmann::json finiteOrNull(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); }
 
-void run(const CompareArgs& args, bool hasMaxRmse, bool hasMaxBad, int& exitCode) {
-    const double threshold = parseThreshold(args.threshold);
-    const Encoding eightBit = parseEncoding(args.encoding, args.exposure);
-    const ImageFormat formatA = readImageFormat(args.a), formatB = readImageFormat(args.b);
-    Image a = readImage(args.a);
-    Image b = readImage(args.b);
-    const CompareSpace space = toCommonSpace(a, formatA, b, formatB, eightBit);
-    CompareStats s;
-    try {
-        s = compareImages(a, b, threshold);
-    } catch (const Error& e) {
-        throw Error("cannot compare " + args.a + " with " + args.b + ": " + e.what());
-    }
-    // The difference image's colours are display values: stored as they are, not sRGB-encoded.
-    if (!args.diff.empty()) writeImage(args.diff, makeDiffImage(a, b, threshold), {}, Encoding::linear());
+// What a comparison found, for printing.
+struct Outcome {
+    int width = 0, height = 0, channels = 0;
+    CompareSpace space;
+    CompareStats stats;
+    double threshold = 0.0;
+    bool hasMaxRmse = false, hasMaxBad = false;
+    std::vector<std::string> failures;  // the limits exceeded; empty: pass
+};
 
+std::vector<std::string> failuresOf(const CompareArgs& args, const Outcome& o) {
+    const CompareStats& s = o.stats;
     std::vector<std::string> failures;
-    if (hasMaxRmse) {
+    if (o.hasMaxRmse) {
         // A non-finite mismatch is left out of the RMSE (compare.h) but means an infinite error:
         // it must not pass an RMSE gate silently.
         if (s.nonFiniteMismatches > 0)
@@ -84,58 +80,89 @@ void run(const CompareArgs& args, bool hasMaxRmse, bool hasMaxBad, int& exitCode
         if (s.rmse > args.maxRmse)
             failures.push_back("RMSE " + fmt(s.rmse) + " > --max-rmse " + fmt(args.maxRmse));
     }
-    if (hasMaxBad && s.badFraction > args.maxBadFraction)
+    if (o.hasMaxBad && s.badFraction > args.maxBadFraction)
         failures.push_back("bad fraction " + fmt(s.badFraction) + " > --max-bad-fraction " + fmt(args.maxBadFraction));
-    exitCode = failures.empty() ? 0 : 1;
+    return failures;
+}
 
-    if (args.quiet) {
-        return;
-    } else if (args.json) {
-        nlohmann::json j;
-        j["a"] = args.a;
-        j["b"] = args.b;
-        j["width"] = a.width;
-        j["height"] = a.height;
-        j["channels"] = a.channels;
-        j["space"] = space.linear ? "linear" : "levels";
-        j["compared_in"] = space.description;
-        j["eight_bit_encoding"] = space.decoded ? nlohmann::json(args.encoding) : nlohmann::json(nullptr);
-        j["rmse"] = s.rmse;
-        j["psnr"] = finiteOrNull(s.psnr);           // null: infinite (identical images)
-        j["max_error"] = finiteOrNull(s.maxError);  // null: infinite (a non-finite mismatch)
-        j["max_error_at"] = s.maxErrorX >= 0 ? nlohmann::json{s.maxErrorX, s.maxErrorY} : nlohmann::json(nullptr);
-        j["threshold"] = threshold;
-        j["bad_pixels"] = s.badPixels;
-        j["pixels"] = s.pixels;
-        j["bad_fraction"] = s.badFraction;
-        j["non_finite_mismatches"] = s.nonFiniteMismatches;
-        j["diff"] = args.diff.empty() ? nlohmann::json(nullptr) : nlohmann::json(args.diff);
-        j["max_rmse"] = hasMaxRmse ? nlohmann::json(args.maxRmse) : nlohmann::json(nullptr);
-        j["max_bad_fraction"] = hasMaxBad ? nlohmann::json(args.maxBadFraction) : nlohmann::json(nullptr);
-        j["failures"] = failures;
-        j["pass"] = failures.empty();
-        std::cout << j.dump(2) << '\n';
-    } else {
-        std::cout << "compare " << args.a << " " << args.b << ": " << a.width << "x" << a.height << ", " << a.channels
-                  << (a.channels == 1 ? " channel\n" : " channels\n");
-        std::cout << "  compared in " << space.description << "\n";
-        std::cout << "  RMSE        " << fmt(s.rmse) << "\n";
-        std::cout << "  PSNR        " << fmt(s.psnr) << " dB\n";
-        std::cout << "  max error   " << fmt(s.maxError);
-        if (s.maxErrorX >= 0) std::cout << " at pixel (" << s.maxErrorX << ", " << s.maxErrorY << ")";
-        std::cout << "\n";
-        std::cout << "  bad pixels  " << s.badPixels << " of " << s.pixels << " (" << fmt(100.0 * s.badFraction)
-                  << " %) differ by more than " << fmt(threshold) << " (" << args.threshold << ") in a channel\n";
-        if (s.nonFiniteMismatches > 0)
-            std::cout << "  non-finite  " << s.nonFiniteMismatches
-                      << " channel value(s) inf or NaN in only one image: bad pixels, left out of the RMSE\n";
-        if (!args.diff.empty()) std::cout << "  diff image  written to " << args.diff << "\n";
-        if (!hasMaxRmse && !hasMaxBad)
-            std::cout << "  result      no limits given (--max-rmse, --max-bad-fraction)\n";
-        else if (failures.empty())
-            std::cout << "  result      pass\n";
-        for (const std::string& f : failures) std::cout << "  result      FAIL: " << f << "\n";
+void printJson(const CompareArgs& args, const Outcome& o) {
+    const CompareStats& s = o.stats;
+    nlohmann::json j;
+    j["a"] = args.a;
+    j["b"] = args.b;
+    j["width"] = o.width;
+    j["height"] = o.height;
+    j["channels"] = o.channels;
+    j["space"] = o.space.linear ? "linear" : "levels";
+    j["compared_in"] = o.space.description;
+    j["eight_bit_encoding"] = o.space.decoded ? nlohmann::json(args.encoding) : nlohmann::json(nullptr);
+    j["rmse"] = s.rmse;
+    j["psnr"] = finiteOrNull(s.psnr);           // null: infinite (identical images)
+    j["max_error"] = finiteOrNull(s.maxError);  // null: infinite (a non-finite mismatch)
+    j["max_error_at"] = s.maxErrorX >= 0 ? nlohmann::json{s.maxErrorX, s.maxErrorY} : nlohmann::json(nullptr);
+    j["threshold"] = o.threshold;
+    j["bad_pixels"] = s.badPixels;
+    j["pixels"] = s.pixels;
+    j["bad_fraction"] = s.badFraction;
+    j["non_finite_mismatches"] = s.nonFiniteMismatches;
+    j["diff"] = args.diff.empty() ? nlohmann::json(nullptr) : nlohmann::json(args.diff);
+    j["max_rmse"] = o.hasMaxRmse ? nlohmann::json(args.maxRmse) : nlohmann::json(nullptr);
+    j["max_bad_fraction"] = o.hasMaxBad ? nlohmann::json(args.maxBadFraction) : nlohmann::json(nullptr);
+    j["failures"] = o.failures;
+    j["pass"] = o.failures.empty();
+    std::cout << j.dump(2) << '\n';
+}
+
+void printText(const CompareArgs& args, const Outcome& o) {
+    const CompareStats& s = o.stats;
+    std::cout << "compare " << args.a << " " << args.b << ": " << o.width << "x" << o.height << ", " << o.channels
+              << (o.channels == 1 ? " channel\n" : " channels\n");
+    std::cout << "  compared in " << o.space.description << "\n";
+    std::cout << "  RMSE        " << fmt(s.rmse) << "\n";
+    std::cout << "  PSNR        " << fmt(s.psnr) << " dB\n";
+    std::cout << "  max error   " << fmt(s.maxError);
+    if (s.maxErrorX >= 0) std::cout << " at pixel (" << s.maxErrorX << ", " << s.maxErrorY << ")";
+    std::cout << "\n";
+    std::cout << "  bad pixels  " << s.badPixels << " of " << s.pixels << " (" << fmt(100.0 * s.badFraction)
+              << " %) differ by more than " << fmt(o.threshold) << " (" << args.threshold << ") in a channel\n";
+    if (s.nonFiniteMismatches > 0)
+        std::cout << "  non-finite  " << s.nonFiniteMismatches
+                  << " channel value(s) inf or NaN in only one image: bad pixels, left out of the RMSE\n";
+    if (!args.diff.empty()) std::cout << "  diff image  written to " << args.diff << "\n";
+    if (!o.hasMaxRmse && !o.hasMaxBad)
+        std::cout << "  result      no limits given (--max-rmse, --max-bad-fraction)\n";
+    else if (o.failures.empty())
+        std::cout << "  result      pass\n";
+    for (const std::string& f : o.failures) std::cout << "  result      FAIL: " << f << "\n";
+}
+
+void run(const CompareArgs& args, bool hasMaxRmse, bool hasMaxBad, int& exitCode) {
+    Outcome o;
+    o.threshold = parseThreshold(args.threshold);
+    o.hasMaxRmse = hasMaxRmse;
+    o.hasMaxBad = hasMaxBad;
+    const Encoding eightBit = parseEncoding(args.encoding, args.exposure);
+    const ImageFormat formatA = readImageFormat(args.a), formatB = readImageFormat(args.b);
+    Image a = readImage(args.a);
+    Image b = readImage(args.b);
+    o.space = toCommonSpace(a, formatA, b, formatB, eightBit);
+    try {
+        o.stats = compareImages(a, b, o.threshold);
+    } catch (const Error& e) {
+        throw Error("cannot compare " + args.a + " with " + args.b + ": " + e.what());
     }
+    o.width = a.width;
+    o.height = a.height;
+    o.channels = a.channels;
+    // The difference image's colours are display values: stored as they are, not sRGB-encoded.
+    if (!args.diff.empty()) writeImage(args.diff, makeDiffImage(a, b, o.threshold), {}, Encoding::linear());
+    o.failures = failuresOf(args, o);
+    exitCode = o.failures.empty() ? 0 : 1;
+    if (args.quiet) return;
+    if (args.json)
+        printJson(args, o);
+    else
+        printText(args, o);
     std::cout.flush();
 }
 

@@ -9,6 +9,8 @@
 // byte-identical and removes the temporary, and so does SIGINT/SIGTERM/SIGHUP (core/temp_files.h).
 // - The new file keeps an existing file's mode bits (a new one gets 0666 less the umask, as fopen).
 // - A symbolic link is written through: the file it points at is replaced, the link stays.
+// - A file with other hard links is replaced under the name written only: its other names keep the
+//   previous content (as after any save by rename).
 // - A target that exists and is not a regular file (/dev/null, /dev/stdout, a FIFO) is written
 //   directly, without a temporary, and never removed.
 // - An existing file the user may not write (mode 0444) is refused, as fopen would refuse it,

@@ -12,11 +12,14 @@ namespace {
 
 // Fixed storage: the handler may run at any instruction, so it reads only these slots, each guarded
 // by a lock-free atomic state (async-signal-safe, unlike any lock or allocation). A slot is filled
-// while Filling and read by the handler only when Live. Outputs are written a few at a time, so a
-// few dozen slots are plenty; a path longer than kPathBytes goes untracked.
+// while Filling and read by the handler only once it has claimed it, Live to Removing: other threads
+// run on while one handles the signal, and a slot freed and filled again under the handler's read
+// would give it a path made of two. A Removing slot is never freed (the process is ending).
+// Outputs are written a few at a time, so a few dozen slots are plenty; a path longer than
+// kPathBytes goes untracked.
 constexpr int kSlots = 64;
 constexpr size_t kPathBytes = 4096;
-enum State : int { Free, Filling, Live };
+enum State : int { Free, Filling, Live, Removing };
 
 struct Slot {
     std::atomic<int> state{Free};
@@ -29,8 +32,10 @@ constexpr int kSignals[] = {SIGINT, SIGTERM, SIGHUP};
 
 void removeTrackedAndReraise(int sig) {
     const int savedErrno = errno;
-    for (Slot& slot : g_slots)
-        if (slot.state.load(std::memory_order_acquire) == Live) ::unlink(slot.path);
+    for (Slot& slot : g_slots) {
+        int live = Live;
+        if (slot.state.compare_exchange_strong(live, Removing, std::memory_order_acquire)) ::unlink(slot.path);
+    }
     // Back to the default action and raised again: the signal is blocked while its handler runs, so
     // it is delivered as soon as the handler returns and ends the process as if never caught.
     struct sigaction dfl {};
@@ -71,7 +76,9 @@ int track(const char* absolutePath) {
 }
 
 void untrack(int slot) {
-    if (slot >= 0 && slot < kSlots) g_slots[slot].state.store(Free, std::memory_order_release);
+    if (slot < 0 || slot >= kSlots) return;
+    int live = Live;  // not Removing: the handler is reading its path
+    g_slots[slot].state.compare_exchange_strong(live, Free, std::memory_order_release, std::memory_order_relaxed);
 }
 
 }  // namespace vkray::temp_files

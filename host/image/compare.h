@@ -1,8 +1,9 @@
 // Image difference metrics for `vkray compare` and for tests that check one renderer against another.
 //
 // Values are compared as stored in Image (toCommonSpace below brings two files into one space first):
-// PNG/BMP in [0, 1] units, PFM raw (so for depth AOVs the errors are in scene units). Per channel, err = |a - b|, with these rules for non-finite values
-// (AOVs hold +inf for a miss, and a broken shader may leave NaN):
+// PNG/BMP in [0, 1] units, PFM raw (so for depth AOVs the errors are in scene units). Per channel,
+// err = |a - b|, with these rules for non-finite values (AOVs hold +inf for a miss, and a broken
+// shader may leave NaN):
 //   - both values identical (the same infinity, or both NaN): err = 0, like any equal pair;
 //   - otherwise, if either is non-finite (inf vs finite, +inf vs -inf, NaN vs a number): a
 //     "non-finite mismatch". Its pixel is bad, maxError becomes +inf, and it is left out of the RMSE

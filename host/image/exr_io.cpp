@@ -143,7 +143,8 @@ Image decodeExr(const fs::path& path, const std::vector<unsigned char>& bytes, I
             count = 1;
         if (count == 0) {
             std::string found;
-            for (auto it = channels.begin(); it != channels.end(); ++it) found += (found.empty() ? "" : ", ") + escapedControls(it.name());
+            for (auto it = channels.begin(); it != channels.end(); ++it)
+                found += (found.empty() ? "" : ", ") + escapedControls(it.name());
             throw fileError(path, "EXR without R, G, B or Y channels (it has: " + (found.empty() ? "none" : found) + ")");
         }
         Image image(int(w), int(h), count);

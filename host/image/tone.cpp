@@ -14,8 +14,10 @@
 namespace vkray {
 namespace {
 
+bool isExposure(double stops) { return std::isfinite(stops) && std::fabs(stops) <= double(kMaxExposureStops); }
+
 void checkExposure(float exposure) {
-    if (!std::isfinite(exposure) || std::fabs(exposure) > kMaxExposureStops)
+    if (!isExposure(exposure))
         throw Error("exposure " + std::to_string(exposure) + " is not a number of stops within +-" +
                     std::to_string(int(kMaxExposureStops)));
 }
@@ -30,7 +32,7 @@ Encoding parseEncoding(std::string_view name, double exposure) {
         e.srgb = false;
     else
         throw Error("--encoding '" + std::string(name) + "': expected srgb or linear");
-    if (!std::isfinite(exposure) || std::fabs(exposure) > double(kMaxExposureStops)) {
+    if (!isExposure(exposure)) {
         char buf[64];
         std::snprintf(buf, sizeof buf, "%g", exposure);
         throw Error(std::string("--exposure ") + buf + ": must be a number of stops within +-" +

@@ -35,6 +35,10 @@ constexpr uint64_t kParsing = 3 * sizeof(glm::dvec3) + sizeof(Triangle);
 constexpr uint64_t kProcessBase = uint64_t(96) << 20;
 // The device's own buffers besides the scene's: the tiles' pixels, counters, materials, lights.
 constexpr uint64_t kDeviceBase = uint64_t(64) << 20;
+// Counts past this (a petabyte of scene arrays alone) are counted as this: the estimate's products
+// (a few kB a triangle at the most) stay far from wrapping around 2^64, so no count, however absurd,
+// gets a small estimate.
+constexpr uint64_t kMaxCounted = uint64_t(1) << 40;
 
 // The kd-tree's arrays: the nodes and leaf lists every traversal reads (kd_layout.h), and with them
 // the parent links and node boxes of kd-backtrack, or the leaves' boxes and six ropes of kd-ropes.
@@ -96,6 +100,17 @@ std::optional<uint64_t> minOf(std::optional<uint64_t> a, std::optional<uint64_t>
     return a ? a : b;
 }
 
+MemoryLimits readHostMemoryLimits() {
+    MemoryLimits l;
+    l.hostAvailable = readProcValue("/proc/meminfo", "MemAvailable:");
+    l.processLimit = minOf(rlimitLeft(RLIMIT_AS, "VmSize:"), rlimitLeft(RLIMIT_DATA, "VmData:"));
+    if (const auto max = cgroupValue("memory.max")) {
+        const uint64_t used = cgroupValue("memory.current").value_or(0);
+        l.cgroupLimit = *max > used ? *max - used : 0;
+    }
+    return l;
+}
+
 // The accelerators compared in a refusal, one of each family; of those that need as little, the first is named.
 std::vector<std::string> candidates(bool device) {
     std::vector<std::string> names{"bvh", "kd-restart", "brute"};
@@ -140,6 +155,8 @@ std::string alternative(uint64_t triangles, uint64_t normals, const MemoryUse& u
 }  // namespace
 
 MemoryEstimate estimateMemory(uint64_t triangles, uint64_t normals, const MemoryUse& use) {
+    triangles = std::min(triangles, kMaxCounted);
+    normals = std::min(normals, kMaxCounted);
     const AccelModel m = modelOf(use.accel);
     MemoryEstimate e;
     const uint64_t scene = triangles * kSceneTriangle + normals * kSceneNormals;
@@ -176,14 +193,8 @@ std::optional<std::pair<uint64_t, std::string>> MemoryLimits::host() const {
 }
 
 MemoryLimits hostMemoryLimits() {
-    MemoryLimits l;
-    l.hostAvailable = readProcValue("/proc/meminfo", "MemAvailable:");
-    l.processLimit = minOf(rlimitLeft(RLIMIT_AS, "VmSize:"), rlimitLeft(RLIMIT_DATA, "VmData:"));
-    if (const auto max = cgroupValue("memory.max")) {
-        const uint64_t used = cgroupValue("memory.current").value_or(0);
-        l.cgroupLimit = *max > used ? *max - used : 0;
-    }
-    return l;
+    static const MemoryLimits limits = readHostMemoryLimits();
+    return limits;
 }
 
 std::optional<std::string> memoryProblem(uint64_t triangles, uint64_t normals, const MemoryUse& use,

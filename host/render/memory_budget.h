@@ -77,7 +77,9 @@ struct MemoryLimits {
     std::optional<std::pair<uint64_t, std::string>> host() const;
 };
 
-// The host's limits now (no device part): read from /proc and getrlimit.
+// The host's limits (no device part), read from /proc and getrlimit once, at the first call: before
+// the first scene is loaded, as the estimate holds the whole process (a limit read once the scene is
+// loaded would count its arrays twice, as used and as needed), and the same for every scene after it.
 MemoryLimits hostMemoryLimits();
 
 // Why a render as `use` of `triangles` triangles, `normals` of them with vertex normals, does not fit
@@ -95,7 +97,7 @@ struct MemoryReport {
 };
 
 // `options` with ParseOptions::memoryProblem set: triangles past what a render as `use` fits in the
-// host's memory (the limits read now, once) are refused at the line that would make them. The
+// host's memory (hostMemoryLimits) are refused at the line that would make them. The
 // device's limits come once it is open (checkSceneMemory).
 ParseOptions withinMemory(const MemoryUse& use, ParseOptions options = {});
 

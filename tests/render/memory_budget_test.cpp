@@ -62,6 +62,21 @@ TEST(MemoryEstimate, GrowsWithTheScene) {
     EXPECT_LT(estimateMemory(1000000, 0, loaded).hostBytes, estimateMemory(1000000, 0, use).hostBytes);
 }
 
+// A count no scene could have gets an estimate past any machine, not one wrapped around 2^64.
+TEST(MemoryEstimate, NeverWrapsAround) {
+    for (const char* name : {"brute", "bvh", "kd-ropes", "rayquery"}) {
+        MemoryUse use = gpuRender(accel::resolveAccel(name));
+        use.deviceSharesHost = true;
+        const MemoryEstimate big = estimateMemory(uint64_t(1) << 40, uint64_t(1) << 40, use);
+        for (const uint64_t n : {uint64_t(1) << 58, uint64_t(1) << 60, UINT64_MAX}) {
+            const MemoryEstimate e = estimateMemory(n, n, use);
+            EXPECT_GE(e.hostBytes, big.hostBytes) << name << " " << n;
+            EXPECT_GE(e.deviceBytes, big.deviceBytes) << name << " " << n;
+            EXPECT_TRUE(memoryProblem(n, 0, use, MemoryLimits{.hostAvailable = uint64_t(1) << 40})) << name << " " << n;
+        }
+    }
+}
+
 constexpr uint64_t kMB = 1000000;
 
 TEST(MemoryRefusal, NamesTheNeedTheLimitAndTheAcceleratorThatNeedsLess) {
