@@ -69,10 +69,10 @@ MemoryUse memoryUseOf(const RenderRequest& request);
 
 // What the machine and the device let the process have; a limit not known or not set is empty.
 struct MemoryLimits {
-    std::optional<uint64_t> hostAvailable;  // /proc/meminfo MemAvailable
-    std::optional<uint64_t> processLimit;   // RLIMIT_AS or RLIMIT_DATA (ulimit -v), less what is mapped
-    std::optional<uint64_t> cgroupLimit;    // the cgroup's memory.max, less its memory.current
-    std::optional<uint64_t> deviceHeap;     // device-local heap (VK_EXT_memory_budget's budget where known)
+    std::optional<uint64_t> hostAvailable{};  // /proc/meminfo MemAvailable
+    std::optional<uint64_t> processLimit{};   // RLIMIT_AS or RLIMIT_DATA (ulimit -v), less what is mapped
+    std::optional<uint64_t> cgroupLimit{};    // the cgroup's memory.max, less its memory.current
+    std::optional<uint64_t> deviceHeap{};     // device-local heap (VK_EXT_memory_budget's budget where known)
     // The smallest host limit and its name ("MemAvailable", "ulimit -v", "cgroup memory.max").
     std::optional<std::pair<uint64_t, std::string>> host() const;
 };
