@@ -19,6 +19,10 @@
 #include <tbb/scalable_allocator.h>
 #include <tbb/task_arena.h>
 
+#if defined(__x86_64__) || defined(__i386__)
+#include <x86intrin.h>
+#endif
+
 #include "core/error.h"
 #include "core/fork_join.h"
 #include "core/worker_arena.h"
@@ -26,6 +30,7 @@
 #include "core/radix_sort.h"
 #include "core/timing.h"
 #include "geometry/ray_triangle.h"
+#include "accel/kd/kd_clip.h"
 
 namespace vkray::accel::kd {
 namespace {
@@ -35,13 +40,6 @@ namespace {
 constexpr size_t kParallelEvents = 1 << 13;
 // Nodes with at least this many events also sweep and distribute their three axes as parallel tasks.
 constexpr size_t kParallelAxesEvents = 1 << 16;
-
-// f(0), f(1), f(2): as three oneTBB tasks when `parallel`.
-template <class F>
-void forEachAxis(bool parallel, const F& f) {
-    if (parallel) tbb::parallel_invoke([&] { f(0); }, [&] { f(1); }, [&] { f(2); });
-    else for (int k = 0; k < 3; ++k) f(k);
-}
 
 // Wald and Havran 2006, section 4.2: at equal positions, ends sort before planars before starts,
 // which is the order the sweep needs to count each side.
@@ -82,7 +80,9 @@ private:
     uint64_t key_ = 0;
 };
 
-using AxisEvents = BuildArray<Event>;
+// The lists of the nodes below the root are made and freed by the million: from oneTBB's scalable
+// allocator, whose per-thread caches serve them without a lock, not glibc's.
+using AxisEvents = std::vector<Event, FirstTouchAllocator<Event, tbb::scalable_allocator<Event>>>;
 using NodeEvents = std::array<AxisEvents, 3>;
 
 enum class Side : uint8_t { Both, BelowOnly, AboveOnly };
@@ -116,74 +116,6 @@ struct BuildNode {
     }
     static void operator delete(void* p) { scalable_free(p); }
 };
-
-Box boundsOf(const Triangle& t) {
-    return Box{glm::min(t.p0, glm::min(t.p1, t.p2)), glm::max(t.p0, glm::max(t.p1, t.p2))};
-}
-
-Box intersection(const Box& a, const Box& b) { return Box{glm::max(a.lo, b.lo), glm::min(a.hi, b.hi)}; }
-
-bool isEmpty(const Box& b) { return b.lo.x > b.hi.x || b.lo.y > b.hi.y || b.lo.z > b.hi.z; }
-
-bool contains(const Box& outer, const Box& inner) {
-    return glm::all(glm::lessThanEqual(outer.lo, inner.lo)) && glm::all(glm::lessThanEqual(inner.hi, outer.hi));
-}
-
-float roundDown(double x) {
-    float f = float(x);
-    return double(f) > x ? std::nextafter(f, -std::numeric_limits<float>::infinity()) : f;
-}
-
-float roundUp(double x) {
-    float f = float(x);
-    return double(f) < x ? std::nextafter(f, std::numeric_limits<float>::infinity()) : f;
-}
-
-// Bounds of the part of the triangle inside `box` ("perfect splits", Wald and Havran 4.3):
-// Sutherland-Hodgman clipping against the six planes in double (a triangle gains at most one vertex
-// per plane), bounds rounded outwards to float, then intersected with the box. When rounding makes
-// the clipped polygon vanish or leave the box, the triangle's bounding box within `box` stands in:
-// it contains the exact clipped part, so nothing is ever lost, only bounded less tightly.
-Box clippedBounds(const Triangle& tri, const Box& box) {
-    const Box fallback = intersection(boundsOf(tri), box);
-    if (contains(box, boundsOf(tri))) return fallback;
-    std::array<glm::dvec3, 10> poly{glm::dvec3(tri.p0), glm::dvec3(tri.p1), glm::dvec3(tri.p2)}, next{};
-    size_t n = 3;
-    for (int axis = 0; axis < 3 && n > 0; ++axis)
-        for (int upper = 0; upper < 2 && n > 0; ++upper) {
-            const double plane = upper ? box.hi[axis] : box.lo[axis];
-            std::array<bool, 10> inside{};
-            bool all = true;
-            for (size_t i = 0; i < n; ++i) {
-                inside[i] = upper ? poly[i][axis] <= plane : poly[i][axis] >= plane;
-                all = all && inside[i];
-            }
-            if (all) continue;  // the plane cuts nothing off: the pass would copy the polygon as it is
-            size_t m = 0;
-            for (size_t i = 0; i < n; ++i) {
-                const size_t j = i + 1 == n ? 0 : i + 1;
-                const glm::dvec3& a = poly[i];
-                const glm::dvec3& b = poly[j];
-                if (inside[i]) next[m++] = a;
-                if (inside[i] != inside[j]) {
-                    glm::dvec3 v = a + (b - a) * ((plane - a[axis]) / (b[axis] - a[axis]));
-                    v[axis] = plane;  // on the plane exactly, whatever the interpolation rounded to
-                    next[m++] = v;
-                }
-            }
-            std::swap(poly, next);
-            n = m;
-        }
-    if (n == 0) return fallback;
-    glm::dvec3 lo = poly[0], hi = poly[0];
-    for (size_t i = 1; i < n; ++i) {
-        lo = glm::min(lo, poly[i]);
-        hi = glm::max(hi, poly[i]);
-    }
-    const Box rounded{{roundDown(lo.x), roundDown(lo.y), roundDown(lo.z)}, {roundUp(hi.x), roundUp(hi.y), roundUp(hi.z)}};
-    const Box clipped = intersection(rounded, box);
-    return isEmpty(clipped) ? fallback : clipped;
-}
 
 // The events of one triangle from its clipped bounds `b` (Wald and Havran 4.2), f(k, event) for
 // each: on axis k a planar event where the clipped part is flat on that axis, a start and an end
@@ -254,9 +186,10 @@ size_t triangleCount(const NodeEvents& ev) {
     return size_t(std::count_if(ev[0].begin(), ev[0].end(), [](const Event& e) { return e.type() != EventType::End; }));
 }
 
-// The node's triangles, ascending.
-TriangleList trianglesOf(const NodeEvents& ev) {
+// The node's `n` triangles, ascending.
+TriangleList trianglesOf(const NodeEvents& ev, size_t n) {
     TriangleList tris;
+    tris.reserve(n);
     for (const Event& e : ev[0])
         if (e.type() != EventType::End) tris.push_back(e.triangle());
     std::sort(tris.begin(), tris.end());
@@ -293,6 +226,34 @@ struct AxisAreas {
     }
 };
 
+// The build's phases (KdBuildTimes), timed per worker in processor ticks, turned into milliseconds
+// once, against the wall clock, at the end. Nodes of at least kTimedEvents events are timed phase by
+// phase; a subtree below that is timed as a whole (kSmall), on the one worker that builds it (its
+// nodes are below kParallelEvents), so the timing costs nothing that matters where nodes are many
+// and small.
+enum Phase : size_t { kSweep, kClassify, kDistribute, kClip, kMerge, kLeaves, kSmall, kPhaseCount };
+constexpr size_t kTimedEvents = 1 << 10;
+static_assert(kTimedEvents <= kParallelEvents);
+
+uint64_t ticks() {
+#if defined(__x86_64__) || defined(__i386__)
+    return __rdtsc();
+#else
+    return uint64_t(Clock::now().time_since_epoch().count());
+#endif
+}
+
+// What one worker reuses from node to node instead of allocating it anew. The side marks are
+// indexed by triangle (Wald and Havran 5.2); the marks and the straddlers' new events are used only
+// within one node's split, where no other node's task runs on this worker (splitEvents).
+struct WorkerScratch {
+    std::vector<Side> side;
+    std::vector<uint32_t> straddling;
+    std::array<NodeEvents, 2> fresh;  // the straddlers' events in the child below, above
+    std::array<uint64_t, kPhaseCount> ticks{};
+    bool inSmallSubtree = false;  // timed as a whole (kSmall): its phases are not
+};
+
 class Builder {
 public:
     Builder(const std::vector<Triangle>& tris, const KdConfig& config, const BuildProgress& progress)
@@ -300,21 +261,36 @@ public:
 
     std::unique_ptr<BuildNode> build(NodeEvents ev, const Box& box, int depth, size_t n, double budget);
     void setMaxDepth(int d) { maxDepth_ = d; }
+    // Ticks of each phase, summed over the workers.
+    std::array<uint64_t, kPhaseCount> phaseTicks() const;
 
 private:
     double splitCost(const AxisAreas& areas, float pos, size_t nBelow, size_t nAbove) const;
     void sweepAxis(int axis, const AxisEvents& ev, const Box& box, size_t n, double budget, SplitChoice& best) const;
-    SplitChoice findBestSplit(const NodeEvents& ev, const Box& box, size_t n, double budget, bool parallel) const;
-    std::pair<NodeEvents, NodeEvents> splitEvents(NodeEvents ev, const SplitChoice& s, const Box& below,
-                                                  const Box& above, bool parallel);
-    std::unique_ptr<BuildNode> makeLeaf(const NodeEvents& ev, int depth);
+    SplitChoice findBestSplit(WorkerScratch& w, const NodeEvents& ev, const Box& box, size_t n, double budget,
+                              bool parallel);
+    std::pair<NodeEvents, NodeEvents> splitEvents(WorkerScratch& w, NodeEvents ev, const SplitChoice& s,
+                                                  const Box& below, const Box& above, bool parallel);
+    void splitEventsOn(WorkerScratch& w, NodeEvents& ev, const SplitChoice& s, const Box& below, const Box& above,
+                       bool parallel, NodeEvents& belowEv, NodeEvents& aboveEv);
+    std::unique_ptr<BuildNode> makeLeaf(WorkerScratch& w, const NodeEvents& ev, int depth, size_t n);
+    // Ticks since `start` to `phase` of `w`, unless w is in a small subtree (timed as a whole).
+    static void lap(WorkerScratch& w, Phase phase, uint64_t start) {
+        if (!w.inSmallSubtree) w.ticks[phase] += ticks() - start;
+    }
+    static uint64_t start(const WorkerScratch& w) { return w.inSmallSubtree ? 0 : ticks(); }
+    // f(0), f(1), f(2), its time added to `phase` of the worker that ran it: as three oneTBB tasks
+    // when `parallel`, each on its own worker's account, else in a row on `w`, this worker's.
+    template <class F>
+    void forEachAxisTimed(bool parallel, Phase phase, WorkerScratch& w, const F& f);
 
     const std::vector<Triangle>& tris_;
     KdConfig config_;
     int maxDepth_ = 0;
-    // Per-thread side marks indexed by triangle (Wald and Havran 5.2); used only between setting and
-    // reading them within one node, with no task boundary in between.
-    tbb::enumerable_thread_specific<std::vector<Side>> sides_;
+    // The key per instance: local() is a thread-local lookup, which every node makes.
+    tbb::enumerable_thread_specific<WorkerScratch, tbb::cache_aligned_allocator<WorkerScratch>,
+                                    tbb::ets_key_per_instance>
+        scratch_;
 
     // Progress: a leaf at depth d completes 2^-d of the tree (the weights of a binary tree's leaves
     // sum to 1), kept in fixed point.
@@ -324,6 +300,28 @@ private:
     double reported_ = 0.0;
 };
 
+std::array<uint64_t, kPhaseCount> Builder::phaseTicks() const {
+    std::array<uint64_t, kPhaseCount> sum{};
+    for (const WorkerScratch& w : scratch_)
+        for (size_t p = 0; p < kPhaseCount; ++p) sum[p] += w.ticks[p];
+    return sum;
+}
+
+template <class F>
+void Builder::forEachAxisTimed(bool parallel, Phase phase, WorkerScratch& w, const F& f) {
+    if (parallel) {
+        const auto timed = [&](int k) {
+            const uint64_t t = ticks();
+            f(k);
+            scratch_.local().ticks[phase] += ticks() - t;
+        };
+        tbb::parallel_invoke([&] { timed(0); }, [&] { timed(1); }, [&] { timed(2); });
+    } else {
+        const uint64_t t = start(w);
+        for (int k = 0; k < 3; ++k) f(k);
+        lap(w, phase, t);
+    }
+}
 
 double Builder::splitCost(const AxisAreas& areas, float pos, size_t nBelow, size_t nAbove) const {
     const double below = areas.caps + areas.sides * (double(pos) - areas.lo);
@@ -346,14 +344,20 @@ void Builder::sweepAxis(int axis, const AxisEvents& ev, const Box& box, size_t n
                         SplitChoice& best) const {
     const AxisAreas areas(box, axis);
     size_t startedBefore = 0, endingAfter = n;
-    for (size_t i = 0; i < ev.size();) {
-        const float p = ev[i].pos();
-        const uint32_t at = ev[i].orderedPos();
-        // The events at p, counted by type (they come sorted end, planar, start).
-        std::array<size_t, 3> count{};
-        for (; i < ev.size() && ev[i].orderedPos() == at; ++i) ++count[size_t(ev[i].type())];
-        const size_t ends = count[size_t(EventType::End)], planars = count[size_t(EventType::Planar)],
-                     starts = count[size_t(EventType::Start)];
+    const Event* e = ev.data();
+    const Event* const end = e + ev.size();
+    // The events at one position come sorted end, planar, start: each type's run is counted by
+    // comparing the key's position and type bits (Event) with that run's, one compare an event.
+    const auto run = [&](uint64_t positionAndType) {
+        const Event* const first = e;
+        while (e != end && e->key() >> 30 == positionAndType) ++e;
+        return size_t(e - first);
+    };
+    while (e != end) {
+        const float p = e->pos();
+        const uint64_t at = uint64_t(e->orderedPos()) << 2;
+        const size_t ends = run(at | uint64_t(EventType::End)), planars = run(at | uint64_t(EventType::Planar)),
+                     starts = run(at | uint64_t(EventType::Start));
         endingAfter -= ends + planars;
         if (usableSplit(box, axis, p) && double(startedBefore + endingAfter + planars) <= budget + 0.5) {
             const size_t below = startedBefore, above = endingAfter;
@@ -373,46 +377,74 @@ void Builder::sweepAxis(int axis, const AxisEvents& ev, const Box& box, size_t n
 // The three axes' sweeps are independent: a big node sweeps them as parallel tasks (the top levels
 // would otherwise run on one thread while the others wait), then takes the best in axis order with
 // the same strict comparison as one sweep after the other, so the choice is the same either way.
-SplitChoice Builder::findBestSplit(const NodeEvents& ev, const Box& box, size_t n, double budget,
-                                   bool parallel) const {
+SplitChoice Builder::findBestSplit(WorkerScratch& w, const NodeEvents& ev, const Box& box, size_t n, double budget,
+                                   bool parallel) {
     if (!(box.surfaceArea() > 0.0)) return {};
     std::array<SplitChoice, 3> perAxis;
-    forEachAxis(parallel, [&](int axis) { sweepAxis(axis, ev[axis], box, n, budget, perAxis[axis]); });
+    forEachAxisTimed(parallel, kSweep, w,
+                     [&](int axis) { sweepAxis(axis, ev[axis], box, n, budget, perAxis[axis]); });
     SplitChoice best = perAxis[0];
     for (int axis = 1; axis < 3; ++axis)
         if (perAxis[axis].cost < best.cost) best = perAxis[axis];
     return best;
 }
 
+// Merges the sorted `fresh` into the sorted `kept`, in place, from the back, in the room reserved
+// behind `kept`: only the kept events above the first new one move, and nothing is allocated.
+void mergeIn(AxisEvents& kept, AxisEvents& fresh) {
+    if (fresh.empty()) return;
+    std::sort(fresh.begin(), fresh.end());
+    const size_t old = kept.size();
+    kept.resize(old + fresh.size());
+    Event* out = kept.data() + kept.size();
+    const Event* k = kept.data() + old;
+    const Event* f = fresh.data() + fresh.size();
+    while (f != fresh.data()) {
+        if (k != kept.data() && *(f - 1) < *(k - 1)) *--out = *--k;
+        else *--out = *--f;
+    }
+}
+
 // Wald and Havran 5.2-5.3: classify the triangles by the chosen split's axis events, hand each
 // one-sided triangle's events to its side in order, clip the straddling triangles to both children,
 // sort their few new events and merge them in. Everything stays sorted without a full sort.
-std::pair<NodeEvents, NodeEvents> Builder::splitEvents(NodeEvents ev, const SplitChoice& s, const Box& below,
-                                                       const Box& above, bool parallel) {
-    std::vector<Side>& side = sides_.local();
+// A big node's axes are distributed and merged as parallel tasks that read this worker's scratch,
+// so the wait is isolated: this worker runs no other node's task (which would overwrite the
+// scratch) until its own are done.
+std::pair<NodeEvents, NodeEvents> Builder::splitEvents(WorkerScratch& w, NodeEvents ev, const SplitChoice& s,
+                                                       const Box& below, const Box& above, bool parallel) {
+    std::pair<NodeEvents, NodeEvents> children;
+    const auto split = [&] { splitEventsOn(w, ev, s, below, above, parallel, children.first, children.second); };
+    if (parallel) tbb::this_task_arena::isolate(split);
+    else split();
+    return children;
+}
+
+void Builder::splitEventsOn(WorkerScratch& w, NodeEvents& ev, const SplitChoice& s, const Box& below,
+                            const Box& above, bool parallel, NodeEvents& belowEv, NodeEvents& aboveEv) {
+    uint64_t t = start(w);
+    std::vector<Side>& side = w.side;
     if (side.size() < tris_.size()) side.resize(tris_.size());
-    const AxisEvents& ek = ev[s.axis];
-    for (const Event& e : ek) side[e.triangle()] = Side::Both;
+    // One pass in sorted order, where a triangle's start comes before its end: ending at or before
+    // the plane = below only, starting at or after it = above only (Wald and Havran 5.1); a planar
+    // one goes where the split chose; the rest straddle.
     const uint32_t split = Event::orderedBits(s.pos);
-    for (const Event& e : ek) {
-        // Wald and Havran 5.1: ending at the plane = below only, starting at it = above only.
-        const uint32_t at = e.orderedPos();
-        if (e.type() == EventType::End && at <= split) side[e.triangle()] = Side::BelowOnly;
-        if (e.type() == EventType::Start && at >= split) side[e.triangle()] = Side::AboveOnly;
-        if (e.type() == EventType::Planar) {
-            const bool goesBelow = at < split || (at == split && s.planarBelow);
-            side[e.triangle()] = goesBelow ? Side::BelowOnly : Side::AboveOnly;
+    w.straddling.clear();
+    for (const Event& e : ev[s.axis]) {
+        const uint32_t at = e.orderedPos(), tri = e.triangle();
+        switch (e.type()) {
+        case EventType::Start: side[tri] = at >= split ? Side::AboveOnly : Side::Both; break;
+        case EventType::End:
+            if (at <= split) side[tri] = Side::BelowOnly;
+            else if (side[tri] == Side::Both) w.straddling.push_back(tri);
+            break;
+        case EventType::Planar:
+            side[tri] = at < split || (at == split && s.planarBelow) ? Side::BelowOnly : Side::AboveOnly;
+            break;
         }
     }
-    std::vector<uint32_t> straddling;
-    for (const Event& e : ek)
-        if (e.type() == EventType::Start && side[e.triangle()] == Side::Both) straddling.push_back(e.triangle());
-
-    // Each axis's lists are distributed on their own, in parallel for a big node. The tasks read this
-    // thread's side marks, so the wait is isolated: this thread runs no other node's task (which
-    // would overwrite the marks) until the three are done.
-    NodeEvents belowEv, aboveEv;
-    const auto distribute = [&](int k) {
+    lap(w, kClassify, t);
+    forEachAxisTimed(parallel, kDistribute, w, [&](int k) {
         // A triangle has at most two events per axis, so twice a side's count (straddlers included)
         // holds its kept events and the straddlers' new ones: no reallocation below.
         belowEv[k].reserve(2 * s.below);
@@ -422,31 +454,25 @@ std::pair<NodeEvents, NodeEvents> Builder::splitEvents(NodeEvents ev, const Spli
             else if (side[e.triangle()] == Side::AboveOnly) aboveEv[k].push_back(e);
         }
         AxisEvents().swap(ev[k]);  // free the parent's lists before the children grow theirs
-    };
-    tbb::this_task_arena::isolate([&] { forEachAxis(parallel, distribute); });
-    NodeEvents newBelow, newAbove;
-    for (uint32_t t : straddling) {
-        appendEvents(t, clippedBounds(tris_[t], below), newBelow);
-        appendEvents(t, clippedBounds(tris_[t], above), newAbove);
-    }
-    // In place, in the room reserved above: the merge buffers only the few new events.
-    const auto mergeIn = [](AxisEvents& kept, AxisEvents& fresh) {
-        if (fresh.empty()) return;
-        std::sort(fresh.begin(), fresh.end());
-        const size_t old = kept.size();
-        kept.insert(kept.end(), fresh.begin(), fresh.end());
-        std::inplace_merge(kept.begin(), kept.begin() + ptrdiff_t(old), kept.end());
-    };
-    forEachAxis(parallel, [&](int k) {
-        mergeIn(belowEv[k], newBelow[k]);
-        mergeIn(aboveEv[k], newAbove[k]);
     });
-    return {std::move(belowEv), std::move(aboveEv)};
+    t = start(w);
+    for (NodeEvents& fresh : w.fresh)
+        for (AxisEvents& f : fresh) f.clear();
+    for (uint32_t tri : w.straddling) {
+        appendEvents(tri, clippedBounds(tris_[tri], below), w.fresh[0]);
+        appendEvents(tri, clippedBounds(tris_[tri], above), w.fresh[1]);
+    }
+    lap(w, kClip, t);
+    forEachAxisTimed(parallel, kMerge, w, [&](int k) {
+        mergeIn(belowEv[k], w.fresh[0][k]);
+        mergeIn(aboveEv[k], w.fresh[1][k]);
+    });
 }
 
-std::unique_ptr<BuildNode> Builder::makeLeaf(const NodeEvents& ev, int depth) {
+std::unique_ptr<BuildNode> Builder::makeLeaf(WorkerScratch& w, const NodeEvents& ev, int depth, size_t n) {
+    const uint64_t t = start(w);
     auto leaf = std::make_unique<BuildNode>();
-    leaf->triangles = trianglesOf(ev);
+    leaf->triangles = trianglesOf(ev, n);
     leaf->subtreeRefs = leaf->triangles.size();
     const uint64_t done = doneWeight_.fetch_add(uint64_t(1) << (62 - depth)) + (uint64_t(1) << (62 - depth));
     if (progress_) {
@@ -457,6 +483,7 @@ std::unique_ptr<BuildNode> Builder::makeLeaf(const NodeEvents& ev, int depth) {
             progress_("kd-tree: splitting", fraction);
         }
     }
+    lap(w, kLeaves, t);
     return leaf;
 }
 
@@ -467,17 +494,27 @@ std::unique_ptr<BuildNode> Builder::makeLeaf(const NodeEvents& ev, int depth) {
 // references per triangle, whatever the geometry.
 // `n`: the node's triangles (the split that made it counted them).
 std::unique_ptr<BuildNode> Builder::build(NodeEvents ev, const Box& box, int depth, size_t n, double budget) {
-    if (n == 0 || depth >= maxDepth_) return makeLeaf(ev, depth);
+    // This worker's scratch, valid until the fork below (the subtrees may run on other workers).
+    WorkerScratch& w = scratch_.local();
+    if (!w.inSmallSubtree && ev[0].size() < kTimedEvents) {
+        const uint64_t t = ticks();
+        w.inSmallSubtree = true;
+        std::unique_ptr<BuildNode> subtree = build(std::move(ev), box, depth, n, budget);
+        w.inSmallSubtree = false;
+        w.ticks[kSmall] += ticks() - t;
+        return subtree;
+    }
+    if (n == 0 || depth >= maxDepth_) return makeLeaf(w, ev, depth, n);
     const bool parallel = ev[0].size() >= kParallelEvents, parallelAxes = ev[0].size() >= kParallelAxesEvents;
-    const SplitChoice s = findBestSplit(ev, box, n, budget, parallelAxes);
+    const SplitChoice s = findBestSplit(w, ev, box, n, budget, parallelAxes);
     // SAH termination (Wald and Havran, section 3): split only when it is cheaper than a leaf.
-    if (s.axis < 0 || s.cost >= config_.intersectionCost * double(n)) return makeLeaf(ev, depth);
+    if (s.axis < 0 || s.cost >= config_.intersectionCost * double(n)) return makeLeaf(w, ev, depth, n);
 
     auto node = std::make_unique<BuildNode>();
     node->axis = s.axis;
     node->split = s.pos;
     const auto [belowBox, aboveBox] = splitBox(box, s.axis, s.pos);
-    auto [belowEv, aboveEv] = splitEvents(std::move(ev), s, belowBox, aboveBox, parallelAxes);
+    auto [belowEv, aboveEv] = splitEvents(w, std::move(ev), s, belowBox, aboveBox, parallelAxes);
     const double share = budget / double(s.below + s.above);
     const auto buildBelow = [&, &bEv = belowEv, &bBox = belowBox] {
         node->below = build(std::move(bEv), bBox, depth + 1, s.below, share * double(s.below));
@@ -542,10 +579,17 @@ KdBuildResult buildSahKdTree(const std::vector<Triangle>& triangles, const KdCon
         result.times.eventsMs = msSince(start);
 
         const Clock::time_point treeStart = Clock::now();
+        const uint64_t treeTicks = ticks();
         Builder builder(triangles, config, progress);
         builder.setMaxDepth(config.resolvedMaxDepth(n));
         std::unique_ptr<BuildNode> tree = builder.build(std::move(ev), root, 0, n, config.maxDuplication * double(n));
         result.times.treeMs = msSince(treeStart);
+        const double msPerTick = result.times.treeMs / double(std::max<uint64_t>(1, ticks() - treeTicks));
+        const std::array<uint64_t, kPhaseCount> phase = builder.phaseTicks();
+        KdBuildTimes& t = result.times;
+        for (auto [p, ms] : {std::pair{kSweep, &t.sweepMs}, {kClassify, &t.classifyMs}, {kDistribute, &t.distributeMs},
+                             {kClip, &t.clipMs}, {kMerge, &t.mergeMs}, {kLeaves, &t.leavesMs}, {kSmall, &t.smallMs}})
+            *ms = double(phase[p]) * msPerTick;
 
         const Clock::time_point flattenStart = Clock::now();
         if (progress) progress("kd-tree: flattening", 1.0);
