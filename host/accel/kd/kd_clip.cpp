@@ -1,6 +1,8 @@
 #include "accel/kd/kd_clip.h"
 
 #include <array>
+#include <bit>
+#include <cstdint>
 #include <cmath>
 #include <limits>
 #include <utility>
@@ -8,14 +10,24 @@
 namespace vkray::accel::kd {
 namespace {
 
+// The float next to f towards -infinity (up = false) or +infinity, as std::nextafter gives it for
+// every float that a double's rounding makes (finite or infinite, never NaN), by stepping its bits:
+// the library call was a good part of the clipping's time.
+float nextFloat(float f, bool up) {
+    if (f == 0.0f) return up ? std::numeric_limits<float>::denorm_min() : -std::numeric_limits<float>::denorm_min();
+    const uint32_t u = std::bit_cast<uint32_t>(f);
+    // Away from zero: the magnitude's bits grow; towards it, they shrink.
+    return std::bit_cast<float>((f > 0.0f) == up ? u + 1 : u - 1);
+}
+
 float roundDown(double x) {
     float f = float(x);
-    return double(f) > x ? std::nextafter(f, -std::numeric_limits<float>::infinity()) : f;
+    return double(f) > x ? nextFloat(f, false) : f;
 }
 
 float roundUp(double x) {
     float f = float(x);
-    return double(f) < x ? std::nextafter(f, std::numeric_limits<float>::infinity()) : f;
+    return double(f) < x ? nextFloat(f, true) : f;
 }
 
 }  // namespace

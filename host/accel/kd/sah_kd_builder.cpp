@@ -209,22 +209,39 @@ bool usableSplit(const Box& box, int axis, float pos) {
     return pos > box.lo[axis] && pos < box.hi[axis] && (pos == 0.0f || std::abs(pos) >= std::numeric_limits<float>::min());
 }
 
-// The children's surface areas along one axis are linear in the split position: the two faces
-// across the axis (`caps`) plus the four along it (`sides` per unit of length). Set once per sweep,
-// so each candidate costs a few multiplications instead of two boxes' areas.
-struct AxisAreas {
-    double lo, hi, caps, sides, invArea;
+// The SAH cost of a split along one axis (KdConfig), with what depends only on the node and the axis
+// set once per sweep. The children's surface areas are linear in the split position: the two faces
+// across the axis (`caps`) plus the four along it (`sides` per unit of length), so a candidate costs
+// a few multiplications instead of two boxes' areas. The products are formed as in KdConfig's
+// formula, Ct + Ci * bonus / SA(N) * (SA(L) nL + SA(R) nR), left to right, so every candidate's cost
+// is the same double whichever way the sweep reaches it. Counts are signed: a signed integer
+// converts to double in one instruction, an unsigned one does not.
+struct AxisCost {
+    double lo, hi, caps, sides, traversal, fullScale, emptyScale, minEmpty;
 
-    AxisAreas(const Box& box, int axis) {
+    AxisCost(const Box& box, int axis, double invArea, const KdConfig& config) {
         const glm::dvec3 e = glm::dvec3(box.hi) - glm::dvec3(box.lo);
         const double a = e[(axis + 1) % 3], b = e[(axis + 2) % 3];
         lo = box.lo[axis];
         hi = box.hi[axis];
         caps = 2.0 * a * b;
         sides = 2.0 * (a + b);
-        invArea = 1.0 / box.surfaceArea();
+        traversal = config.traversalCost;
+        fullScale = config.intersectionCost * 1.0 * invArea;
+        emptyScale = config.intersectionCost * (1.0 - config.emptyBonus) * invArea;
+        // The bonus only for empty space worth a level of the tree (KdConfig::emptyBonusMinFraction).
+        minEmpty = config.emptyBonusMinFraction * (hi - lo);
+    }
+
+    double operator()(float pos, int64_t nBelow, int64_t nAbove) const {
+        const double below = caps + sides * (double(pos) - lo);
+        const double above = caps + sides * (hi - double(pos));
+        const double emptyExtent = nBelow == 0 ? double(pos) - lo : nAbove == 0 ? hi - double(pos) : 0.0;
+        const bool emptySide = (nBelow == 0 || nAbove == 0) && emptyExtent >= minEmpty;
+        return traversal + (emptySide ? emptyScale : fullScale) * (below * double(nBelow) + above * double(nAbove));
     }
 };
+
 
 // The build's phases (KdBuildTimes), timed per worker in processor ticks, turned into milliseconds
 // once, against the wall clock, at the end. Nodes of at least kTimedEvents events are timed phase by
@@ -259,14 +276,17 @@ public:
     Builder(const std::vector<Triangle>& tris, const KdConfig& config, const BuildProgress& progress)
         : tris_(tris), config_(config), progress_(progress) {}
 
-    std::unique_ptr<BuildNode> build(NodeEvents ev, const Box& box, int depth, size_t n, double budget);
+    // scratch: this worker's, when the caller has it at hand (else looked up).
+    std::unique_ptr<BuildNode> build(NodeEvents ev, const Box& box, int depth, size_t n, double budget,
+                                     WorkerScratch* scratch = nullptr);
     void setMaxDepth(int d) { maxDepth_ = d; }
     // Ticks of each phase, summed over the workers.
     std::array<uint64_t, kPhaseCount> phaseTicks() const;
 
 private:
-    double splitCost(const AxisAreas& areas, float pos, size_t nBelow, size_t nAbove) const;
-    void sweepAxis(int axis, const AxisEvents& ev, const Box& box, size_t n, double budget, SplitChoice& best) const;
+    // invArea: 1 / the box's surface area.
+    void sweepAxis(int axis, const AxisEvents& ev, const Box& box, double invArea, size_t n, double budget,
+                   SplitChoice& best) const;
     SplitChoice findBestSplit(WorkerScratch& w, const NodeEvents& ev, const Box& box, size_t n, double budget,
                               bool parallel);
     std::pair<NodeEvents, NodeEvents> splitEvents(WorkerScratch& w, NodeEvents ev, const SplitChoice& s,
@@ -323,52 +343,41 @@ void Builder::forEachAxisTimed(bool parallel, Phase phase, WorkerScratch& w, con
     }
 }
 
-double Builder::splitCost(const AxisAreas& areas, float pos, size_t nBelow, size_t nAbove) const {
-    const double below = areas.caps + areas.sides * (double(pos) - areas.lo);
-    const double above = areas.caps + areas.sides * (areas.hi - double(pos));
-    // The bonus only for empty space worth a level of the tree (KdConfig::emptyBonusMinFraction).
-    const double emptyExtent = nBelow == 0 ? double(pos) - areas.lo : nAbove == 0 ? areas.hi - double(pos) : 0.0;
-    const bool emptySide = (nBelow == 0 || nAbove == 0) &&
-                           emptyExtent >= config_.emptyBonusMinFraction * (areas.hi - areas.lo);
-    const double bonus = emptySide ? 1.0 - config_.emptyBonus : 1.0;
-    return config_.traversalCost +
-           config_.intersectionCost * bonus * areas.invArea * (below * double(nBelow) + above * double(nAbove));
-}
 
 // The plane sweep of Wald and Havran (section 4.2, Algorithm 4) with their classification: at plane
 // p, below = triangles starting before p (those ending at p touch it from below), above = triangles
 // ending after p (those starting at p touch it from above); triangles flat in p are tried on each side.
 // A split whose two sides together hold more references than `budget` is not a candidate (the half
 // absorbs the rounding of budgets handed down in proportion: counts are whole).
-void Builder::sweepAxis(int axis, const AxisEvents& ev, const Box& box, size_t n, double budget,
+void Builder::sweepAxis(int axis, const AxisEvents& ev, const Box& box, double invArea, size_t n, double budget,
                         SplitChoice& best) const {
-    const AxisAreas areas(box, axis);
-    size_t startedBefore = 0, endingAfter = n;
+    const AxisCost cost(box, axis, invArea, config_);
+    int64_t startedBefore = 0, endingAfter = int64_t(n);
     const Event* e = ev.data();
     const Event* const end = e + ev.size();
-    // The events at one position come sorted end, planar, start: each type's run is counted by
-    // comparing the key's position and type bits (Event) with that run's, one compare an event.
-    const auto run = [&](uint64_t positionAndType) {
-        const Event* const first = e;
-        while (e != end && e->key() >> 30 == positionAndType) ++e;
-        return size_t(e - first);
-    };
     while (e != end) {
         const float p = e->pos();
-        const uint64_t at = uint64_t(e->orderedPos()) << 2;
-        const size_t ends = run(at | uint64_t(EventType::End)), planars = run(at | uint64_t(EventType::Planar)),
-                     starts = run(at | uint64_t(EventType::Start));
+        const uint32_t at = e->orderedPos();
+        // The events at p, counted by type without branching on it: ends and starts alternate
+        // unpredictably along an axis, and a branch on the type would be mispredicted half the time.
+        int64_t ends = 0, planars = 0, starts = 0;
+        do {
+            const EventType type = e->type();
+            ends += type == EventType::End;
+            planars += type == EventType::Planar;
+            starts += type == EventType::Start;
+        } while (++e != end && e->orderedPos() == at);
         endingAfter -= ends + planars;
         if (usableSplit(box, axis, p) && double(startedBefore + endingAfter + planars) <= budget + 0.5) {
-            const size_t below = startedBefore, above = endingAfter;
+            const int64_t below = startedBefore, above = endingAfter;
             // Without planar triangles both placements are the same split, costed once.
-            const double planarBelowCost = splitCost(areas, p, below + planars, above);
-            const double planarAboveCost = planars == 0 ? planarBelowCost : splitCost(areas, p, below, above + planars);
+            const double planarBelowCost = cost(p, below + planars, above);
+            const double planarAboveCost = planars == 0 ? planarBelowCost : cost(p, below, above + planars);
             const bool planarBelow = planarBelowCost <= planarAboveCost;
-            const double cost = planarBelow ? planarBelowCost : planarAboveCost;
-            if (cost < best.cost)
-                best = SplitChoice{axis, p, planarBelow, cost, below + (planarBelow ? planars : 0),
-                                   above + (planarBelow ? 0 : planars)};
+            const double c = planarBelow ? planarBelowCost : planarAboveCost;
+            if (c < best.cost)
+                best = SplitChoice{axis, p, planarBelow, c, size_t(below + (planarBelow ? planars : 0)),
+                                   size_t(above + (planarBelow ? 0 : planars))};
         }
         startedBefore += starts + planars;
     }
@@ -379,10 +388,11 @@ void Builder::sweepAxis(int axis, const AxisEvents& ev, const Box& box, size_t n
 // the same strict comparison as one sweep after the other, so the choice is the same either way.
 SplitChoice Builder::findBestSplit(WorkerScratch& w, const NodeEvents& ev, const Box& box, size_t n, double budget,
                                    bool parallel) {
-    if (!(box.surfaceArea() > 0.0)) return {};
+    const double area = box.surfaceArea();
+    if (!(area > 0.0)) return {};
     std::array<SplitChoice, 3> perAxis;
     forEachAxisTimed(parallel, kSweep, w,
-                     [&](int axis) { sweepAxis(axis, ev[axis], box, n, budget, perAxis[axis]); });
+                     [&](int axis) { sweepAxis(axis, ev[axis], box, 1.0 / area, n, budget, perAxis[axis]); });
     SplitChoice best = perAxis[0];
     for (int axis = 1; axis < 3; ++axis)
         if (perAxis[axis].cost < best.cost) best = perAxis[axis];
@@ -393,7 +403,17 @@ SplitChoice Builder::findBestSplit(WorkerScratch& w, const NodeEvents& ev, const
 // behind `kept`: only the kept events above the first new one move, and nothing is allocated.
 void mergeIn(AxisEvents& kept, AxisEvents& fresh) {
     if (fresh.empty()) return;
-    std::sort(fresh.begin(), fresh.end());
+    // A few straddlers in most nodes: insertion sort, without std::sort's set-up, below 32.
+    if (fresh.size() < 32) {
+        for (size_t i = 1; i < fresh.size(); ++i) {
+            const Event x = fresh[i];
+            size_t j = i;
+            for (; j > 0 && x < fresh[j - 1]; --j) fresh[j] = fresh[j - 1];
+            fresh[j] = x;
+        }
+    } else {
+        std::sort(fresh.begin(), fresh.end());
+    }
     const size_t old = kept.size();
     kept.resize(old + fresh.size());
     Event* out = kept.data() + kept.size();
@@ -414,6 +434,13 @@ void mergeIn(AxisEvents& kept, AxisEvents& fresh) {
 std::pair<NodeEvents, NodeEvents> Builder::splitEvents(WorkerScratch& w, NodeEvents ev, const SplitChoice& s,
                                                        const Box& below, const Box& above, bool parallel) {
     std::pair<NodeEvents, NodeEvents> children;
+    // Empty space cut off: every triangle is on the other side (a straddler would count on both),
+    // so that side's lists are the parent's as they are, in order, and nothing is classified,
+    // copied or clipped. Most splits of a deep tree over small triangles are of this kind.
+    if (s.below == 0 || s.above == 0) {
+        (s.above == 0 ? children.first : children.second) = std::move(ev);
+        return children;
+    }
     const auto split = [&] { splitEventsOn(w, ev, s, below, above, parallel, children.first, children.second); };
     if (parallel) tbb::this_task_arena::isolate(split);
     else split();
@@ -493,13 +520,15 @@ std::unique_ptr<BuildNode> Builder::makeLeaf(WorkerScratch& w, const NodeEvents&
 // duplications multiply to at most maxDuplication, and the whole tree holds at most that many
 // references per triangle, whatever the geometry.
 // `n`: the node's triangles (the split that made it counted them).
-std::unique_ptr<BuildNode> Builder::build(NodeEvents ev, const Box& box, int depth, size_t n, double budget) {
-    // This worker's scratch, valid until the fork below (the subtrees may run on other workers).
-    WorkerScratch& w = scratch_.local();
+std::unique_ptr<BuildNode> Builder::build(NodeEvents ev, const Box& box, int depth, size_t n, double budget,
+                                          WorkerScratch* scratch) {
+    // This worker's scratch, valid until the fork below (the subtrees may run on other workers);
+    // a subtree built on this worker after this node gets it handed on.
+    WorkerScratch& w = scratch ? *scratch : scratch_.local();
     if (!w.inSmallSubtree && ev[0].size() < kTimedEvents) {
         const uint64_t t = ticks();
         w.inSmallSubtree = true;
-        std::unique_ptr<BuildNode> subtree = build(std::move(ev), box, depth, n, budget);
+        std::unique_ptr<BuildNode> subtree = build(std::move(ev), box, depth, n, budget, &w);
         w.inSmallSubtree = false;
         w.ticks[kSmall] += ticks() - t;
         return subtree;
@@ -516,11 +545,12 @@ std::unique_ptr<BuildNode> Builder::build(NodeEvents ev, const Box& box, int dep
     const auto [belowBox, aboveBox] = splitBox(box, s.axis, s.pos);
     auto [belowEv, aboveEv] = splitEvents(w, std::move(ev), s, belowBox, aboveBox, parallelAxes);
     const double share = budget / double(s.below + s.above);
+    WorkerScratch* const handOn = parallel ? nullptr : &w;
     const auto buildBelow = [&, &bEv = belowEv, &bBox = belowBox] {
-        node->below = build(std::move(bEv), bBox, depth + 1, s.below, share * double(s.below));
+        node->below = build(std::move(bEv), bBox, depth + 1, s.below, share * double(s.below), handOn);
     };
     const auto buildAbove = [&, &aEv = aboveEv, &aBox = aboveBox] {
-        node->above = build(std::move(aEv), aBox, depth + 1, s.above, share * double(s.above));
+        node->above = build(std::move(aEv), aBox, depth + 1, s.above, share * double(s.above), handOn);
     };
     forkJoin(parallel, buildBelow, buildAbove);
     node->subtreeNodes = 1 + node->below->subtreeNodes + node->above->subtreeNodes;
