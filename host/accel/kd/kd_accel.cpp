@@ -67,9 +67,8 @@ public:
             {"build_split_ms", ms.treeMs, "ms: SAH splitting"},
             {"build_sweep_ms", ms.sweepMs, "ms of the workers: plane sweeps"},
             {"build_classify_ms", ms.classifyMs, "ms of the workers: side marks, straddlers"},
-            {"build_distribute_ms", ms.distributeMs, "ms of the workers: lists split in order"},
             {"build_clip_ms", ms.clipMs, "ms of the workers: straddlers clipped"},
-            {"build_merge_ms", ms.mergeMs, "ms of the workers: new events sorted, merged"},
+            {"build_distribute_ms", ms.distributeMs, "ms of the workers: lists split in order, new events merged in"},
             {"build_leaves_ms", ms.leavesMs, "ms of the workers: leaves"},
             {"build_small_ms", ms.smallMs, "ms of the workers: subtrees under 1024 events"},
             {"build_flatten_ms", ms.flattenMs, "ms: GPU arrays"},
@@ -86,7 +85,7 @@ public:
             {"gpu_bytes", double(gpuBytes), "bytes"},
             {"extra_bytes", double(extra().bytes.size()), extra().what},
         };
-        if (traversal_ == kd::Traversal::Ropes) stats.insert(stats.begin() + 11, {"build_ropes_ms", ropesMs_, "ms: ropes"});
+        if (traversal_ == kd::Traversal::Ropes) stats.insert(stats.begin() + 10, {"build_ropes_ms", ropesMs_, "ms: ropes"});
         return stats;
     }
 

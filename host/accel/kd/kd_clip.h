@@ -4,6 +4,8 @@
 // Tracing 2006, section 4.3.
 #pragma once
 
+#include <utility>
+
 #include "accel/kd/kd_tree.h"
 #include "scene/scene.h"
 
@@ -17,5 +19,8 @@ bool contains(const Box& outer, const Box& inner);
 // Bounds of the part of `tri` inside `box`: clipped in double, rounded outwards to float, within
 // `box`; never smaller than that part (kd_clip.cpp).
 Box clippedBounds(const Triangle& tri, const Box& box);
+// clippedBounds(tri, below) and clippedBounds(tri, above), for the children of a split on `axis`,
+// with the work they share done once.
+std::pair<Box, Box> clippedBoundsOfSplit(const Triangle& tri, const Box& below, const Box& above, int axis);
 
 }  // namespace vkray::accel::kd

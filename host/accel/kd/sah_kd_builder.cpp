@@ -248,7 +248,7 @@ struct AxisCost {
 // phase; a subtree below that is timed as a whole (kSmall), on the one worker that builds it (its
 // nodes are below kParallelEvents), so the timing costs nothing that matters where nodes are many
 // and small.
-enum Phase : size_t { kSweep, kClassify, kDistribute, kClip, kMerge, kLeaves, kSmall, kPhaseCount };
+enum Phase : size_t { kSweep, kClassify, kClip, kDistribute, kLeaves, kSmall, kPhaseCount };
 constexpr size_t kTimedEvents = 1 << 10;
 static_assert(kTimedEvents <= kParallelEvents);
 
@@ -399,35 +399,25 @@ SplitChoice Builder::findBestSplit(WorkerScratch& w, const NodeEvents& ev, const
     return best;
 }
 
-// Merges the sorted `fresh` into the sorted `kept`, in place, from the back, in the room reserved
-// behind `kept`: only the kept events above the first new one move, and nothing is allocated.
-void mergeIn(AxisEvents& kept, AxisEvents& fresh) {
-    if (fresh.empty()) return;
-    // A few straddlers in most nodes: insertion sort, without std::sort's set-up, below 32.
-    if (fresh.size() < 32) {
-        for (size_t i = 1; i < fresh.size(); ++i) {
-            const Event x = fresh[i];
-            size_t j = i;
-            for (; j > 0 && x < fresh[j - 1]; --j) fresh[j] = fresh[j - 1];
-            fresh[j] = x;
-        }
-    } else {
+// Sorts a straddlers' list of new events: a few in most nodes, by insertion below 32, without
+// std::sort's set-up.
+void sortFresh(AxisEvents& fresh) {
+    if (fresh.size() >= 32) {
         std::sort(fresh.begin(), fresh.end());
+        return;
     }
-    const size_t old = kept.size();
-    kept.resize(old + fresh.size());
-    Event* out = kept.data() + kept.size();
-    const Event* k = kept.data() + old;
-    const Event* f = fresh.data() + fresh.size();
-    while (f != fresh.data()) {
-        if (k != kept.data() && *(f - 1) < *(k - 1)) *--out = *--k;
-        else *--out = *--f;
+    for (size_t i = 1; i < fresh.size(); ++i) {
+        const Event x = fresh[i];
+        size_t j = i;
+        for (; j > 0 && x < fresh[j - 1]; --j) fresh[j] = fresh[j - 1];
+        fresh[j] = x;
     }
 }
 
-// Wald and Havran 5.2-5.3: classify the triangles by the chosen split's axis events, hand each
-// one-sided triangle's events to its side in order, clip the straddling triangles to both children,
-// sort their few new events and merge them in. Everything stays sorted without a full sort.
+// Wald and Havran 5.2-5.3: classify the triangles by the chosen split's axis events, clip the
+// straddling triangles to both children and sort their few new events, then hand each one-sided
+// triangle's events to its side in order, the new ones merged in on the way (one pass, where a
+// merge after the copy would move the events again). Everything stays sorted without a full sort.
 // A big node's axes are distributed and merged as parallel tasks that read this worker's scratch,
 // so the wait is isolated: this worker runs no other node's task (which would overwrite the
 // scratch) until its own are done.
@@ -471,28 +461,38 @@ void Builder::splitEventsOn(WorkerScratch& w, NodeEvents& ev, const SplitChoice&
         }
     }
     lap(w, kClassify, t);
-    forEachAxisTimed(parallel, kDistribute, w, [&](int k) {
-        // A triangle has at most two events per axis, so twice a side's count (straddlers included)
-        // holds its kept events and the straddlers' new ones: no reallocation below.
-        belowEv[k].reserve(2 * s.below);
-        aboveEv[k].reserve(2 * s.above);
-        for (const Event& e : ev[k]) {
-            if (side[e.triangle()] == Side::BelowOnly) belowEv[k].push_back(e);
-            else if (side[e.triangle()] == Side::AboveOnly) aboveEv[k].push_back(e);
-        }
-        AxisEvents().swap(ev[k]);  // free the parent's lists before the children grow theirs
-    });
     t = start(w);
     for (NodeEvents& fresh : w.fresh)
         for (AxisEvents& f : fresh) f.clear();
     for (uint32_t tri : w.straddling) {
-        appendEvents(tri, clippedBounds(tris_[tri], below), w.fresh[0]);
-        appendEvents(tri, clippedBounds(tris_[tri], above), w.fresh[1]);
+        const auto [inBelow, inAbove] = clippedBoundsOfSplit(tris_[tri], below, above, s.axis);
+        appendEvents(tri, inBelow, w.fresh[0]);
+        appendEvents(tri, inAbove, w.fresh[1]);
     }
     lap(w, kClip, t);
-    forEachAxisTimed(parallel, kMerge, w, [&](int k) {
-        mergeIn(belowEv[k], w.fresh[0][k]);
-        mergeIn(aboveEv[k], w.fresh[1][k]);
+    forEachAxisTimed(parallel, kDistribute, w, [&](int k) {
+        AxisEvents &toBelow = belowEv[k], &toAbove = aboveEv[k], &newBelow = w.fresh[0][k], &newAbove = w.fresh[1][k];
+        sortFresh(newBelow);
+        sortFresh(newAbove);
+        // A triangle has at most two events per axis, so twice a side's count (straddlers included)
+        // holds its kept events and the straddlers' new ones: no reallocation below.
+        toBelow.reserve(2 * s.below);
+        toAbove.reserve(2 * s.above);
+        const Event *nextBelow = newBelow.data(), *nextAbove = newAbove.data();
+        const Event *endBelow = nextBelow + newBelow.size(), *endAbove = nextAbove + newAbove.size();
+        for (const Event& e : ev[k]) {
+            const Side where = side[e.triangle()];
+            if (where == Side::BelowOnly) {
+                while (nextBelow != endBelow && *nextBelow < e) toBelow.push_back(*nextBelow++);
+                toBelow.push_back(e);
+            } else if (where == Side::AboveOnly) {
+                while (nextAbove != endAbove && *nextAbove < e) toAbove.push_back(*nextAbove++);
+                toAbove.push_back(e);
+            }
+        }
+        toBelow.insert(toBelow.end(), nextBelow, endBelow);
+        toAbove.insert(toAbove.end(), nextAbove, endAbove);
+        AxisEvents().swap(ev[k]);  // free the parent's lists before the children grow theirs
     });
 }
 
@@ -618,7 +618,7 @@ KdBuildResult buildSahKdTree(const std::vector<Triangle>& triangles, const KdCon
         const std::array<uint64_t, kPhaseCount> phase = builder.phaseTicks();
         KdBuildTimes& t = result.times;
         for (auto [p, ms] : {std::pair{kSweep, &t.sweepMs}, {kClassify, &t.classifyMs}, {kDistribute, &t.distributeMs},
-                             {kClip, &t.clipMs}, {kMerge, &t.mergeMs}, {kLeaves, &t.leavesMs}, {kSmall, &t.smallMs}})
+                             {kClip, &t.clipMs}, {kLeaves, &t.leavesMs}, {kSmall, &t.smallMs}})
             *ms = double(phase[p]) * msPerTick;
 
         const Clock::time_point flattenStart = Clock::now();

@@ -37,9 +37,8 @@ struct KdBuildTimes {
     double treeMs = 0.0;     // recursive SAH splitting
     double sweepMs = 0.0;       // worker time: the plane sweeps (Wald and Havran 4.2)
     double classifyMs = 0.0;    // worker time: side marks and straddlers (5.2)
-    double distributeMs = 0.0;  // worker time: the lists split in order, the children's allocated (5.2)
     double clipMs = 0.0;        // worker time: straddlers clipped, their new events (4.3)
-    double mergeMs = 0.0;       // worker time: new events sorted and merged in (5.3)
+    double distributeMs = 0.0;  // worker time: the lists split in order, new events merged in (5.2-5.3)
     double leavesMs = 0.0;      // worker time: leaves made
     double smallMs = 0.0;       // worker time: subtrees under 1024 events, as a whole (their phases are not timed)
     double flattenMs = 0.0;  // the GPU arrays
