@@ -3,14 +3,19 @@
 // A Kernel Framework for Efficient CPU Ray Tracing", SIGGRAPH 2014) and one of vkray's BVH builds
 // (--bvh, default `bvh`). The three builds alternate run by run, so a busy machine slows all of them
 // alike; it prints the medians (min-max) after one warm-up of each, the kd build's ratio to each
-// yardstick, the kd build's phases and the tree's shape. A benchmark prints figures; it asserts
-// nothing (docs/performance.md, "Method").
+// yardstick, the kd build's phases and the tree's shape. Beside the wall-clock times it prints the
+// process's CPU time a build (all its threads), whose ratios hold when other processes take turns
+// on the cores. A benchmark prints figures; it asserts nothing (docs/performance.md, "Method").
 //
 //   vkray_bench_kd_build [--runs N] [--threads N] [--bvh NAME] [--kd NAME] SCENE...
+#include <time.h>
+
 #include <cstdio>
 #include <exception>
 #include <map>
+#include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #ifdef VKRAY_HAVE_EMBREE
@@ -26,6 +31,23 @@
 namespace {
 
 using namespace vkray;
+
+// Milliseconds of CPU time the process has used, all threads together.
+double cpuMs() {
+    timespec t{};
+    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
+    return double(t.tv_sec) * 1e3 + double(t.tv_nsec) * 1e-6;
+}
+
+// Wall-clock and CPU milliseconds of f().
+template <class F>
+std::pair<double, double> timed(const F& f) {
+    const auto start = Clock::now();
+    const double cpu = cpuMs();
+    f();
+    const double cpuUsed = cpuMs() - cpu;
+    return {msSince(start), cpuUsed};
+}
 
 struct Options {
     int runs = 5;
@@ -75,8 +97,7 @@ public:
     EmbreeBuild(const EmbreeBuild&) = delete;
     EmbreeBuild& operator=(const EmbreeBuild&) = delete;
 
-    double buildMs() {
-        const auto start = Clock::now();
+    RTCScene build() {
         RTCScene scene = rtcNewScene(device_);
         rtcSetSceneBuildQuality(scene, RTC_BUILD_QUALITY_HIGH);
         RTCGeometry geom = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_TRIANGLE);
@@ -90,10 +111,8 @@ public:
         rtcAttachGeometry(scene, geom);
         rtcReleaseGeometry(geom);
         rtcCommitScene(scene);
-        const double ms = msSince(start);
         if (rtcGetDeviceError(device_) != RTC_ERROR_NONE) throw std::runtime_error("Embree: the build failed");
-        rtcReleaseScene(scene);
-        return ms;
+        return scene;
     }
 
 private:
@@ -113,38 +132,48 @@ void benchScene(const std::string& file, const Options& o) {
     const accel::AccelSpec kdSpec = accel::resolveAccel(o.kd), bvhSpec = accel::resolveAccel(o.bvh);
     accel::BuildOptions options;
     options.threads = o.threads;
-    std::vector<double> kdMs, bvhMs, embreeMs;
+    std::vector<double> kdMs, bvhMs, embreeMs, kdCpu, bvhCpu, embreeCpu;
     std::map<std::string, std::vector<double>> phases;
     std::vector<accel::AccelStat> last;
 #ifdef VKRAY_HAVE_EMBREE
     EmbreeBuild embree(scene, o.threads);
 #endif
     for (int r = 0; r <= o.runs; ++r) {  // run 0: the warm-up
-        auto start = Clock::now();
-        const auto kd = accel::buildAccel(scene, kdSpec, options);
-        const double k = msSince(start);
+        std::unique_ptr<accel::BuiltAccel> kd, bvh;
+        const auto [k, kCpu] = timed([&] { kd = accel::buildAccel(scene, kdSpec, options); });
         last = kd->stats();
-        start = Clock::now();
-        accel::buildAccel(scene, bvhSpec, options);
-        const double b = msSince(start);
+        kd.reset();
+        const auto [b, bCpu] = timed([&] { bvh = accel::buildAccel(scene, bvhSpec, options); });
+        bvh.reset();
 #ifdef VKRAY_HAVE_EMBREE
-        const double e = embree.buildMs();
-        if (r > 0) embreeMs.push_back(e);
+        RTCScene built = nullptr;
+        const auto [e, eCpu] = timed([&] { built = embree.build(); });
+        rtcReleaseScene(built);
+        if (r > 0) {
+            embreeMs.push_back(e);
+            embreeCpu.push_back(eCpu);
+        }
 #endif
         if (r == 0) continue;
         kdMs.push_back(k);
         bvhMs.push_back(b);
+        kdCpu.push_back(kCpu);
+        bvhCpu.push_back(bCpu);
         for (const accel::AccelStat& s : last)
             if (s.key.starts_with("build_") && s.key.ends_with("_ms")) phases[s.key].push_back(s.value);
     }
     const bench::Spread kd = bench::spreadOf(kdMs), bvh = bench::spreadOf(bvhMs);
     printSpread(o.kd.c_str(), kd);
     printSpread(o.bvh.c_str(), bvh);
-    std::printf("  %s / %s: %.2fx\n", o.kd.c_str(), o.bvh.c_str(), kd.median / bvh.median);
+    const double kdC = bench::spreadOf(kdCpu).median, bvhC = bench::spreadOf(bvhCpu).median;
+    std::printf("  %s / %s: %.2fx wall, %.2fx CPU (%.0f / %.0f ms)\n", o.kd.c_str(), o.bvh.c_str(),
+                kd.median / bvh.median, kdC / bvhC, kdC, bvhC);
 #ifdef VKRAY_HAVE_EMBREE
     const bench::Spread em = bench::spreadOf(embreeMs);
+    const double emC = bench::spreadOf(embreeCpu).median;
     printSpread("Embree 3 BVH, HIGH quality", em);
-    std::printf("  %s / Embree HIGH: %.2fx\n", o.kd.c_str(), kd.median / em.median);
+    std::printf("  %s / Embree HIGH: %.2fx wall, %.2fx CPU (%.0f / %.0f ms)\n", o.kd.c_str(), kd.median / em.median,
+                kdC / emC, kdC, emC);
 #else
     std::printf("  Embree: not in this build (install libembree-dev)\n");
 #endif

@@ -269,7 +269,13 @@ struct WorkerScratch {
     std::array<NodeEvents, 2> fresh;  // the straddlers' events in the child below, above
     std::array<uint64_t, kPhaseCount> ticks{};
     bool inSmallSubtree = false;  // timed as a whole (kSmall): its phases are not
+    uint64_t doneWeight = 0;      // leaves' progress weights not yet added to the build's
 };
+
+// Workers add their leaves' progress weights to the shared sum in steps of 2^-16 of the tree: an
+// atomic add (and a lock, with a progress callback) for every one of millions of leaves would have
+// the workers queue for one cache line.
+constexpr uint64_t kProgressStep = uint64_t(1) << (62 - 16);
 
 class Builder {
 public:
@@ -280,6 +286,8 @@ public:
     std::unique_ptr<BuildNode> build(NodeEvents ev, const Box& box, int depth, size_t n, double budget,
                                      WorkerScratch* scratch = nullptr);
     void setMaxDepth(int d) { maxDepth_ = d; }
+    // Adds the weights the workers hold back (after the build, on one thread).
+    void finishProgress();
     // Ticks of each phase, summed over the workers.
     std::array<uint64_t, kPhaseCount> phaseTicks() const;
 
@@ -294,6 +302,7 @@ private:
     void splitEventsOn(WorkerScratch& w, NodeEvents& ev, const SplitChoice& s, const Box& below, const Box& above,
                        bool parallel, NodeEvents& belowEv, NodeEvents& aboveEv);
     std::unique_ptr<BuildNode> makeLeaf(WorkerScratch& w, const NodeEvents& ev, int depth, size_t n);
+    void addProgress(WorkerScratch& w);
     // Ticks since `start` to `phase` of `w`, unless w is in a small subtree (timed as a whole).
     static void lap(WorkerScratch& w, Phase phase, uint64_t start) {
         if (!w.inSmallSubtree) w.ticks[phase] += ticks() - start;
@@ -313,7 +322,7 @@ private:
         scratch_;
 
     // Progress: a leaf at depth d completes 2^-d of the tree (the weights of a binary tree's leaves
-    // sum to 1), kept in fixed point.
+    // sum to 1), kept in fixed point; the workers add theirs in steps (kProgressStep).
     const BuildProgress& progress_;
     std::atomic<uint64_t> doneWeight_{0};
     std::mutex progressMutex_;
@@ -501,17 +510,27 @@ std::unique_ptr<BuildNode> Builder::makeLeaf(WorkerScratch& w, const NodeEvents&
     auto leaf = std::make_unique<BuildNode>();
     leaf->triangles = trianglesOf(ev, n);
     leaf->subtreeRefs = leaf->triangles.size();
-    const uint64_t done = doneWeight_.fetch_add(uint64_t(1) << (62 - depth)) + (uint64_t(1) << (62 - depth));
-    if (progress_) {
-        const double fraction = double(done) / double(uint64_t(1) << 62);
-        std::lock_guard lock(progressMutex_);
-        if (fraction >= reported_ + 0.01) {
-            reported_ = fraction;
-            progress_("kd-tree: splitting", fraction);
-        }
-    }
+    w.doneWeight += uint64_t(1) << (62 - depth);
+    if (w.doneWeight >= kProgressStep) addProgress(w);
     lap(w, kLeaves, t);
     return leaf;
+}
+
+void Builder::addProgress(WorkerScratch& w) {
+    const uint64_t done = doneWeight_.fetch_add(w.doneWeight) + w.doneWeight;
+    w.doneWeight = 0;
+    if (!progress_) return;
+    const double fraction = double(done) / double(uint64_t(1) << 62);
+    std::lock_guard lock(progressMutex_);
+    if (fraction >= reported_ + 0.01) {
+        reported_ = fraction;
+        progress_("kd-tree: splitting", fraction);
+    }
+}
+
+void Builder::finishProgress() {
+    for (WorkerScratch& w : scratch_)
+        if (w.doneWeight > 0) addProgress(w);
 }
 
 // `budget`: the most references this subtree's leaves may hold together (KdConfig::maxDuplication).
@@ -613,6 +632,7 @@ KdBuildResult buildSahKdTree(const std::vector<Triangle>& triangles, const KdCon
         Builder builder(triangles, config, progress);
         builder.setMaxDepth(config.resolvedMaxDepth(n));
         std::unique_ptr<BuildNode> tree = builder.build(std::move(ev), root, 0, n, config.maxDuplication * double(n));
+        builder.finishProgress();
         result.times.treeMs = msSince(treeStart);
         const double msPerTick = result.times.treeMs / double(std::max<uint64_t>(1, ticks() - treeTicks));
         const std::array<uint64_t, kPhaseCount> phase = builder.phaseTicks();
