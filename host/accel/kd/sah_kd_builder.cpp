@@ -31,6 +31,7 @@
 #include "core/timing.h"
 #include "geometry/ray_triangle.h"
 #include "accel/kd/kd_clip.h"
+#include "accel/kd/kd_events.h"
 
 namespace vkray::accel::kd {
 namespace {
@@ -41,49 +42,6 @@ constexpr size_t kParallelEvents = 1 << 13;
 // Nodes with at least this many events also sweep and distribute their three axes as parallel tasks.
 constexpr size_t kParallelAxesEvents = 1 << 16;
 
-// Wald and Havran 2006, section 4.2: at equal positions, ends sort before planars before starts,
-// which is the order the sweep needs to count each side.
-enum class EventType : uint8_t { End = 0, Planar = 1, Start = 2 };
-
-// An event in 8 bytes that are also its sort key: the position's bits turned to sort like the float
-// (top 32), the type (2 bits), the triangle (30 bits). Integer order is the sweep's order: position,
-// then ends < planars < starts, then triangle, a total order, so the sort, hence the tree, is
-// deterministic. 8 bytes instead of the 12 of the fields side by side, in lists that are most of
-// the build's memory traffic.
-class Event {
-public:
-    static constexpr uint32_t kMaxTriangles = 1u << 30;
-
-    Event() = default;  // for the radix sort's scratch list
-    Event(float pos, uint32_t triangle, EventType type)
-        : key_(uint64_t(orderedBits(pos)) << 32 | uint64_t(type) << 30 | triangle) {}
-
-    float pos() const {
-        const uint32_t u = orderedPos();
-        return std::bit_cast<float>(u & 0x80000000u ? u & 0x7fffffffu : ~u);
-    }
-    // The position as orderedBits() made it: compares like the float, without decoding it.
-    uint32_t orderedPos() const { return uint32_t(key_ >> 32); }
-    EventType type() const { return EventType((key_ >> 30) & 3u); }
-    uint32_t triangle() const { return uint32_t(key_) & (kMaxTriangles - 1); }
-    bool operator<(const Event& o) const { return key_ < o.key_; }
-    uint64_t key() const { return key_; }
-
-    // Positive floats above negative ones, each in numeric order; -0 is made +0 first, so equal
-    // positions have equal bits.
-    static uint32_t orderedBits(float f) {
-        const uint32_t u = std::bit_cast<uint32_t>(f + 0.0f);
-        return u & 0x80000000u ? ~u : u | 0x80000000u;
-    }
-
-private:
-    uint64_t key_ = 0;
-};
-
-// The lists of the nodes below the root are made and freed by the million: from oneTBB's scalable
-// allocator, whose per-thread caches serve them without a lock, not glibc's.
-using AxisEvents = std::vector<Event, FirstTouchAllocator<Event, tbb::scalable_allocator<Event>>>;
-using NodeEvents = std::array<AxisEvents, 3>;
 
 enum class Side : uint8_t { Both, BelowOnly, AboveOnly };
 
@@ -117,74 +75,6 @@ struct BuildNode {
     static void operator delete(void* p) { scalable_free(p); }
 };
 
-// The events of one triangle from its clipped bounds `b` (Wald and Havran 4.2), f(k, event) for
-// each: on axis k a planar event where the clipped part is flat on that axis, a start and an end
-// otherwise. Flat clipped parts are not only triangles lying in an axis plane: a triangle that
-// meets the node only in an edge or a point on the node's face is flat there too, and a planar
-// event gives it exactly one side at any later split.
-template <class F>
-void forEachEvent(uint32_t triangle, const Box& b, const F& f) {
-    for (int k = 0; k < 3; ++k) {
-        if (b.lo[k] == b.hi[k]) {
-            f(k, Event{b.lo[k], triangle, EventType::Planar});
-        } else {
-            f(k, Event{b.lo[k], triangle, EventType::Start});
-            f(k, Event{b.hi[k], triangle, EventType::End});
-        }
-    }
-}
-
-void appendEvents(uint32_t triangle, const Box& b, NodeEvents& out) {
-    forEachEvent(triangle, b, [&](int k, const Event& e) { out[k].push_back(e); });
-}
-
-// The root's events, unsorted, and its box (left as it is when every triangle is degenerate, which
-// have no events), made in parallel: each block of triangles counts its events, a prefix over the
-// blocks places them, and each block writes its own in triangle order, so every axis's list
-// ascends by triangle as one thread's appends would make it, while the appends and their page
-// faults are spread over the workers.
-NodeEvents rootEvents(const std::vector<Triangle>& tris, const std::vector<uint8_t>& degenerate, Box& root) {
-    constexpr size_t kBlock = size_t(1) << 14;
-    const size_t blocks = (tris.size() + kBlock - 1) / kBlock;
-    const auto forEachTriangle = [&](size_t block, const auto& f) {
-        for (size_t t = block * kBlock, end = std::min(tris.size(), t + kBlock); t < end; ++t)
-            if (!degenerate[t]) f(uint32_t(t), boundsOf(tris[t]));
-    };
-    // The union of boxes, min and max: exact in any order.
-    const auto grow = [](std::optional<Box>& box, const Box& b) {
-        box = box ? Box{glm::min(box->lo, b.lo), glm::max(box->hi, b.hi)} : b;
-    };
-    std::vector<std::array<size_t, 3>> first(blocks + 1, std::array<size_t, 3>{});  // block b's first event per axis
-    std::vector<std::optional<Box>> boxes(blocks);
-    tbb::parallel_for(size_t(0), blocks, [&](size_t block) {
-        std::array<size_t, 3>& count = first[block + 1];
-        forEachTriangle(block, [&](uint32_t t, const Box& b) {
-            grow(boxes[block], b);
-            forEachEvent(t, b, [&](int k, const Event&) { ++count[k]; });
-        });
-    });
-    std::optional<Box> all;
-    for (size_t block = 0; block < blocks; ++block) {
-        for (int k = 0; k < 3; ++k) first[block + 1][k] += first[block][k];
-        if (boxes[block]) grow(all, *boxes[block]);
-    }
-    if (all) root = *all;
-    NodeEvents ev;
-    for (int k = 0; k < 3; ++k) resizeForOverwrite(ev[k], first[blocks][k]);
-    tbb::parallel_for(size_t(0), blocks, [&](size_t block) {
-        std::array<Event*, 3> out{};
-        for (int k = 0; k < 3; ++k) out[k] = ev[k].data() + first[block][k];
-        forEachTriangle(block, [&](uint32_t t, const Box& b) {
-            forEachEvent(t, b, [&](int k, const Event& e) { *out[k]++ = e; });
-        });
-    });
-    return ev;
-}
-
-// How many triangles the node holds: each has exactly one start or planar event on every axis.
-size_t triangleCount(const NodeEvents& ev) {
-    return size_t(std::count_if(ev[0].begin(), ev[0].end(), [](const Event& e) { return e.type() != EventType::End; }));
-}
 
 // The node's `n` triangles, ascending.
 TriangleList trianglesOf(const NodeEvents& ev, size_t n) {
