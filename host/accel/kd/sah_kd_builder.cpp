@@ -58,12 +58,19 @@ struct SplitChoice {
 // thread (malloc_consolidate), a serial pause at the end of every large build.
 using TriangleList = std::vector<uint32_t, tbb::scalable_allocator<uint32_t>>;
 
+struct BuildNode;
+// Frees a build node, except kEmptyLeaf.
+struct NodeDeleter {
+    void operator()(BuildNode* node) const;
+};
+using NodePtr = std::unique_ptr<BuildNode, NodeDeleter>;
+
 struct BuildNode {
     int axis = -1;  // -1: leaf
     float split = 0.0f;
     uint32_t subtreeNodes = 1;  // nodes of its subtree, itself included (the flat layout's offsets)
     uint64_t subtreeRefs = 0;   // index-list entries of its subtree's leaves
-    std::unique_ptr<BuildNode> below, above;
+    NodePtr below, above;
     TriangleList triangles;  // leaves only, ascending
 
     bool emptyLeaf() const { return axis < 0 && triangles.empty(); }
@@ -74,6 +81,14 @@ struct BuildNode {
     }
     static void operator delete(void* p) { scalable_free(p); }
 };
+
+// The one empty leaf that every empty leaf of every tree is: a tree over small triangles has
+// millions (a third of its nodes), each else allocated, walked and freed. Never changed.
+BuildNode kEmptyLeaf;
+
+void NodeDeleter::operator()(BuildNode* node) const {
+    if (node != &kEmptyLeaf) delete node;
+}
 
 
 // The node's `n` triangles, ascending.
@@ -173,7 +188,7 @@ public:
         : tris_(tris), config_(config), progress_(progress) {}
 
     // scratch: this worker's, when the caller has it at hand (else looked up).
-    std::unique_ptr<BuildNode> build(NodeEvents ev, const Box& box, int depth, size_t n, double budget,
+    NodePtr build(NodeEvents ev, const Box& box, int depth, size_t n, double budget,
                                      WorkerScratch* scratch = nullptr);
     void setMaxDepth(int d) { maxDepth_ = d; }
     // Adds the weights the workers hold back (after the build, on one thread).
@@ -191,7 +206,7 @@ private:
                                                   const Box& below, const Box& above, bool parallel);
     void splitEventsOn(WorkerScratch& w, NodeEvents& ev, const SplitChoice& s, const Box& below, const Box& above,
                        bool parallel, NodeEvents& belowEv, NodeEvents& aboveEv);
-    std::unique_ptr<BuildNode> makeLeaf(WorkerScratch& w, const NodeEvents& ev, int depth, size_t n);
+    NodePtr makeLeaf(WorkerScratch& w, const NodeEvents& ev, int depth, size_t n);
     void addProgress(WorkerScratch& w);
     // Ticks since `start` to `phase` of `w`, unless w is in a small subtree (timed as a whole).
     static void lap(WorkerScratch& w, Phase phase, uint64_t start) {
@@ -395,11 +410,13 @@ void Builder::splitEventsOn(WorkerScratch& w, NodeEvents& ev, const SplitChoice&
     });
 }
 
-std::unique_ptr<BuildNode> Builder::makeLeaf(WorkerScratch& w, const NodeEvents& ev, int depth, size_t n) {
+NodePtr Builder::makeLeaf(WorkerScratch& w, const NodeEvents& ev, int depth, size_t n) {
     const uint64_t t = start(w);
-    auto leaf = std::make_unique<BuildNode>();
-    leaf->triangles = trianglesOf(ev, n);
-    leaf->subtreeRefs = leaf->triangles.size();
+    NodePtr leaf(ev[0].empty() ? &kEmptyLeaf : new BuildNode);  // every triangle has an event on each axis
+    if (leaf.get() != &kEmptyLeaf) {
+        leaf->triangles = trianglesOf(ev, n);
+        leaf->subtreeRefs = leaf->triangles.size();
+    }
     w.doneWeight += uint64_t(1) << (62 - depth);
     if (w.doneWeight >= kProgressStep) addProgress(w);
     lap(w, kLeaves, t);
@@ -429,7 +446,7 @@ void Builder::finishProgress() {
 // duplications multiply to at most maxDuplication, and the whole tree holds at most that many
 // references per triangle, whatever the geometry.
 // `n`: the node's triangles (the split that made it counted them).
-std::unique_ptr<BuildNode> Builder::build(NodeEvents ev, const Box& box, int depth, size_t n, double budget,
+NodePtr Builder::build(NodeEvents ev, const Box& box, int depth, size_t n, double budget,
                                           WorkerScratch* scratch) {
     // This worker's scratch, valid until the fork below (the subtrees may run on other workers);
     // a subtree built on this worker after this node gets it handed on.
@@ -437,7 +454,7 @@ std::unique_ptr<BuildNode> Builder::build(NodeEvents ev, const Box& box, int dep
     if (!w.inSmallSubtree && ev[0].size() < kTimedEvents) {
         const uint64_t t = ticks();
         w.inSmallSubtree = true;
-        std::unique_ptr<BuildNode> subtree = build(std::move(ev), box, depth, n, budget, &w);
+        NodePtr subtree = build(std::move(ev), box, depth, n, budget, &w);
         w.inSmallSubtree = false;
         w.ticks[kSmall] += ticks() - t;
         return subtree;
@@ -448,7 +465,7 @@ std::unique_ptr<BuildNode> Builder::build(NodeEvents ev, const Box& box, int dep
     // SAH termination (Wald and Havran, section 3): split only when it is cheaper than a leaf.
     if (s.axis < 0 || s.cost >= config_.intersectionCost * double(n)) return makeLeaf(w, ev, depth, n);
 
-    auto node = std::make_unique<BuildNode>();
+    NodePtr node(new BuildNode);
     node->axis = s.axis;
     node->split = s.pos;
     const auto [belowBox, aboveBox] = splitBox(box, s.axis, s.pos);
@@ -472,7 +489,7 @@ std::unique_ptr<BuildNode> Builder::build(NodeEvents ev, const Box& box, int dep
 // `first` onwards, whose places its subtree sizes give, so the subtrees near the root are written
 // as parallel tasks; it consumes the tree, which is then freed in parallel too (millions of nodes
 // and leaf lists freed one by one would be a serial tail of the build).
-void flatten(std::unique_ptr<BuildNode> n, uint32_t index, uint64_t first, uint32_t parent, const Box& box,
+void flatten(NodePtr n, uint32_t index, uint64_t first, uint32_t parent, const Box& box,
              KdTree& out, int depth) {
     out.extra[index] = gpu::KdNodeExtra{box.lo, parent, box.hi, 0};
     if (n->axis < 0) {
@@ -521,7 +538,7 @@ KdBuildResult buildSahKdTree(const std::vector<Triangle>& triangles, const KdCon
         const uint64_t treeTicks = ticks();
         Builder builder(triangles, config, progress);
         builder.setMaxDepth(config.resolvedMaxDepth(n));
-        std::unique_ptr<BuildNode> tree = builder.build(std::move(ev), root, 0, n, config.maxDuplication * double(n));
+        NodePtr tree = builder.build(std::move(ev), root, 0, n, config.maxDuplication * double(n));
         builder.finishProgress();
         result.times.treeMs = msSince(treeStart);
         const double msPerTick = result.times.treeMs / double(std::max<uint64_t>(1, ticks() - treeTicks));
