@@ -83,7 +83,7 @@ struct BuildNode {
 };
 
 // The one empty leaf that every empty leaf of every tree is: a tree over small triangles has
-// millions (a third of its nodes), each else allocated, walked and freed. Never changed.
+// millions, each else allocated, walked and freed. Never changed.
 BuildNode kEmptyLeaf;
 
 void NodeDeleter::operator()(BuildNode* node) const {
