@@ -95,11 +95,17 @@ inline thread_local bool gDeferValueInit = false;
 // value-initialised by resizeFirstTouched, in parallel, instead of one by one on the calling thread
 // (otherwise a serial pass over every large array of a build). Every other construction is
 // std::allocator's.
-template <class T>
-struct FirstTouchAllocator : std::allocator<T> {
-    FirstTouchAllocator() = default;
+// Base: where the storage comes from (std::allocator, or oneTBB's scalable_allocator for arrays
+// that a builder makes and frees by the million).
+template <class T, class Base = std::allocator<T>>
+struct FirstTouchAllocator : Base {
     template <class U>
-    FirstTouchAllocator(const FirstTouchAllocator<U>&) noexcept {}
+    struct rebind {
+        using other = FirstTouchAllocator<U, typename std::allocator_traits<Base>::template rebind_alloc<U>>;
+    };
+    FirstTouchAllocator() = default;
+    template <class U, class B>
+    FirstTouchAllocator(const FirstTouchAllocator<U, B>&) noexcept {}
 
     template <class U, class... Args>
     void construct(U* p, Args&&... args) {
@@ -107,8 +113,8 @@ struct FirstTouchAllocator : std::allocator<T> {
             if (detail::gDeferValueInit) return;
         ::new (static_cast<void*>(p)) U(std::forward<Args>(args)...);
     }
-    template <class U>
-    bool operator==(const FirstTouchAllocator<U>&) const noexcept { return true; }
+    template <class U, class B>
+    bool operator==(const FirstTouchAllocator<U, B>&) const noexcept { return true; }
 };
 
 // The large arrays of a build: resizeFirstTouched value-initialises them in parallel.
@@ -118,8 +124,8 @@ using BuildArray = std::vector<T, FirstTouchAllocator<T>>;
 namespace detail {
 // Grows v to n elements within its reserved storage without writing any (FirstTouchAllocator
 // skips the value-initialisation).
-template <class T>
-void resizeUnconstructed(BuildArray<T>& v, size_t n) {
+template <class T, class Base>
+void resizeUnconstructed(std::vector<T, FirstTouchAllocator<T, Base>>& v, size_t n) {
     gDeferValueInit = true;
     v.resize(n);
     gDeferValueInit = false;
@@ -153,8 +159,8 @@ void resizeFirstTouched(std::vector<T, Alloc>& v, size_t n) {
 // and the value-initialisation pass it saves would be a write of the whole array that the caller's
 // own write then repeats. T must be an implicit-lifetime type
 // (trivially copyable and destructible), whose objects the caller's writes create.
-template <class T>
-void resizeForOverwrite(BuildArray<T>& v, size_t n) {
+template <class T, class Base>
+void resizeForOverwrite(std::vector<T, FirstTouchAllocator<T, Base>>& v, size_t n) {
     static_assert(std::is_trivially_copyable_v<T> && std::is_trivially_destructible_v<T>);
     if (n * sizeof(T) < kFirstTouchBytes || !v.empty()) {
         v.resize(n);

@@ -51,9 +51,9 @@ void countingPass(const std::vector<T, A>& in, std::vector<T, A>& out, int shift
 }  // namespace radix_detail
 
 // Sorts `values` stably by bits [lowBit, lowBit + bits) of key(value), a uint64_t.
-template <class T, class Key>
-void radixSortBits(BuildArray<T>& values, int lowBit, int bits, const Key& key) {
-    BuildArray<T> scratch;
+template <class T, class Alloc, class Key>
+void radixSortBits(std::vector<T, Alloc>& values, int lowBit, int bits, const Key& key) {
+    std::vector<T, Alloc> scratch;
     resizeForOverwrite(scratch, values.size());  // each pass writes every slot
     for (int done = 0; done < bits; done += radix_detail::kDigitBits) {
         radix_detail::countingPass(values, scratch, lowBit + done, key);

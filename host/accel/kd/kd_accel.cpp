@@ -65,6 +65,12 @@ public:
             {"build_ms", ms.totalMs + ropesMs_, "ms"},
             {"build_events_ms", ms.eventsMs, "ms: bounds, events, sort"},
             {"build_split_ms", ms.treeMs, "ms: SAH splitting"},
+            {"build_sweep_ms", ms.sweepMs, "ms of the workers: plane sweeps"},
+            {"build_classify_ms", ms.classifyMs, "ms of the workers: side marks, straddlers"},
+            {"build_clip_ms", ms.clipMs, "ms of the workers: straddlers clipped"},
+            {"build_distribute_ms", ms.distributeMs, "ms of the workers: lists split in order, new events merged in"},
+            {"build_leaves_ms", ms.leavesMs, "ms of the workers: leaves"},
+            {"build_small_ms", ms.smallMs, "ms of the workers: subtrees under 1024 events"},
             {"build_flatten_ms", ms.flattenMs, "ms: GPU arrays"},
             {"nodes", double(f.nodes), "8 bytes each"},
             {"leaves", double(f.leaves), ""},
@@ -79,7 +85,7 @@ public:
             {"gpu_bytes", double(gpuBytes), "bytes"},
             {"extra_bytes", double(extra().bytes.size()), extra().what},
         };
-        if (traversal_ == kd::Traversal::Ropes) stats.insert(stats.begin() + 4, {"build_ropes_ms", ropesMs_, "ms: ropes"});
+        if (traversal_ == kd::Traversal::Ropes) stats.insert(stats.begin() + 10, {"build_ropes_ms", ropesMs_, "ms: ropes"});
         return stats;
     }
 

@@ -19,6 +19,10 @@
 #include <tbb/scalable_allocator.h>
 #include <tbb/task_arena.h>
 
+#if defined(__x86_64__) || defined(__i386__)
+#include <x86intrin.h>
+#endif
+
 #include "core/error.h"
 #include "core/fork_join.h"
 #include "core/worker_arena.h"
@@ -26,6 +30,8 @@
 #include "core/radix_sort.h"
 #include "core/timing.h"
 #include "geometry/ray_triangle.h"
+#include "accel/kd/kd_clip.h"
+#include "accel/kd/kd_events.h"
 
 namespace vkray::accel::kd {
 namespace {
@@ -36,54 +42,6 @@ constexpr size_t kParallelEvents = 1 << 13;
 // Nodes with at least this many events also sweep and distribute their three axes as parallel tasks.
 constexpr size_t kParallelAxesEvents = 1 << 16;
 
-// f(0), f(1), f(2): as three oneTBB tasks when `parallel`.
-template <class F>
-void forEachAxis(bool parallel, const F& f) {
-    if (parallel) tbb::parallel_invoke([&] { f(0); }, [&] { f(1); }, [&] { f(2); });
-    else for (int k = 0; k < 3; ++k) f(k);
-}
-
-// Wald and Havran 2006, section 4.2: at equal positions, ends sort before planars before starts,
-// which is the order the sweep needs to count each side.
-enum class EventType : uint8_t { End = 0, Planar = 1, Start = 2 };
-
-// An event in 8 bytes that are also its sort key: the position's bits turned to sort like the float
-// (top 32), the type (2 bits), the triangle (30 bits). Integer order is the sweep's order: position,
-// then ends < planars < starts, then triangle, a total order, so the sort, hence the tree, is
-// deterministic. 8 bytes instead of the 12 of the fields side by side, in lists that are most of
-// the build's memory traffic.
-class Event {
-public:
-    static constexpr uint32_t kMaxTriangles = 1u << 30;
-
-    Event() = default;  // for the radix sort's scratch list
-    Event(float pos, uint32_t triangle, EventType type)
-        : key_(uint64_t(orderedBits(pos)) << 32 | uint64_t(type) << 30 | triangle) {}
-
-    float pos() const {
-        const uint32_t u = orderedPos();
-        return std::bit_cast<float>(u & 0x80000000u ? u & 0x7fffffffu : ~u);
-    }
-    // The position as orderedBits() made it: compares like the float, without decoding it.
-    uint32_t orderedPos() const { return uint32_t(key_ >> 32); }
-    EventType type() const { return EventType((key_ >> 30) & 3u); }
-    uint32_t triangle() const { return uint32_t(key_) & (kMaxTriangles - 1); }
-    bool operator<(const Event& o) const { return key_ < o.key_; }
-    uint64_t key() const { return key_; }
-
-    // Positive floats above negative ones, each in numeric order; -0 is made +0 first, so equal
-    // positions have equal bits.
-    static uint32_t orderedBits(float f) {
-        const uint32_t u = std::bit_cast<uint32_t>(f + 0.0f);
-        return u & 0x80000000u ? ~u : u | 0x80000000u;
-    }
-
-private:
-    uint64_t key_ = 0;
-};
-
-using AxisEvents = BuildArray<Event>;
-using NodeEvents = std::array<AxisEvents, 3>;
 
 enum class Side : uint8_t { Both, BelowOnly, AboveOnly };
 
@@ -100,12 +58,19 @@ struct SplitChoice {
 // thread (malloc_consolidate), a serial pause at the end of every large build.
 using TriangleList = std::vector<uint32_t, tbb::scalable_allocator<uint32_t>>;
 
+struct BuildNode;
+// Frees a build node, except kEmptyLeaf.
+struct NodeDeleter {
+    void operator()(BuildNode* node) const;
+};
+using NodePtr = std::unique_ptr<BuildNode, NodeDeleter>;
+
 struct BuildNode {
     int axis = -1;  // -1: leaf
     float split = 0.0f;
     uint32_t subtreeNodes = 1;  // nodes of its subtree, itself included (the flat layout's offsets)
     uint64_t subtreeRefs = 0;   // index-list entries of its subtree's leaves
-    std::unique_ptr<BuildNode> below, above;
+    NodePtr below, above;
     TriangleList triangles;  // leaves only, ascending
 
     bool emptyLeaf() const { return axis < 0 && triangles.empty(); }
@@ -117,146 +82,19 @@ struct BuildNode {
     static void operator delete(void* p) { scalable_free(p); }
 };
 
-Box boundsOf(const Triangle& t) {
-    return Box{glm::min(t.p0, glm::min(t.p1, t.p2)), glm::max(t.p0, glm::max(t.p1, t.p2))};
+// The one empty leaf that every empty leaf of every tree is: a tree over small triangles has
+// millions, each else allocated, walked and freed. Never changed.
+BuildNode kEmptyLeaf;
+
+void NodeDeleter::operator()(BuildNode* node) const {
+    if (node != &kEmptyLeaf) delete node;
 }
 
-Box intersection(const Box& a, const Box& b) { return Box{glm::max(a.lo, b.lo), glm::min(a.hi, b.hi)}; }
 
-bool isEmpty(const Box& b) { return b.lo.x > b.hi.x || b.lo.y > b.hi.y || b.lo.z > b.hi.z; }
-
-bool contains(const Box& outer, const Box& inner) {
-    return glm::all(glm::lessThanEqual(outer.lo, inner.lo)) && glm::all(glm::lessThanEqual(inner.hi, outer.hi));
-}
-
-float roundDown(double x) {
-    float f = float(x);
-    return double(f) > x ? std::nextafter(f, -std::numeric_limits<float>::infinity()) : f;
-}
-
-float roundUp(double x) {
-    float f = float(x);
-    return double(f) < x ? std::nextafter(f, std::numeric_limits<float>::infinity()) : f;
-}
-
-// Bounds of the part of the triangle inside `box` ("perfect splits", Wald and Havran 4.3):
-// Sutherland-Hodgman clipping against the six planes in double (a triangle gains at most one vertex
-// per plane), bounds rounded outwards to float, then intersected with the box. When rounding makes
-// the clipped polygon vanish or leave the box, the triangle's bounding box within `box` stands in:
-// it contains the exact clipped part, so nothing is ever lost, only bounded less tightly.
-Box clippedBounds(const Triangle& tri, const Box& box) {
-    const Box fallback = intersection(boundsOf(tri), box);
-    if (contains(box, boundsOf(tri))) return fallback;
-    std::array<glm::dvec3, 10> poly{glm::dvec3(tri.p0), glm::dvec3(tri.p1), glm::dvec3(tri.p2)}, next{};
-    size_t n = 3;
-    for (int axis = 0; axis < 3 && n > 0; ++axis)
-        for (int upper = 0; upper < 2 && n > 0; ++upper) {
-            const double plane = upper ? box.hi[axis] : box.lo[axis];
-            std::array<bool, 10> inside{};
-            bool all = true;
-            for (size_t i = 0; i < n; ++i) {
-                inside[i] = upper ? poly[i][axis] <= plane : poly[i][axis] >= plane;
-                all = all && inside[i];
-            }
-            if (all) continue;  // the plane cuts nothing off: the pass would copy the polygon as it is
-            size_t m = 0;
-            for (size_t i = 0; i < n; ++i) {
-                const size_t j = i + 1 == n ? 0 : i + 1;
-                const glm::dvec3& a = poly[i];
-                const glm::dvec3& b = poly[j];
-                if (inside[i]) next[m++] = a;
-                if (inside[i] != inside[j]) {
-                    glm::dvec3 v = a + (b - a) * ((plane - a[axis]) / (b[axis] - a[axis]));
-                    v[axis] = plane;  // on the plane exactly, whatever the interpolation rounded to
-                    next[m++] = v;
-                }
-            }
-            std::swap(poly, next);
-            n = m;
-        }
-    if (n == 0) return fallback;
-    glm::dvec3 lo = poly[0], hi = poly[0];
-    for (size_t i = 1; i < n; ++i) {
-        lo = glm::min(lo, poly[i]);
-        hi = glm::max(hi, poly[i]);
-    }
-    const Box rounded{{roundDown(lo.x), roundDown(lo.y), roundDown(lo.z)}, {roundUp(hi.x), roundUp(hi.y), roundUp(hi.z)}};
-    const Box clipped = intersection(rounded, box);
-    return isEmpty(clipped) ? fallback : clipped;
-}
-
-// The events of one triangle from its clipped bounds `b` (Wald and Havran 4.2), f(k, event) for
-// each: on axis k a planar event where the clipped part is flat on that axis, a start and an end
-// otherwise. Flat clipped parts are not only triangles lying in an axis plane: a triangle that
-// meets the node only in an edge or a point on the node's face is flat there too, and a planar
-// event gives it exactly one side at any later split.
-template <class F>
-void forEachEvent(uint32_t triangle, const Box& b, const F& f) {
-    for (int k = 0; k < 3; ++k) {
-        if (b.lo[k] == b.hi[k]) {
-            f(k, Event{b.lo[k], triangle, EventType::Planar});
-        } else {
-            f(k, Event{b.lo[k], triangle, EventType::Start});
-            f(k, Event{b.hi[k], triangle, EventType::End});
-        }
-    }
-}
-
-void appendEvents(uint32_t triangle, const Box& b, NodeEvents& out) {
-    forEachEvent(triangle, b, [&](int k, const Event& e) { out[k].push_back(e); });
-}
-
-// The root's events, unsorted, and its box (left as it is when every triangle is degenerate, which
-// have no events), made in parallel: each block of triangles counts its events, a prefix over the
-// blocks places them, and each block writes its own in triangle order, so every axis's list
-// ascends by triangle as one thread's appends would make it, while the appends and their page
-// faults are spread over the workers.
-NodeEvents rootEvents(const std::vector<Triangle>& tris, const std::vector<uint8_t>& degenerate, Box& root) {
-    constexpr size_t kBlock = size_t(1) << 14;
-    const size_t blocks = (tris.size() + kBlock - 1) / kBlock;
-    const auto forEachTriangle = [&](size_t block, const auto& f) {
-        for (size_t t = block * kBlock, end = std::min(tris.size(), t + kBlock); t < end; ++t)
-            if (!degenerate[t]) f(uint32_t(t), boundsOf(tris[t]));
-    };
-    // The union of boxes, min and max: exact in any order.
-    const auto grow = [](std::optional<Box>& box, const Box& b) {
-        box = box ? Box{glm::min(box->lo, b.lo), glm::max(box->hi, b.hi)} : b;
-    };
-    std::vector<std::array<size_t, 3>> first(blocks + 1, std::array<size_t, 3>{});  // block b's first event per axis
-    std::vector<std::optional<Box>> boxes(blocks);
-    tbb::parallel_for(size_t(0), blocks, [&](size_t block) {
-        std::array<size_t, 3>& count = first[block + 1];
-        forEachTriangle(block, [&](uint32_t t, const Box& b) {
-            grow(boxes[block], b);
-            forEachEvent(t, b, [&](int k, const Event&) { ++count[k]; });
-        });
-    });
-    std::optional<Box> all;
-    for (size_t block = 0; block < blocks; ++block) {
-        for (int k = 0; k < 3; ++k) first[block + 1][k] += first[block][k];
-        if (boxes[block]) grow(all, *boxes[block]);
-    }
-    if (all) root = *all;
-    NodeEvents ev;
-    for (int k = 0; k < 3; ++k) resizeForOverwrite(ev[k], first[blocks][k]);
-    tbb::parallel_for(size_t(0), blocks, [&](size_t block) {
-        std::array<Event*, 3> out{};
-        for (int k = 0; k < 3; ++k) out[k] = ev[k].data() + first[block][k];
-        forEachTriangle(block, [&](uint32_t t, const Box& b) {
-            forEachEvent(t, b, [&](int k, const Event& e) { *out[k]++ = e; });
-        });
-    });
-    return ev;
-}
-
-// How many triangles the node holds: each has exactly one start or planar event on every axis.
-size_t triangleCount(const NodeEvents& ev) {
-    return size_t(std::count_if(ev[0].begin(), ev[0].end(), [](const Event& e) { return e.type() != EventType::End; }));
-}
-
-// The node's triangles, ascending.
-TriangleList trianglesOf(const NodeEvents& ev) {
+// The node's `n` triangles, ascending.
+TriangleList trianglesOf(const NodeEvents& ev, size_t n) {
     TriangleList tris;
+    tris.reserve(n);
     for (const Event& e : ev[0])
         if (e.type() != EventType::End) tris.push_back(e.triangle());
     std::sort(tris.begin(), tris.end());
@@ -276,95 +114,184 @@ bool usableSplit(const Box& box, int axis, float pos) {
     return pos > box.lo[axis] && pos < box.hi[axis] && (pos == 0.0f || std::abs(pos) >= std::numeric_limits<float>::min());
 }
 
-// The children's surface areas along one axis are linear in the split position: the two faces
-// across the axis (`caps`) plus the four along it (`sides` per unit of length). Set once per sweep,
-// so each candidate costs a few multiplications instead of two boxes' areas.
-struct AxisAreas {
-    double lo, hi, caps, sides, invArea;
+// The SAH cost of a split along one axis (KdConfig), with what depends only on the node and the axis
+// set once per sweep. The children's surface areas are linear in the split position: the two faces
+// across the axis (`caps`) plus the four along it (`sides` per unit of length), so a candidate costs
+// a few multiplications instead of two boxes' areas. The products are formed as in KdConfig's
+// formula, Ct + Ci * bonus / SA(N) * (SA(L) nL + SA(R) nR), left to right, so every candidate's cost
+// is the same double whichever way the sweep reaches it. Counts are signed: a signed integer
+// converts to double in one instruction, an unsigned one does not.
+struct AxisCost {
+    double lo, hi, caps, sides, traversal, fullScale, emptyScale, minEmpty;
 
-    AxisAreas(const Box& box, int axis) {
+    AxisCost(const Box& box, int axis, double invArea, const KdConfig& config) {
         const glm::dvec3 e = glm::dvec3(box.hi) - glm::dvec3(box.lo);
         const double a = e[(axis + 1) % 3], b = e[(axis + 2) % 3];
         lo = box.lo[axis];
         hi = box.hi[axis];
         caps = 2.0 * a * b;
         sides = 2.0 * (a + b);
-        invArea = 1.0 / box.surfaceArea();
+        traversal = config.traversalCost;
+        fullScale = config.intersectionCost * 1.0 * invArea;
+        emptyScale = config.intersectionCost * (1.0 - config.emptyBonus) * invArea;
+        // The bonus only for empty space worth a level of the tree (KdConfig::emptyBonusMinFraction).
+        minEmpty = config.emptyBonusMinFraction * (hi - lo);
+    }
+
+    double operator()(float pos, int64_t nBelow, int64_t nAbove) const {
+        const double below = caps + sides * (double(pos) - lo);
+        const double above = caps + sides * (hi - double(pos));
+        const double emptyExtent = nBelow == 0 ? double(pos) - lo : nAbove == 0 ? hi - double(pos) : 0.0;
+        const bool emptySide = (nBelow == 0 || nAbove == 0) && emptyExtent >= minEmpty;
+        return traversal + (emptySide ? emptyScale : fullScale) * (below * double(nBelow) + above * double(nAbove));
     }
 };
+
+
+// The build's phases (KdBuildTimes), timed per worker in processor ticks, turned into milliseconds
+// once, against the wall clock, at the end. Nodes of at least kTimedEvents events are timed phase by
+// phase; a subtree below that is timed as a whole (kSmall), on the one worker that builds it (its
+// nodes are below kParallelEvents), so the timing costs nothing that matters where nodes are many
+// and small.
+enum Phase : size_t { kSweep, kClassify, kClip, kDistribute, kLeaves, kSmall, kPhaseCount };
+constexpr size_t kTimedEvents = 1 << 10;
+static_assert(kTimedEvents <= kParallelEvents);
+
+uint64_t ticks() {
+#if defined(__x86_64__) || defined(__i386__)
+    return __rdtsc();
+#else
+    return uint64_t(Clock::now().time_since_epoch().count());
+#endif
+}
+
+// What one worker reuses from node to node instead of allocating it anew. The side marks are
+// indexed by triangle (Wald and Havran 5.2); the marks and the straddlers' new events are used only
+// within one node's split, where no other node's task runs on this worker (splitEvents).
+struct WorkerScratch {
+    std::vector<Side> side;
+    std::vector<uint32_t> straddling;
+    std::array<NodeEvents, 2> fresh;  // the straddlers' events in the child below, above
+    std::array<uint64_t, kPhaseCount> ticks{};
+    bool inSmallSubtree = false;  // timed as a whole (kSmall): its phases are not
+    uint64_t doneWeight = 0;      // leaves' progress weights not yet added to the build's
+};
+
+// Workers add their leaves' progress weights to the shared sum in steps of 2^-16 of the tree: an
+// atomic add (and a lock, with a progress callback) for every one of millions of leaves would have
+// the workers queue for one cache line.
+constexpr uint64_t kProgressStep = uint64_t(1) << (62 - 16);
 
 class Builder {
 public:
     Builder(const std::vector<Triangle>& tris, const KdConfig& config, const BuildProgress& progress)
         : tris_(tris), config_(config), progress_(progress) {}
 
-    std::unique_ptr<BuildNode> build(NodeEvents ev, const Box& box, int depth, size_t n, double budget);
+    // scratch: this worker's, when the caller has it at hand (else looked up).
+    NodePtr build(NodeEvents ev, const Box& box, int depth, size_t n, double budget,
+                                     WorkerScratch* scratch = nullptr);
     void setMaxDepth(int d) { maxDepth_ = d; }
+    // Adds the weights the workers hold back (after the build, on one thread).
+    void finishProgress();
+    // Ticks of each phase, summed over the workers.
+    std::array<uint64_t, kPhaseCount> phaseTicks() const;
 
 private:
-    double splitCost(const AxisAreas& areas, float pos, size_t nBelow, size_t nAbove) const;
-    void sweepAxis(int axis, const AxisEvents& ev, const Box& box, size_t n, double budget, SplitChoice& best) const;
-    SplitChoice findBestSplit(const NodeEvents& ev, const Box& box, size_t n, double budget, bool parallel) const;
-    std::pair<NodeEvents, NodeEvents> splitEvents(NodeEvents ev, const SplitChoice& s, const Box& below,
-                                                  const Box& above, bool parallel);
-    std::unique_ptr<BuildNode> makeLeaf(const NodeEvents& ev, int depth);
+    // invArea: 1 / the box's surface area.
+    void sweepAxis(int axis, const AxisEvents& ev, const Box& box, double invArea, size_t n, double budget,
+                   SplitChoice& best) const;
+    SplitChoice findBestSplit(WorkerScratch& w, const NodeEvents& ev, const Box& box, size_t n, double budget,
+                              bool parallel);
+    std::pair<NodeEvents, NodeEvents> splitEvents(WorkerScratch& w, NodeEvents ev, const SplitChoice& s,
+                                                  const Box& below, const Box& above, bool parallel);
+    void splitEventsOn(WorkerScratch& w, NodeEvents& ev, const SplitChoice& s, const Box& below, const Box& above,
+                       bool parallel, NodeEvents& belowEv, NodeEvents& aboveEv);
+    NodePtr makeLeaf(WorkerScratch& w, const NodeEvents& ev, int depth, size_t n);
+    void addProgress(WorkerScratch& w);
+    // Ticks since `start` to `phase` of `w`, unless w is in a small subtree (timed as a whole).
+    static void lap(WorkerScratch& w, Phase phase, uint64_t start) {
+        if (!w.inSmallSubtree) w.ticks[phase] += ticks() - start;
+    }
+    static uint64_t start(const WorkerScratch& w) { return w.inSmallSubtree ? 0 : ticks(); }
+    // f(0), f(1), f(2), its time added to `phase` of the worker that ran it: as three oneTBB tasks
+    // when `parallel`, each on its own worker's account, else in a row on `w`, this worker's.
+    template <class F>
+    void forEachAxisTimed(bool parallel, Phase phase, WorkerScratch& w, const F& f);
 
     const std::vector<Triangle>& tris_;
     KdConfig config_;
     int maxDepth_ = 0;
-    // Per-thread side marks indexed by triangle (Wald and Havran 5.2); used only between setting and
-    // reading them within one node, with no task boundary in between.
-    tbb::enumerable_thread_specific<std::vector<Side>> sides_;
+    // The key per instance: local() is a thread-local lookup, which every node makes.
+    tbb::enumerable_thread_specific<WorkerScratch, tbb::cache_aligned_allocator<WorkerScratch>,
+                                    tbb::ets_key_per_instance>
+        scratch_;
 
     // Progress: a leaf at depth d completes 2^-d of the tree (the weights of a binary tree's leaves
-    // sum to 1), kept in fixed point.
+    // sum to 1), kept in fixed point; the workers add theirs in steps (kProgressStep).
     const BuildProgress& progress_;
     std::atomic<uint64_t> doneWeight_{0};
     std::mutex progressMutex_;
     double reported_ = 0.0;
 };
 
-
-double Builder::splitCost(const AxisAreas& areas, float pos, size_t nBelow, size_t nAbove) const {
-    const double below = areas.caps + areas.sides * (double(pos) - areas.lo);
-    const double above = areas.caps + areas.sides * (areas.hi - double(pos));
-    // The bonus only for empty space worth a level of the tree (KdConfig::emptyBonusMinFraction).
-    const double emptyExtent = nBelow == 0 ? double(pos) - areas.lo : nAbove == 0 ? areas.hi - double(pos) : 0.0;
-    const bool emptySide = (nBelow == 0 || nAbove == 0) &&
-                           emptyExtent >= config_.emptyBonusMinFraction * (areas.hi - areas.lo);
-    const double bonus = emptySide ? 1.0 - config_.emptyBonus : 1.0;
-    return config_.traversalCost +
-           config_.intersectionCost * bonus * areas.invArea * (below * double(nBelow) + above * double(nAbove));
+std::array<uint64_t, kPhaseCount> Builder::phaseTicks() const {
+    std::array<uint64_t, kPhaseCount> sum{};
+    for (const WorkerScratch& w : scratch_)
+        for (size_t p = 0; p < kPhaseCount; ++p) sum[p] += w.ticks[p];
+    return sum;
 }
+
+template <class F>
+void Builder::forEachAxisTimed(bool parallel, Phase phase, WorkerScratch& w, const F& f) {
+    if (parallel) {
+        const auto timed = [&](int k) {
+            const uint64_t t = ticks();
+            f(k);
+            scratch_.local().ticks[phase] += ticks() - t;
+        };
+        tbb::parallel_invoke([&] { timed(0); }, [&] { timed(1); }, [&] { timed(2); });
+    } else {
+        const uint64_t t = start(w);
+        for (int k = 0; k < 3; ++k) f(k);
+        lap(w, phase, t);
+    }
+}
+
 
 // The plane sweep of Wald and Havran (section 4.2, Algorithm 4) with their classification: at plane
 // p, below = triangles starting before p (those ending at p touch it from below), above = triangles
 // ending after p (those starting at p touch it from above); triangles flat in p are tried on each side.
 // A split whose two sides together hold more references than `budget` is not a candidate (the half
 // absorbs the rounding of budgets handed down in proportion: counts are whole).
-void Builder::sweepAxis(int axis, const AxisEvents& ev, const Box& box, size_t n, double budget,
+void Builder::sweepAxis(int axis, const AxisEvents& ev, const Box& box, double invArea, size_t n, double budget,
                         SplitChoice& best) const {
-    const AxisAreas areas(box, axis);
-    size_t startedBefore = 0, endingAfter = n;
-    for (size_t i = 0; i < ev.size();) {
-        const float p = ev[i].pos();
-        const uint32_t at = ev[i].orderedPos();
-        // The events at p, counted by type (they come sorted end, planar, start).
-        std::array<size_t, 3> count{};
-        for (; i < ev.size() && ev[i].orderedPos() == at; ++i) ++count[size_t(ev[i].type())];
-        const size_t ends = count[size_t(EventType::End)], planars = count[size_t(EventType::Planar)],
-                     starts = count[size_t(EventType::Start)];
+    const AxisCost cost(box, axis, invArea, config_);
+    int64_t startedBefore = 0, endingAfter = int64_t(n);
+    const Event* e = ev.data();
+    const Event* const end = e + ev.size();
+    while (e != end) {
+        const float p = e->pos();
+        const uint32_t at = e->orderedPos();
+        // The events at p, counted by type without branching on it: ends and starts alternate
+        // unpredictably along an axis, and a branch on the type would be mispredicted half the time.
+        int64_t ends = 0, planars = 0, starts = 0;
+        do {
+            const EventType type = e->type();
+            ends += type == EventType::End;
+            planars += type == EventType::Planar;
+            starts += type == EventType::Start;
+        } while (++e != end && e->orderedPos() == at);
         endingAfter -= ends + planars;
         if (usableSplit(box, axis, p) && double(startedBefore + endingAfter + planars) <= budget + 0.5) {
-            const size_t below = startedBefore, above = endingAfter;
+            const int64_t below = startedBefore, above = endingAfter;
             // Without planar triangles both placements are the same split, costed once.
-            const double planarBelowCost = splitCost(areas, p, below + planars, above);
-            const double planarAboveCost = planars == 0 ? planarBelowCost : splitCost(areas, p, below, above + planars);
+            const double planarBelowCost = cost(p, below + planars, above);
+            const double planarAboveCost = planars == 0 ? planarBelowCost : cost(p, below, above + planars);
             const bool planarBelow = planarBelowCost <= planarAboveCost;
-            const double cost = planarBelow ? planarBelowCost : planarAboveCost;
-            if (cost < best.cost)
-                best = SplitChoice{axis, p, planarBelow, cost, below + (planarBelow ? planars : 0),
-                                   above + (planarBelow ? 0 : planars)};
+            const double c = planarBelow ? planarBelowCost : planarAboveCost;
+            if (c < best.cost)
+                best = SplitChoice{axis, p, planarBelow, c, size_t(below + (planarBelow ? planars : 0)),
+                                   size_t(above + (planarBelow ? 0 : planars))};
         }
         startedBefore += starts + planars;
     }
@@ -373,91 +300,144 @@ void Builder::sweepAxis(int axis, const AxisEvents& ev, const Box& box, size_t n
 // The three axes' sweeps are independent: a big node sweeps them as parallel tasks (the top levels
 // would otherwise run on one thread while the others wait), then takes the best in axis order with
 // the same strict comparison as one sweep after the other, so the choice is the same either way.
-SplitChoice Builder::findBestSplit(const NodeEvents& ev, const Box& box, size_t n, double budget,
-                                   bool parallel) const {
-    if (!(box.surfaceArea() > 0.0)) return {};
+SplitChoice Builder::findBestSplit(WorkerScratch& w, const NodeEvents& ev, const Box& box, size_t n, double budget,
+                                   bool parallel) {
+    const double area = box.surfaceArea();
+    if (!(area > 0.0)) return {};
     std::array<SplitChoice, 3> perAxis;
-    forEachAxis(parallel, [&](int axis) { sweepAxis(axis, ev[axis], box, n, budget, perAxis[axis]); });
+    forEachAxisTimed(parallel, kSweep, w,
+                     [&](int axis) { sweepAxis(axis, ev[axis], box, 1.0 / area, n, budget, perAxis[axis]); });
     SplitChoice best = perAxis[0];
     for (int axis = 1; axis < 3; ++axis)
         if (perAxis[axis].cost < best.cost) best = perAxis[axis];
     return best;
 }
 
-// Wald and Havran 5.2-5.3: classify the triangles by the chosen split's axis events, hand each
-// one-sided triangle's events to its side in order, clip the straddling triangles to both children,
-// sort their few new events and merge them in. Everything stays sorted without a full sort.
-std::pair<NodeEvents, NodeEvents> Builder::splitEvents(NodeEvents ev, const SplitChoice& s, const Box& below,
-                                                       const Box& above, bool parallel) {
-    std::vector<Side>& side = sides_.local();
-    if (side.size() < tris_.size()) side.resize(tris_.size());
-    const AxisEvents& ek = ev[s.axis];
-    for (const Event& e : ek) side[e.triangle()] = Side::Both;
-    const uint32_t split = Event::orderedBits(s.pos);
-    for (const Event& e : ek) {
-        // Wald and Havran 5.1: ending at the plane = below only, starting at it = above only.
-        const uint32_t at = e.orderedPos();
-        if (e.type() == EventType::End && at <= split) side[e.triangle()] = Side::BelowOnly;
-        if (e.type() == EventType::Start && at >= split) side[e.triangle()] = Side::AboveOnly;
-        if (e.type() == EventType::Planar) {
-            const bool goesBelow = at < split || (at == split && s.planarBelow);
-            side[e.triangle()] = goesBelow ? Side::BelowOnly : Side::AboveOnly;
-        }
-    }
-    std::vector<uint32_t> straddling;
-    for (const Event& e : ek)
-        if (e.type() == EventType::Start && side[e.triangle()] == Side::Both) straddling.push_back(e.triangle());
-
-    // Each axis's lists are distributed on their own, in parallel for a big node. The tasks read this
-    // thread's side marks, so the wait is isolated: this thread runs no other node's task (which
-    // would overwrite the marks) until the three are done.
-    NodeEvents belowEv, aboveEv;
-    const auto distribute = [&](int k) {
-        // A triangle has at most two events per axis, so twice a side's count (straddlers included)
-        // holds its kept events and the straddlers' new ones: no reallocation below.
-        belowEv[k].reserve(2 * s.below);
-        aboveEv[k].reserve(2 * s.above);
-        for (const Event& e : ev[k]) {
-            if (side[e.triangle()] == Side::BelowOnly) belowEv[k].push_back(e);
-            else if (side[e.triangle()] == Side::AboveOnly) aboveEv[k].push_back(e);
-        }
-        AxisEvents().swap(ev[k]);  // free the parent's lists before the children grow theirs
-    };
-    tbb::this_task_arena::isolate([&] { forEachAxis(parallel, distribute); });
-    NodeEvents newBelow, newAbove;
-    for (uint32_t t : straddling) {
-        appendEvents(t, clippedBounds(tris_[t], below), newBelow);
-        appendEvents(t, clippedBounds(tris_[t], above), newAbove);
-    }
-    // In place, in the room reserved above: the merge buffers only the few new events.
-    const auto mergeIn = [](AxisEvents& kept, AxisEvents& fresh) {
-        if (fresh.empty()) return;
+// Sorts a straddlers' list of new events: a few in most nodes, by insertion below 32, without
+// std::sort's set-up.
+void sortFresh(AxisEvents& fresh) {
+    if (fresh.size() >= 32) {
         std::sort(fresh.begin(), fresh.end());
-        const size_t old = kept.size();
-        kept.insert(kept.end(), fresh.begin(), fresh.end());
-        std::inplace_merge(kept.begin(), kept.begin() + ptrdiff_t(old), kept.end());
-    };
-    forEachAxis(parallel, [&](int k) {
-        mergeIn(belowEv[k], newBelow[k]);
-        mergeIn(aboveEv[k], newAbove[k]);
-    });
-    return {std::move(belowEv), std::move(aboveEv)};
+        return;
+    }
+    for (size_t i = 1; i < fresh.size(); ++i) {
+        const Event x = fresh[i];
+        size_t j = i;
+        for (; j > 0 && x < fresh[j - 1]; --j) fresh[j] = fresh[j - 1];
+        fresh[j] = x;
+    }
 }
 
-std::unique_ptr<BuildNode> Builder::makeLeaf(const NodeEvents& ev, int depth) {
-    auto leaf = std::make_unique<BuildNode>();
-    leaf->triangles = trianglesOf(ev);
-    leaf->subtreeRefs = leaf->triangles.size();
-    const uint64_t done = doneWeight_.fetch_add(uint64_t(1) << (62 - depth)) + (uint64_t(1) << (62 - depth));
-    if (progress_) {
-        const double fraction = double(done) / double(uint64_t(1) << 62);
-        std::lock_guard lock(progressMutex_);
-        if (fraction >= reported_ + 0.01) {
-            reported_ = fraction;
-            progress_("kd-tree: splitting", fraction);
+// Wald and Havran 5.2-5.3: classify the triangles by the chosen split's axis events, clip the
+// straddling triangles to both children and sort their few new events, then hand each one-sided
+// triangle's events to its side in order, the new ones merged in on the way (one pass, where a
+// merge after the copy would move the events again). Everything stays sorted without a full sort.
+// A big node's axes are distributed and merged as parallel tasks that read this worker's scratch,
+// so the wait is isolated: this worker runs no other node's task (which would overwrite the
+// scratch) until its own are done.
+std::pair<NodeEvents, NodeEvents> Builder::splitEvents(WorkerScratch& w, NodeEvents ev, const SplitChoice& s,
+                                                       const Box& below, const Box& above, bool parallel) {
+    std::pair<NodeEvents, NodeEvents> children;
+    // Empty space cut off: every triangle is on the other side (a straddler would count on both),
+    // so that side's lists are the parent's as they are, in order, and nothing is classified,
+    // copied or clipped. Most splits of a deep tree over small triangles are of this kind.
+    if (s.below == 0 || s.above == 0) {
+        (s.above == 0 ? children.first : children.second) = std::move(ev);
+        return children;
+    }
+    const auto split = [&] { splitEventsOn(w, ev, s, below, above, parallel, children.first, children.second); };
+    if (parallel) tbb::this_task_arena::isolate(split);
+    else split();
+    return children;
+}
+
+void Builder::splitEventsOn(WorkerScratch& w, NodeEvents& ev, const SplitChoice& s, const Box& below,
+                            const Box& above, bool parallel, NodeEvents& belowEv, NodeEvents& aboveEv) {
+    uint64_t t = start(w);
+    std::vector<Side>& side = w.side;
+    if (side.size() < tris_.size()) side.resize(tris_.size());
+    // One pass in sorted order, where a triangle's start comes before its end: ending at or before
+    // the plane = below only, starting at or after it = above only (Wald and Havran 5.1); a planar
+    // one goes where the split chose; the rest straddle.
+    const uint32_t split = Event::orderedBits(s.pos);
+    w.straddling.clear();
+    for (const Event& e : ev[s.axis]) {
+        const uint32_t at = e.orderedPos(), tri = e.triangle();
+        switch (e.type()) {
+        case EventType::Start: side[tri] = at >= split ? Side::AboveOnly : Side::Both; break;
+        case EventType::End:
+            if (at <= split) side[tri] = Side::BelowOnly;
+            else if (side[tri] == Side::Both) w.straddling.push_back(tri);
+            break;
+        case EventType::Planar:
+            side[tri] = at < split || (at == split && s.planarBelow) ? Side::BelowOnly : Side::AboveOnly;
+            break;
         }
     }
+    lap(w, kClassify, t);
+    t = start(w);
+    for (NodeEvents& fresh : w.fresh)
+        for (AxisEvents& f : fresh) f.clear();
+    for (uint32_t tri : w.straddling) {
+        const auto [inBelow, inAbove] = clippedBoundsOfSplit(tris_[tri], below, above, s.axis);
+        appendEvents(tri, inBelow, w.fresh[0]);
+        appendEvents(tri, inAbove, w.fresh[1]);
+    }
+    lap(w, kClip, t);
+    forEachAxisTimed(parallel, kDistribute, w, [&](int k) {
+        AxisEvents &toBelow = belowEv[k], &toAbove = aboveEv[k], &newBelow = w.fresh[0][k], &newAbove = w.fresh[1][k];
+        sortFresh(newBelow);
+        sortFresh(newAbove);
+        // A triangle has at most two events per axis, so twice a side's count (straddlers included)
+        // holds its kept events and the straddlers' new ones: no reallocation below.
+        toBelow.reserve(2 * s.below);
+        toAbove.reserve(2 * s.above);
+        const Event *nextBelow = newBelow.data(), *nextAbove = newAbove.data();
+        const Event *endBelow = nextBelow + newBelow.size(), *endAbove = nextAbove + newAbove.size();
+        for (const Event& e : ev[k]) {
+            const Side where = side[e.triangle()];
+            if (where == Side::BelowOnly) {
+                while (nextBelow != endBelow && *nextBelow < e) toBelow.push_back(*nextBelow++);
+                toBelow.push_back(e);
+            } else if (where == Side::AboveOnly) {
+                while (nextAbove != endAbove && *nextAbove < e) toAbove.push_back(*nextAbove++);
+                toAbove.push_back(e);
+            }
+        }
+        toBelow.insert(toBelow.end(), nextBelow, endBelow);
+        toAbove.insert(toAbove.end(), nextAbove, endAbove);
+        AxisEvents().swap(ev[k]);  // free the parent's lists before the children grow theirs
+    });
+}
+
+NodePtr Builder::makeLeaf(WorkerScratch& w, const NodeEvents& ev, int depth, size_t n) {
+    const uint64_t t = start(w);
+    NodePtr leaf(ev[0].empty() ? &kEmptyLeaf : new BuildNode);  // every triangle has an event on each axis
+    if (leaf.get() != &kEmptyLeaf) {
+        leaf->triangles = trianglesOf(ev, n);
+        leaf->subtreeRefs = leaf->triangles.size();
+    }
+    w.doneWeight += uint64_t(1) << (62 - depth);
+    if (w.doneWeight >= kProgressStep) addProgress(w);
+    lap(w, kLeaves, t);
     return leaf;
+}
+
+void Builder::addProgress(WorkerScratch& w) {
+    const uint64_t done = doneWeight_.fetch_add(w.doneWeight) + w.doneWeight;
+    w.doneWeight = 0;
+    if (!progress_) return;
+    const double fraction = double(done) / double(uint64_t(1) << 62);
+    std::lock_guard lock(progressMutex_);
+    if (fraction >= reported_ + 0.01) {
+        reported_ = fraction;
+        progress_("kd-tree: splitting", fraction);
+    }
+}
+
+void Builder::finishProgress() {
+    for (WorkerScratch& w : scratch_)
+        if (w.doneWeight > 0) addProgress(w);
 }
 
 // `budget`: the most references this subtree's leaves may hold together (KdConfig::maxDuplication).
@@ -466,24 +446,37 @@ std::unique_ptr<BuildNode> Builder::makeLeaf(const NodeEvents& ev, int depth) {
 // duplications multiply to at most maxDuplication, and the whole tree holds at most that many
 // references per triangle, whatever the geometry.
 // `n`: the node's triangles (the split that made it counted them).
-std::unique_ptr<BuildNode> Builder::build(NodeEvents ev, const Box& box, int depth, size_t n, double budget) {
-    if (n == 0 || depth >= maxDepth_) return makeLeaf(ev, depth);
+NodePtr Builder::build(NodeEvents ev, const Box& box, int depth, size_t n, double budget,
+                                          WorkerScratch* scratch) {
+    // This worker's scratch, valid until the fork below (the subtrees may run on other workers);
+    // a subtree built on this worker after this node gets it handed on.
+    WorkerScratch& w = scratch ? *scratch : scratch_.local();
+    if (!w.inSmallSubtree && ev[0].size() < kTimedEvents) {
+        const uint64_t t = ticks();
+        w.inSmallSubtree = true;
+        NodePtr subtree = build(std::move(ev), box, depth, n, budget, &w);
+        w.inSmallSubtree = false;
+        w.ticks[kSmall] += ticks() - t;
+        return subtree;
+    }
+    if (n == 0 || depth >= maxDepth_) return makeLeaf(w, ev, depth, n);
     const bool parallel = ev[0].size() >= kParallelEvents, parallelAxes = ev[0].size() >= kParallelAxesEvents;
-    const SplitChoice s = findBestSplit(ev, box, n, budget, parallelAxes);
+    const SplitChoice s = findBestSplit(w, ev, box, n, budget, parallelAxes);
     // SAH termination (Wald and Havran, section 3): split only when it is cheaper than a leaf.
-    if (s.axis < 0 || s.cost >= config_.intersectionCost * double(n)) return makeLeaf(ev, depth);
+    if (s.axis < 0 || s.cost >= config_.intersectionCost * double(n)) return makeLeaf(w, ev, depth, n);
 
-    auto node = std::make_unique<BuildNode>();
+    NodePtr node(new BuildNode);
     node->axis = s.axis;
     node->split = s.pos;
     const auto [belowBox, aboveBox] = splitBox(box, s.axis, s.pos);
-    auto [belowEv, aboveEv] = splitEvents(std::move(ev), s, belowBox, aboveBox, parallelAxes);
+    auto [belowEv, aboveEv] = splitEvents(w, std::move(ev), s, belowBox, aboveBox, parallelAxes);
     const double share = budget / double(s.below + s.above);
+    WorkerScratch* const handOn = parallel ? nullptr : &w;
     const auto buildBelow = [&, &bEv = belowEv, &bBox = belowBox] {
-        node->below = build(std::move(bEv), bBox, depth + 1, s.below, share * double(s.below));
+        node->below = build(std::move(bEv), bBox, depth + 1, s.below, share * double(s.below), handOn);
     };
     const auto buildAbove = [&, &aEv = aboveEv, &aBox = aboveBox] {
-        node->above = build(std::move(aEv), aBox, depth + 1, s.above, share * double(s.above));
+        node->above = build(std::move(aEv), aBox, depth + 1, s.above, share * double(s.above), handOn);
     };
     forkJoin(parallel, buildBelow, buildAbove);
     node->subtreeNodes = 1 + node->below->subtreeNodes + node->above->subtreeNodes;
@@ -496,7 +489,7 @@ std::unique_ptr<BuildNode> Builder::build(NodeEvents ev, const Box& box, int dep
 // `first` onwards, whose places its subtree sizes give, so the subtrees near the root are written
 // as parallel tasks; it consumes the tree, which is then freed in parallel too (millions of nodes
 // and leaf lists freed one by one would be a serial tail of the build).
-void flatten(std::unique_ptr<BuildNode> n, uint32_t index, uint64_t first, uint32_t parent, const Box& box,
+void flatten(NodePtr n, uint32_t index, uint64_t first, uint32_t parent, const Box& box,
              KdTree& out, int depth) {
     out.extra[index] = gpu::KdNodeExtra{box.lo, parent, box.hi, 0};
     if (n->axis < 0) {
@@ -542,10 +535,18 @@ KdBuildResult buildSahKdTree(const std::vector<Triangle>& triangles, const KdCon
         result.times.eventsMs = msSince(start);
 
         const Clock::time_point treeStart = Clock::now();
+        const uint64_t treeTicks = ticks();
         Builder builder(triangles, config, progress);
         builder.setMaxDepth(config.resolvedMaxDepth(n));
-        std::unique_ptr<BuildNode> tree = builder.build(std::move(ev), root, 0, n, config.maxDuplication * double(n));
+        NodePtr tree = builder.build(std::move(ev), root, 0, n, config.maxDuplication * double(n));
+        builder.finishProgress();
         result.times.treeMs = msSince(treeStart);
+        const double msPerTick = result.times.treeMs / double(std::max<uint64_t>(1, ticks() - treeTicks));
+        const std::array<uint64_t, kPhaseCount> phase = builder.phaseTicks();
+        KdBuildTimes& t = result.times;
+        for (auto [p, ms] : {std::pair{kSweep, &t.sweepMs}, {kClassify, &t.classifyMs}, {kDistribute, &t.distributeMs},
+                             {kClip, &t.clipMs}, {kLeaves, &t.leavesMs}, {kSmall, &t.smallMs}})
+            *ms = double(phase[p]) * msPerTick;
 
         const Clock::time_point flattenStart = Clock::now();
         if (progress) progress("kd-tree: flattening", 1.0);

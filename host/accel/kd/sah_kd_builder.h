@@ -29,9 +29,18 @@
 
 namespace vkray::accel::kd {
 
+// Wall-clock milliseconds of the build's steps; the splitting's phases are worker time, summed over
+// the workers (so they add up to at most treeMs times the workers; the rest is task scheduling and
+// waiting). The phases are those of nodes of 1024 events or more; smaller subtrees are one figure.
 struct KdBuildTimes {
     double eventsMs = 0.0;   // bounds, initial events, the three sorts
     double treeMs = 0.0;     // recursive SAH splitting
+    double sweepMs = 0.0;       // worker time: the plane sweeps (Wald and Havran 4.2)
+    double classifyMs = 0.0;    // worker time: side marks and straddlers (5.2)
+    double clipMs = 0.0;        // worker time: straddlers clipped, their new events (4.3)
+    double distributeMs = 0.0;  // worker time: the lists split in order, new events merged in (5.2-5.3)
+    double leavesMs = 0.0;      // worker time: leaves made
+    double smallMs = 0.0;       // worker time: subtrees under 1024 events, as a whole (their phases are not timed)
     double flattenMs = 0.0;  // the GPU arrays
     double totalMs = 0.0;
 };
