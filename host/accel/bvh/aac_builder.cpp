@@ -6,6 +6,8 @@
 #include <limits>
 #include <optional>
 #include <span>
+#include <tuple>
+#include <utility>
 #include <vector>
 
 #include <tbb/blocked_range.h>
@@ -35,12 +37,14 @@ struct ClusterScratch {
     std::vector<float> merged;      // findBestMatch: area of the box merging cluster i with each j
     std::vector<uint32_t> closest;  // position of each cluster's closest partner
     std::vector<float> distance;    // area of the box merging it with that partner
+    std::vector<float> own;         // its distance to itself (its container's area), from its last search
     std::vector<uint8_t> stale;     // closest partner merged away: search again
 
     // Room for `count` clusters; grows only (most calls are small ranges of delta primitives).
     void reserve(size_t count, bool spheres) {
         if (lox.size() < count)
-            for (std::vector<float>* v : {&lox, &loy, &loz, &hix, &hiy, &hiz, &merged, &distance}) v->resize(count);
+            for (std::vector<float>* v : {&lox, &loy, &loz, &hix, &hiy, &hiz, &merged, &distance, &own})
+                v->resize(count);
         if (spheres && cx.size() < count)
             for (std::vector<float>* v : {&cx, &cy, &cz, &r}) v->resize(count);
         if (closest.size() < count) closest.resize(count);
@@ -55,10 +59,28 @@ struct ClusterScratch {
     Sphere sphere(size_t i) const { return Sphere{{cx[i], cy[i], cz[i]}, r[i]}; }
     void setSphere(size_t i, const Sphere& sp) { cx[i] = sp.centre.x, cy[i] = sp.centre.y, cz[i] = sp.centre.z, r[i] = sp.radius; }
     void move(size_t from, size_t to, bool spheres) {
-        for (std::vector<float>* v : {&lox, &loy, &loz, &hix, &hiy, &hiz, &distance}) (*v)[to] = (*v)[from];
+        for (std::vector<float>* v : {&lox, &loy, &loz, &hix, &hiy, &hiz, &distance, &own}) (*v)[to] = (*v)[from];
         if (spheres)
             for (std::vector<float>* v : {&cx, &cy, &cz, &r}) (*v)[to] = (*v)[from];
         closest[to] = closest[from];
+    }
+};
+
+// The two best clusters offered, in position order, by primitive count (the fewest, or with
+// `largest` the most), the lower position first among equal counts.
+struct TwoBest {
+    static constexpr size_t kNone = std::numeric_limits<size_t>::max();
+    bool largest;
+    size_t first = kNone, second = kNone;
+    uint32_t firstSize = 0, secondSize = 0;
+
+    bool better(uint32_t x, uint32_t y) const { return largest ? x > y : x < y; }
+    void offer(size_t i, uint32_t size) {
+        if (first == kNone || better(size, firstSize)) {
+            second = first, secondSize = firstSize, first = i, firstSize = size;
+        } else if (second == kNone || better(size, secondSize)) {
+            second = i, secondSize = size;
+        }
     }
 };
 
@@ -78,6 +100,7 @@ public:
         resizeForOverwrite(nodes_, 2 * n - 1);  // primitives, then the n - 1 merges fill every slot
         resizeFirstTouched(clusters_, n);
         resizeFirstTouched(free_, n);
+        if (!collapsed_) resizeForOverwrite(counts_, n - 1);  // else the recorder counts them
         if (spheres_) resizeFirstTouched(sphereOf_, 2 * n - 1);
         if (collapsed_) recorder_.emplace(config_, 2 * n - 1);
         makePrimitiveNodes();
@@ -183,16 +206,20 @@ private:
 
         size_t k = count;
         while (k > target) {
-            // The closest pair; ties go to the lowest position, so the choice is deterministic.
+            // The closest pair; ties go to the lowest position, so the choice is deterministic,
+            // except for a pair of equal containers (equalContainerPair).
             size_t a = 0;
             for (size_t i = 1; i < k; ++i)
                 if (s.distance[i] < s.distance[a]) a = i;
-            const size_t b = s.closest[a];
+            size_t b = s.closest[a];
+            if (s.distance[a] == s.own[a] && s.distance[a] == s.own[b])
+                std::tie(a, b) = equalContainerPair<Spheres>(s, k, ids, a, b);
             const Aabb box = Aabb::merged(s.box(a), s.box(b));
             const uint32_t node = *slot++;
             nodes_[node].box = box;
             nodes_[node].child[0] = ids[a];
             nodes_[node].child[1] = ids[b];
+            if (!recorder_) counts_[node - keys_.size()] = primitives(ids[a]) + primitives(ids[b]);
             if constexpr (Spheres) sphereOf_[node] = mergeSpheres(s.sphere(a), s.sphere(b));
             if (recorder_) recorder_->inner(node, Spheres ? sphereOf_[node].halfArea() : box.halfArea(), ids[a], ids[b]);
 
@@ -227,6 +254,52 @@ private:
         return k;
     }
 
+    // The pair to merge when the closest pair (a, b) is of equal containers (copies of a
+    // triangle, an axis-aligned quad's two triangles), which Gu et al. 2013 leave to the order of
+    // the search. Clusters of one container merge into that same container: every such merge adds
+    // no area, so the paper's distance and the SAH price them alike, and by the lowest position
+    // they would merge in a chain (each merged cluster, at the lower position, is again in the
+    // closest pair), which the leaf collapse (leaf_collapse.h) leaves one copy a level. They differ
+    // only in how the primitives are shared among subtrees, which the collapse prices: a subtree of
+    // equal boxes costs its area once per primitive and once per inner node the collapse leaves,
+    // one fewer than its leaves, so it is cheapest with full leaves. A merge of p + q <=
+    // maxLeafSize primitives joins two leaves into one for nothing; a larger one closes each side
+    // of fewer than maxLeafSize primitives as a leaf of its own, giving up its empty slots. So of
+    // all clusters of that container, the pair merged is the one giving up the fewest slots, then
+    // of fewest primitives (which keeps the subtree balanced), then of lowest positions; it is at
+    // the same distance, so the clustering still merges in the paper's order of distances.
+    template <bool Spheres>
+    std::pair<size_t, size_t> equalContainerPair(ClusterScratch& s, size_t k, std::span<const uint32_t> ids, size_t a,
+                                                 size_t b) const {
+        const float own = s.own[a];
+        // Every cluster of that container is at this distance from its partner: fewer than three
+        // at it, and a and b are the only ones.
+        size_t tied = 0;
+        for (size_t i = 0; i < k; ++i) tied += s.distance[i] == own;
+        if (tied < 3) return {a, b};
+        mergedAreas<Spheres>(s, k, a);  // a's own included: its distance to itself
+        // One pass over them, by (primitives, position): the two smallest, the two smallest of at
+        // least maxLeafSize (full), the two largest below it (open).
+        const uint32_t leaf = uint32_t(config_.maxLeafSize);
+        TwoBest smallest{false}, fullSmallest{false}, openLargest{true};
+        for (size_t i = 0; i < k; ++i) {
+            if (s.merged[i] != own || s.own[i] != own) continue;
+            const uint32_t size = primitives(ids[i]);
+            smallest.offer(i, size);
+            (size >= leaf ? fullSmallest : openLargest).offer(i, size);
+        }
+        if (smallest.firstSize + smallest.secondSize <= leaf) return {smallest.first, smallest.second};
+        if (fullSmallest.second != TwoBest::kNone) return {fullSmallest.first, fullSmallest.second};
+        if (fullSmallest.first != TwoBest::kNone) return {fullSmallest.first, openLargest.first};
+        return {openLargest.first, openLargest.second};
+    }
+
+    // The primitives below node `id`.
+    uint32_t primitives(uint32_t id) const {
+        if (recorder_) return recorder_->primitives(id);
+        return id < keys_.size() ? 1 : counts_[id - keys_.size()];
+    }
+
     // Half the surface area of node `id`'s container.
     double area(size_t id) const { return spheres_ ? sphereOf_[id].halfArea() : nodes_[id].box.halfArea(); }
 
@@ -235,14 +308,11 @@ private:
     // to the lowest position.
     template <bool Spheres>
     static void findBestMatch(ClusterScratch& s, size_t k, size_t i) {
-        if constexpr (Spheres) {
-            mergedSphereAreas(s, k, i);
-        } else {
-            mergedBoxAreas(s, k, i);
-        }
+        mergedAreas<Spheres>(s, k, i);
         float best = std::numeric_limits<float>::infinity();
         uint32_t partner = i == 0 ? 1u : 0u;
         float* __restrict area = s.merged.data();
+        s.own[i] = area[i];
         area[i] = best;  // not its own partner
         for (size_t j = 0; j < k; ++j) {
             if (area[j] < best) {
@@ -252,6 +322,16 @@ private:
         }
         s.closest[i] = partner;
         s.distance[i] = best;
+    }
+
+    // The distances from cluster i to each of the first k, into s.merged.
+    template <bool Spheres>
+    static void mergedAreas(ClusterScratch& s, size_t k, size_t i) {
+        if constexpr (Spheres) {
+            mergedSphereAreas(s, k, i);
+        } else {
+            mergedBoxAreas(s, k, i);
+        }
     }
 
     // The areas of cluster i's box merged with every cluster's, in one loop without branches
@@ -297,6 +377,7 @@ private:
     BuildArray<BinaryNode> nodes_;    // primitives at [0, n), then merges in the slots of their ranges
     BuildArray<uint32_t> clusters_;   // per range, its current clusters (node ids)
     BuildArray<uint32_t> free_;       // per range, its unused merge slots
+    BuildArray<uint32_t> counts_;     // without a recorder: per merge node (id - N), the primitives below it
     bool spheres_;                     // sphere containers: every node's sphere in sphereOf_
     std::vector<Sphere> sphereOf_;
     AacReduction reduce_;              // f

@@ -13,7 +13,10 @@
 //    paper's CombineClusters: merge the pair whose merged box has the smallest surface area,
 //    with each cluster's closest partner cached and recomputed only when that partner merges) until
 //    f(n) clusters remain for its n primitives; a range of at most delta primitives starts from
-//    its primitives and keeps f(delta) = delta / 2. The root combines what is left into one.
+//    its primitives and keeps f(delta) = delta / 2. The root combines what is left into one. Ties
+//    go to the lowest position, except among clusters of equal boxes, such as copies of a
+//    triangle, which merge so as to fill the collapsed leaves (aac_builder.cpp,
+//    equalContainerPair).
 //
 // Independent ranges run as oneTBB tasks. No decision depends on the thread count or on the order
 // tasks finish, and neither do node ids: each range merges into its own region of the node array
