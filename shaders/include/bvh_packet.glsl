@@ -4,14 +4,14 @@
 // and Slusallek, "Realtime Ray Tracing on GPU with BVH-based Packet Traversal", IRT 2007). The node
 // to visit and the stack's nodes are the packet's, the same in every lane; each lane tests its own
 // ray against the node's four children, and the packet descends into every child that some lane's
-// ray enters (subgroupOr of the lanes' child masks). Closest hits take those children nearest
-// first by the entry distances of the packet's first lane (subgroupBroadcastFirst: one lane's
-// distances stand for the packet's, as Günther et al.'s packet takes the near child of its first
-// ray); shadow rays in slot order. A lane whose ray does not enter the node sits the step out (its
-// box test is masked), a lane whose shadow ray is blocked sits out the rest of the walk, and beside
-// each node on the stack every lane keeps its own entry distance, so a popped node that no lane's
-// ray enters within its best hit so far is dropped without a read. Leaves test their triangles in
-// the loop of leaf_triangles.glsl, each lane on its own ray and only where its ray enters the leaf.
+// ray enters (subgroupOr of the lanes' child masks), nearest first by the entry distances of the
+// packet's first lane (subgroupBroadcastFirst: one lane's distances stand for the packet's, where
+// the packet's nearest entry, a subgroupMin of four distances, costs four reductions a step, each a
+// loop over the lanes on llvmpipe: docs/performance.md, "Packet traversal"). A lane whose ray does
+// not enter the node sits the step out (its box test is masked), and beside each node on the stack
+// every lane keeps its own entry distance, so a popped node that no lane's ray enters within its
+// best hit so far is dropped without a read. Leaves test their triangles in the loop of
+// leaf_triangles.glsl, each lane on its own ray and only where its ray enters the leaf.
 //
 // Every loop condition and branch of the walk is the same in every lane of the packet (the node,
 // the stack's depth, the children's count), so the subgroup operations in it are reached by all
@@ -43,7 +43,7 @@ void packetSortPair(inout vec4 key, inout uvec4 ref, inout vec4 lane, int a, int
     }
 }
 
-// The children some lane enters first, nearest first by the packet's key (+inf: no lane enters
+// The children some lane enters first, in the order of the packet's key (+inf: no lane enters
 // it); `lane` (this lane's entry distances, +inf where its ray misses) follows the same order.
 void packetSort(inout vec4 key, inout uvec4 kids, inout vec4 lane) {
     packetSortPair(key, kids, lane, 0, 1);
@@ -53,11 +53,10 @@ void packetSort(inout vec4 key, inout uvec4 kids, inout vec4 lane) {
     packetSortPair(key, kids, lane, 1, 2);
 }
 
-// Closest hit in (0, tmax), or with anyHit (a constant at every call) whether any hit is in it
-// (best.triangle >= 0), walked as a packet with the lanes active at the call. The loop over leaves
-// around a loop over node steps of the stack walk (bvh_traversal.glsl, Aila and Laine 2009), with
-// the packet's node and stack in place of the ray's.
-Hit bvhPacketTrace(vec3 origin, vec3 dir, float tmax, const bool anyHit) {
+// Closest hit in (0, tmax), walked as a packet with the lanes active at the call. The loop over
+// leaves around a loop over node steps of the stack walk (bvh_traversal.glsl, Aila and Laine 2009),
+// with the packet's node and stack in place of the ray's.
+Hit bvhPacketTrace(vec3 origin, vec3 dir, float tmax) {
     Hit best = noHit(tmax);
     if (params.counts.x == 0u) return best;
     const BoxRay boxRay = makeBoxRay(origin, dir);
@@ -72,14 +71,13 @@ Hit bvhPacketTrace(vec3 origin, vec3 dir, float tmax, const bool anyHit) {
     int iteration = 0;
     // The next entry of the stack into `ref`: the lanes whose rays enter it before their best hit
     // (widened as in bvh_traversal.glsl's pop: a triangle in its box's face may hit one ulp before
-    // the box's computed entry), and whose shadow ray is not yet blocked, take part; with none,
-    // the entry is dropped (haveRef false).
+    // the box's computed entry) take part; with none, the entry is dropped (haveRef false).
 #define VKRAY_PACKET_POP()                                                                        \
     {                                                                                             \
         --top;                                                                                    \
         ref = stackRef[top];                                                                      \
         const float enter = stackEnter[top];                                                      \
-        enters = enter < kInfinity && !(enter > best.t * kRoundingSlack) && !(anyHit && best.triangle >= 0); \
+        enters = enter < kInfinity && !(enter > best.t * kRoundingSlack);                       \
         haveRef = subgroupAny(enters);                                                            \
     }
     while (iteration < VKRAY_BVH_MAX_ITERATIONS && (haveRef || top > 0)) {
@@ -90,13 +88,12 @@ Hit bvhPacketTrace(vec3 origin, vec3 dir, float tmax, const bool anyHit) {
                 vec4 tEnter;
                 const bvec4 hit = hitsChildren(n, boxRay, best.t, tEnter);
                 vec4 lane = mix(vec4(kInfinity), tEnter, bvec4(uvec4(hit) * uint(enters)));
-                // The children some lane enters, and their order: the first lane's entry distances
-                // (or the slots), the same in every lane.
+                // The children some lane enters, and their order: the first lane's entry distances,
+                // the same in every lane.
                 const uvec4 bits = uvec4(lessThan(lane, vec4(kInfinity))) << uvec4(0u, 1u, 2u, 3u);
                 const uint entered = subgroupOr(bits.x | bits.y | bits.z | bits.w);
                 const bvec4 packetEnters = notEqual(uvec4(entered) & uvec4(1u, 2u, 4u, 8u), uvec4(0u));
-                vec4 key = mix(vec4(kInfinity), anyHit ? vec4(0.0, 1.0, 2.0, 3.0) : subgroupBroadcastFirst(tEnter),
-                               packetEnters);
+                vec4 key = mix(vec4(kInfinity), subgroupBroadcastFirst(tEnter), packetEnters);
                 uvec4 kids = n.child;
                 packetSort(key, kids, lane);
                 const int hits = bitCount(entered);
@@ -132,10 +129,9 @@ Hit bvhPacketTrace(vec3 origin, vec3 dir, float tmax, const bool anyHit) {
         if (enters) {
             countNode();
             countLeaf();
-            testSlots(leafFirst(ref), leafFirst(ref) + leafCount(ref), ray, anyHit, LEAF_SLOTS, best);
+            testSlots(leafFirst(ref), leafFirst(ref) + leafCount(ref), ray, false, LEAF_SLOTS, best);
         }
         haveRef = false;
-        if (anyHit && subgroupAll(best.triangle >= 0)) top = 0;  // every shadow ray is blocked
         if (top > 0) VKRAY_PACKET_POP()
     }
 #undef VKRAY_PACKET_POP
