@@ -53,6 +53,18 @@ void packetSort(inout vec4 key, inout uvec4 kids, inout vec4 lane) {
     packetSortPair(key, kids, lane, 1, 2);
 }
 
+// The children of a node that some lane's ray enters (`lane`: this lane's entry distances, +inf
+// where its ray misses the child or does not enter the node), first in `kids` and `lane`, in the
+// order of the first lane's entry distances (`tEnter`), the same in every lane; returns how many.
+int packetChildren(vec4 tEnter, inout vec4 lane, inout uvec4 kids) {
+    const uvec4 bits = uvec4(lessThan(lane, vec4(kInfinity))) << uvec4(0u, 1u, 2u, 3u);
+    const uint entered = subgroupOr(bits.x | bits.y | bits.z | bits.w);
+    const bvec4 packetEnters = notEqual(uvec4(entered) & uvec4(1u, 2u, 4u, 8u), uvec4(0u));
+    vec4 key = mix(vec4(kInfinity), subgroupBroadcastFirst(tEnter), packetEnters);
+    packetSort(key, kids, lane);
+    return bitCount(entered);
+}
+
 // Closest hit in (0, tmax), walked as a packet with the lanes active at the call. The loop over
 // leaves around a loop over node steps of the stack walk (bvh_traversal.glsl, Aila and Laine 2009),
 // with the packet's node and stack in place of the ray's.
@@ -88,15 +100,8 @@ Hit bvhPacketTrace(vec3 origin, vec3 dir, float tmax) {
                 vec4 tEnter;
                 const bvec4 hit = hitsChildren(n, boxRay, best.t, tEnter);
                 vec4 lane = mix(vec4(kInfinity), tEnter, bvec4(uvec4(hit) * uint(enters)));
-                // The children some lane enters, and their order: the first lane's entry distances,
-                // the same in every lane.
-                const uvec4 bits = uvec4(lessThan(lane, vec4(kInfinity))) << uvec4(0u, 1u, 2u, 3u);
-                const uint entered = subgroupOr(bits.x | bits.y | bits.z | bits.w);
-                const bvec4 packetEnters = notEqual(uvec4(entered) & uvec4(1u, 2u, 4u, 8u), uvec4(0u));
-                vec4 key = mix(vec4(kInfinity), subgroupBroadcastFirst(tEnter), packetEnters);
                 uvec4 kids = n.child;
-                packetSort(key, kids, lane);
-                const int hits = bitCount(entered);
+                const int hits = packetChildren(tEnter, lane, kids);
                 if (top + hits > VKRAY_BVH_STACK_SIZE) {  // deeper than the stack: flag, never guess
                     gLoopCutShort = true;
                     return best;
