@@ -127,6 +127,28 @@ bvec4 hitsChildren(GpuBvhNode n, BoxRay r, float tLimit, out vec4 tEnter) {
 }
 #endif
 
+// Orders entries a and b of (key, ref) by key.
+void sortPair(inout vec4 key, inout uvec4 ref, int a, int b) {
+    if (key[b] < key[a]) {
+        const float k = key[a];
+        key[a] = key[b];
+        key[b] = k;
+        const uint r = ref[a];
+        ref[a] = ref[b];
+        ref[b] = r;
+    }
+}
+
+// (key, ref) in the order of key: a sorting network of five compare-swaps. Equal keys leave their
+// entries in the same order on every call, so two arrays sorted by copies of one key stay paired.
+void sortByKey(inout vec4 key, inout uvec4 ref) {
+    sortPair(key, ref, 0, 1);
+    sortPair(key, ref, 2, 3);
+    sortPair(key, ref, 0, 2);
+    sortPair(key, ref, 1, 3);
+    sortPair(key, ref, 1, 2);
+}
+
 // Node `index`'s parent link, parent << 2 | its slot there (shared/bvh_layout.h): in the node itself
 // for boxes, in the index view for spheres.
 #ifdef VKRAY_BVH_SPHERES

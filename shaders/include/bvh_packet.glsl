@@ -28,31 +28,6 @@
 #include "trace_status.glsl"
 #include "triangle.glsl"
 
-// Orders entries a and b of (key, ref, lane) by key, the packet's, so every lane swaps alike.
-void packetSortPair(inout vec4 key, inout uvec4 ref, inout vec4 lane, int a, int b) {
-    if (key[b] < key[a]) {
-        const float k = key[a];
-        key[a] = key[b];
-        key[b] = k;
-        const uint r = ref[a];
-        ref[a] = ref[b];
-        ref[b] = r;
-        const float l = lane[a];
-        lane[a] = lane[b];
-        lane[b] = l;
-    }
-}
-
-// The children some lane enters first, in the order of the packet's key (+inf: no lane enters
-// it); `lane` (this lane's entry distances, +inf where its ray misses) follows the same order.
-void packetSort(inout vec4 key, inout uvec4 kids, inout vec4 lane) {
-    packetSortPair(key, kids, lane, 0, 1);
-    packetSortPair(key, kids, lane, 2, 3);
-    packetSortPair(key, kids, lane, 0, 2);
-    packetSortPair(key, kids, lane, 1, 3);
-    packetSortPair(key, kids, lane, 1, 2);
-}
-
 // The children of a node that some lane's ray enters (`lane`: this lane's entry distances, +inf
 // where its ray misses the child or does not enter the node), first in `kids` and `lane`, in the
 // order of the first lane's entry distances (`tEnter`), the same in every lane; returns how many.
@@ -60,8 +35,11 @@ int packetChildren(vec4 tEnter, inout vec4 lane, inout uvec4 kids) {
     const uvec4 bits = uvec4(lessThan(lane, vec4(kInfinity))) << uvec4(0u, 1u, 2u, 3u);
     const uint entered = subgroupOr(bits.x | bits.y | bits.z | bits.w);
     const bvec4 packetEnters = notEqual(uvec4(entered) & uvec4(1u, 2u, 4u, 8u), uvec4(0u));
-    vec4 key = mix(vec4(kInfinity), subgroupBroadcastFirst(tEnter), packetEnters);
-    packetSort(key, kids, lane);
+    vec4 key = mix(vec4(kInfinity), subgroupBroadcastFirst(tEnter), packetEnters), sameKey = key;
+    uvec4 laneBits = floatBitsToUint(lane);
+    sortByKey(key, kids);
+    sortByKey(sameKey, laneBits);
+    lane = uintBitsToFloat(laneBits);
     return bitCount(entered);
 }
 
