@@ -1,6 +1,6 @@
-// What the two walks of the 4-wide BVH share (bvh_traversal.glsl, the stack walk of closest hits;
-// bvh_stackless.glsl, the stackless walk): the node fetch through the texel view, the test of a node's
-// four children, and leaf references. Layout: shared/bvh_layout.h. A kernel that defines
+// What the walks of the 4-wide BVH share (bvh_traversal.glsl, the stack walk of closest hits;
+// bvh_stackless.glsl, the stackless walk; bvh_packet.glsl, the packet walk): the node fetch through
+// the texel view, the test of a node's four children, their sort, and leaf references. Layout: shared/bvh_layout.h. A kernel that defines
 // VKRAY_BVH_SPHERES before including this (render_bvh_sphere.comp) walks sphere containers
 // (GpuBvhSphereNode) instead of boxes: only the node type, its fetch and its test change.
 #ifndef VKRAY_BVH_COMMON_GLSL
