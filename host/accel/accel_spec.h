@@ -41,7 +41,7 @@ struct AccelSpec {
     std::string name{kDefaultAccel};  // as given on the command line ("bvh-hq")
     Family family = Family::Bvh;
     bvh::Config bvh = bvh::Config::aacHq();  // Family::Bvh: the preset with any overrides
-    BvhWalk bvhWalk = BvhWalk::Stack;         // Family::Bvh: how its kernel walks the tree
+    BvhWalk bvhWalk = BvhWalk::Stack;        // Family::Bvh: how its kernel walks the tree (same tree)
     kd::KdConfig kd;                         // Family::Kd: the defaults with any overrides
     kd::Traversal kdTraversal = kd::Traversal::Restart;  // Family::Kd: the same tree for all of them
     // kd-shortstack: its stack's entries (a specialization constant of its kernel, not part of the
