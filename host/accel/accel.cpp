@@ -55,7 +55,7 @@ std::unique_ptr<BuiltAccel> buildAccel(const Scene& scene, const AccelSpec& spec
     switch (spec.family) {
     case Family::Brute: return std::make_unique<BruteAccel>();
     case Family::Driver: return std::make_unique<DriverAccel>(spec.driver, bvh::mortonOrder(scene.triangles));
-    case Family::Bvh: return buildBvhAccel(scene, spec.bvh, spec.bvhStackless, options);
+    case Family::Bvh: return buildBvhAccel(scene, spec.bvh, spec.bvhWalk, options);
     case Family::Kd: return buildKdAccel(scene, spec.kd, spec.kdTraversal, spec.kdShortStack, options);
     }
     throw Error("accelerator '" + spec.name + "': unknown family");
@@ -65,7 +65,7 @@ Traversal traversalOf(const AccelSpec& spec) {
     switch (spec.family) {
     case Family::Brute: return Traversal::Brute;
     case Family::Driver: return Traversal::RayQuery;
-    case Family::Bvh: return bvhTraversal(spec.bvh, spec.bvhStackless);
+    case Family::Bvh: return bvhTraversal(spec.bvh, spec.bvhWalk);
     case Family::Kd: return kdTraversal(spec.kdTraversal);
     }
     throw Error("accelerator '" + spec.name + "': unknown family");

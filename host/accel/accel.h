@@ -32,12 +32,13 @@ namespace vkray::accel {
 // (gpu/kernel_registry.h).
 // RayQuery: the driver's (its structure built on the device from the scene's triangles).
 enum class Traversal {
-    Brute, Bvh, BvhStackless, BvhSphere, KdStack, KdRestart, KdBacktrack, KdPushDown, KdShortStack, KdRopes, RayQuery
+    Brute, Bvh, BvhStackless, BvhPacket, BvhSphere, KdStack, KdRestart, KdBacktrack, KdPushDown, KdShortStack, KdRopes,
+    RayQuery
 };
-inline constexpr std::array kTraversals{Traversal::Brute,     Traversal::Bvh,         Traversal::BvhStackless,
-                                        Traversal::BvhSphere, Traversal::KdStack,     Traversal::KdRestart,
-                                        Traversal::KdBacktrack, Traversal::KdPushDown, Traversal::KdShortStack,
-                                        Traversal::KdRopes,   Traversal::RayQuery};
+inline constexpr std::array kTraversals{Traversal::Brute,       Traversal::Bvh,        Traversal::BvhStackless,
+                                        Traversal::BvhPacket,   Traversal::BvhSphere,  Traversal::KdStack,
+                                        Traversal::KdRestart,   Traversal::KdBacktrack, Traversal::KdPushDown,
+                                        Traversal::KdShortStack, Traversal::KdRopes,   Traversal::RayQuery};
 
 // Its name, as structure files record it: the accelerator that walks it (accel_spec.cpp's names).
 constexpr std::string_view traversalName(Traversal t) {
@@ -45,6 +46,7 @@ constexpr std::string_view traversalName(Traversal t) {
     case Traversal::Brute: return "brute";
     case Traversal::Bvh: return "bvh";
     case Traversal::BvhStackless: return "bvh-stackless";
+    case Traversal::BvhPacket: return "bvh-packet";
     case Traversal::BvhSphere: return "bvh-sphere";
     case Traversal::KdStack: return "kd-stack";
     case Traversal::KdRestart: return "kd-restart";

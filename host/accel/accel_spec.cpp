@@ -21,7 +21,7 @@ struct AccelEntry {
     Family family;
     bvh::Config bvh;  // Family::Bvh: the preset
     kd::Traversal kdTraversal = kd::Traversal::Restart;
-    bool bvhStackless = false;
+    BvhWalk bvhWalk = BvhWalk::Stack;
 };
 
 // Plain `bvh` is AAC-HQ with two passes of treelet restructuring (Karras and Aila 2013): camera
@@ -35,7 +35,10 @@ const AccelEntry kAccels[] = {
     {"bvh-hq", Family::Bvh, bvh::Config::aacHq()},
     {"bvh-sah", Family::Bvh, bvh::Config::binnedSah()},
     // bvh's tree walked without a stack (Hapala et al. 2011; docs/bvh.md).
-    {"bvh-stackless", Family::Bvh, bvh::Config::aacHqRestructured(), {}, true},
+    {"bvh-stackless", Family::Bvh, bvh::Config::aacHqRestructured(), {}, BvhWalk::Stackless},
+    // bvh's tree walked by the rays of a subgroup as one packet (Günther, Popov, Seidel and
+    // Slusallek 2007; docs/bvh.md).
+    {"bvh-packet", Family::Bvh, bvh::Config::aacHqRestructured(), {}, BvhWalk::Packet},
     // AAC-HQ with sphere containers instead of boxes: Mahmuda 2017's box/sphere experiment
     // (docs/bvh.md, "Sphere containers").
     {"bvh-sphere", Family::Bvh, bvh::Config::aacHqSpheres()},
@@ -122,7 +125,7 @@ AccelSpec specOf(const AccelEntry& e) {
     spec.family = e.family;
     spec.bvh = e.bvh;
     spec.kdTraversal = e.kdTraversal;
-    spec.bvhStackless = e.bvhStackless;
+    spec.bvhWalk = e.bvhWalk;
     return spec;
 }
 

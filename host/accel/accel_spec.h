@@ -29,6 +29,11 @@ struct DriverBuild {
     bool compact = true;
 };
 
+// How a BVH kernel walks the tree (one tree for all three): a stack per ray; parent links instead
+// (Hapala et al. 2011); or one stack for the rays of a subgroup, walked together as a packet
+// (Günther et al. 2007; shaders/include/bvh_packet.glsl).
+enum class BvhWalk { Stack, Stackless, Packet };
+
 // The accelerator `vkray render` uses when --accel is not given.
 inline constexpr std::string_view kDefaultAccel = "bvh";
 
@@ -36,7 +41,7 @@ struct AccelSpec {
     std::string name{kDefaultAccel};  // as given on the command line ("bvh-hq")
     Family family = Family::Bvh;
     bvh::Config bvh = bvh::Config::aacHq();  // Family::Bvh: the preset with any overrides
-    bool bvhStackless = false;               // Family::Bvh: parent links instead of a stack (same tree)
+    BvhWalk bvhWalk = BvhWalk::Stack;        // Family::Bvh: how its kernel walks the tree (same tree)
     kd::KdConfig kd;                         // Family::Kd: the defaults with any overrides
     kd::Traversal kdTraversal = kd::Traversal::Restart;  // Family::Kd: the same tree for all of them
     // kd-shortstack: its stack's entries (a specialization constant of its kernel, not part of the

@@ -119,7 +119,7 @@ Frame renderOnGpu(const VulkanContext& ctx, const Scene& scene, const RenderOpti
     GpuRenderReport local;
     GpuRenderReport& rep = report ? *report : local;
     rep = GpuRenderReport{};
-    rep.kernel = std::string(kernelName(accel.traversal));
+    rep.kernel = std::string(kernelName(kernelTraversal(ctx, accel.traversal)));
     const GpuFrameParams base = frameParams(scene, options);  // validates camera and size
     const Uploaded buffers = upload(ctx, scene, accel, rep);
 

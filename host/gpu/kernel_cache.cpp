@@ -7,6 +7,11 @@
 
 namespace vkray::gpu {
 
+accel::Traversal kernelTraversal(const VulkanContext& ctx, accel::Traversal traversal) {
+    if (traversal == accel::Traversal::BvhPacket && !ctx.info().subgroupBallot) return accel::Traversal::Bvh;
+    return traversal;
+}
+
 KernelCache::KernelCache(const VulkanContext& ctx) : ctx_(ctx) {}
 KernelCache::~KernelCache() = default;
 
@@ -19,6 +24,7 @@ std::span<const uint32_t> KernelCache::spirv(accel::Traversal traversal, KernelV
 }
 
 ComputeKernel& KernelCache::kernel(accel::Traversal traversal, const ShaderFeatures& features) {
+    traversal = kernelTraversal(ctx_, traversal);
     const Specialization spec = features.specialization();
     const KernelVariant variant = features.variant();
     auto& slot = kernels_[{{traversal, variant.index()}, spec.values}];

@@ -21,6 +21,11 @@
 
 namespace vkray::gpu {
 
+// The traversal whose kernel runs `traversal` on ctx's device: itself, but for `bvh-packet` on a
+// device without subgroup ballot operations (its kernel's subgroupBroadcastFirst), which runs
+// `bvh`'s kernel: the same tree and the same hits, walked one ray a lane.
+accel::Traversal kernelTraversal(const VulkanContext& ctx, accel::Traversal traversal);
+
 // Renders that share a cache must not run at the same time (a kernel has one descriptor set).
 class KernelCache {
 public:
@@ -29,7 +34,7 @@ public:
     KernelCache(const KernelCache&) = delete;
     KernelCache& operator=(const KernelCache&) = delete;
 
-    // The pipeline of `traversal`'s kernel for `features`: its SPIR-V variant (features.variant(): plain,
+    // The pipeline of the kernel that runs `traversal` (kernelTraversal()) for `features`: its SPIR-V variant (features.variant(): plain,
     // resumable, split texel views or both), specialised with features.specialization(). The
     // SPIR-V is the built-in one, or with VKRAY_KERNEL_DIR set the file from that folder, read once
     // per cache (kernel_registry.h).

@@ -95,6 +95,7 @@ DeviceInfo describe(const vk::raii::PhysicalDevice& pd, uint32_t index) {
     d.subgroupOps = (subgroups.supportedOperations & vk::SubgroupFeatureFlagBits::eVote) &&
                     (subgroups.supportedOperations & vk::SubgroupFeatureFlagBits::eArithmetic) &&
                     (subgroups.supportedStages & vk::ShaderStageFlagBits::eCompute);
+    d.subgroupBallot = d.subgroupOps && (subgroups.supportedOperations & vk::SubgroupFeatureFlagBits::eBallot);
     d.name = props.deviceName.data();
     d.type = typeName(props.deviceType);
     d.driver = std::string(drv.driverName.data());

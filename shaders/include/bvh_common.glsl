@@ -1,6 +1,6 @@
-// What the two walks of the 4-wide BVH share (bvh_traversal.glsl, the stack walk of closest hits;
-// bvh_stackless.glsl, the stackless walk): the node fetch through the texel view, the test of a node's
-// four children, and leaf references. Layout: shared/bvh_layout.h. A kernel that defines
+// What the walks of the 4-wide BVH share (bvh_traversal.glsl, the stack walk of closest hits;
+// bvh_stackless.glsl, the stackless walk; bvh_packet.glsl, the packet walk): the node fetch through
+// the texel view, the test of a node's four children, their sort, and leaf references. Layout: shared/bvh_layout.h. A kernel that defines
 // VKRAY_BVH_SPHERES before including this (render_bvh_sphere.comp) walks sphere containers
 // (GpuBvhSphereNode) instead of boxes: only the node type, its fetch and its test change.
 #ifndef VKRAY_BVH_COMMON_GLSL
@@ -126,6 +126,28 @@ bvec4 hitsChildren(GpuBvhNode n, BoxRay r, float tLimit, out vec4 tEnter) {
     return bvec4(uvec4(lessThanEqual(tEnter, tExit)) * uvec4(notEqual(n.child, uvec4(VKRAY_BVH_NO_CHILD))));
 }
 #endif
+
+// Orders entries a and b of (key, ref) by key.
+void sortPair(inout vec4 key, inout uvec4 ref, int a, int b) {
+    if (key[b] < key[a]) {
+        const float k = key[a];
+        key[a] = key[b];
+        key[b] = k;
+        const uint r = ref[a];
+        ref[a] = ref[b];
+        ref[b] = r;
+    }
+}
+
+// (key, ref) in the order of key: a sorting network of five compare-swaps. Equal keys leave their
+// entries in the same order on every call, so two arrays sorted by copies of one key stay paired.
+void sortByKey(inout vec4 key, inout uvec4 ref) {
+    sortPair(key, ref, 0, 1);
+    sortPair(key, ref, 2, 3);
+    sortPair(key, ref, 0, 2);
+    sortPair(key, ref, 1, 3);
+    sortPair(key, ref, 1, 2);
+}
 
 // Node `index`'s parent link, parent << 2 | its slot there (shared/bvh_layout.h): in the node itself
 // for boxes, in the index view for spheres.

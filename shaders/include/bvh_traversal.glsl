@@ -19,28 +19,11 @@
 #include "trace_status.glsl"
 #include "triangle.glsl"
 
-// Orders entries a and b of (key, ref) by key.
-void sortPair(inout vec4 key, inout uvec4 ref, int a, int b) {
-    if (key[b] < key[a]) {
-        const float k = key[a];
-        key[a] = key[b];
-        key[b] = k;
-        const uint r = ref[a];
-        ref[a] = ref[b];
-        ref[b] = r;
-    }
-}
-
-// The entered children first, nearest first: a sorting network of five compare-swaps on the entry
-// distance, +inf for a miss.
+// The entered children first, nearest first (sortByKey, bvh_common.glsl), +inf for a miss.
 void sortEntered(bvec4 hit, vec4 tEnter, uvec4 child, out vec4 key, out uvec4 kids) {
     key = mix(vec4(kInfinity), tEnter, hit);
     kids = child;
-    sortPair(key, kids, 0, 1);
-    sortPair(key, kids, 2, 3);
-    sortPair(key, kids, 0, 2);
-    sortPair(key, kids, 1, 3);
-    sortPair(key, kids, 1, 2);
+    sortByKey(key, kids);
 }
 
 // Closest hit in (0, tmax).

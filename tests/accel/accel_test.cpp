@@ -22,7 +22,7 @@ namespace {
 
 TEST(Accel, EveryNameResolvesToItsFamilyAndTraversal) {
     for (const std::string name :
-         {"bvh", "bvh-fast", "bvh-hq", "bvh-stackless", "bvh-sphere", "kd-restart", "kd-pushdown", "kd-ropes", "kd-backtrack", "kd-stack", "kd-shortstack",
+         {"bvh", "bvh-fast", "bvh-hq", "bvh-stackless", "bvh-packet", "bvh-sphere", "kd-restart", "kd-pushdown", "kd-ropes", "kd-backtrack", "kd-stack", "kd-shortstack",
           "brute"})
         EXPECT_NE(std::find(accelNames().begin(), accelNames().end(), name), accelNames().end()) << name;
     EXPECT_EQ(resolveAccel("brute").family, Family::Brute);
@@ -112,10 +112,10 @@ TEST(AccelSpec, EveryTuningOptionIsRangeCheckedAndNamed) {
     expectError("kd-restart", "kd-max-depth", "57", "must be 1..56");
     expectError("kd-restart", "kd-max-depth", "0", "must be 1..56");
     expectError("bvh", "kd-max-depth", "10", "applies to kd-restart, kd-pushdown, kd-ropes, kd-backtrack, kd-stack, kd-shortstack only");
-    expectError("kd-stack", "aac-delta", "8", "applies to bvh, bvh-fast, bvh-hq, bvh-stackless, bvh-sphere only");
+    expectError("kd-stack", "aac-delta", "8", "applies to bvh, bvh-fast, bvh-hq, bvh-stackless, bvh-packet, bvh-sphere only");
     // Treelet restructuring prices boxes.
-    expectError("bvh-sphere", "bvh-treelet-passes", "2", "applies to bvh, bvh-fast, bvh-hq, bvh-sah, bvh-stackless only");
-    expectError("bvh-sphere", "bvh-reinsert-iterations", "2", "applies to bvh, bvh-fast, bvh-hq, bvh-sah, bvh-stackless only");
+    expectError("bvh-sphere", "bvh-treelet-passes", "2", "applies to bvh, bvh-fast, bvh-hq, bvh-sah, bvh-stackless, bvh-packet only");
+    expectError("bvh-sphere", "bvh-reinsert-iterations", "2", "applies to bvh, bvh-fast, bvh-hq, bvh-sah, bvh-stackless, bvh-packet only");
     expectError("bvh", "bvh-reinsert-iterations", "1001", "must be 0..1000");
     expectError("bvh", "bvh-reinsert-batch", "0", "must be in [0.001, 1]");
     expectError("bvh", "bvh-reinsert-batch", "1.5", "must be in [0.001, 1]");
@@ -148,7 +148,7 @@ TEST(AccelSpec, TuningAfterTheName) {
     expectError("bvh:aac-delta=8:aac-delta=9", "aac-delta is given twice");
     expectError("bvh:aac-delta=8:--aac-delta=9", "aac-delta is given twice");
     expectError("bvh:aac-delta=2000", "aac-delta must be 1..1024 (got 2000)");
-    expectError("kd-stack:aac-delta=8", "aac-delta applies to bvh, bvh-fast, bvh-hq, bvh-stackless, bvh-sphere only");
+    expectError("kd-stack:aac-delta=8", "aac-delta applies to bvh, bvh-fast, bvh-hq, bvh-stackless, bvh-packet, bvh-sphere only");
     expectError("octree:aac-delta=8", "unknown accelerator 'octree'");
 }
 

@@ -184,7 +184,7 @@ add_test(NAME cli.render_accel.bvh
                  -o ${CLI_OUT}/default-bvh.png --stats)
 set_tests_properties(cli.render_accel.bvh PROPERTIES TIMEOUT 300 ENVIRONMENT "VKRAY_VALIDATION=1"
   FIXTURES_SETUP accel_bvh)
-foreach(accel bvh bvh-fast bvh-hq bvh-sah bvh-stackless bvh-sphere kd-stack kd-shortstack kd-restart kd-pushdown kd-ropes kd-backtrack)
+foreach(accel bvh bvh-fast bvh-hq bvh-sah bvh-stackless bvh-packet bvh-sphere kd-stack kd-shortstack kd-restart kd-pushdown kd-ropes kd-backtrack)
   if(NOT accel STREQUAL "bvh")
     add_test(NAME cli.render_accel.${accel}
              COMMAND ${CLI_DIR}/expect_output.sh "accel ${accel}"
@@ -238,7 +238,7 @@ vkray_expect_error(kd_short_stack_kd_stack "--accel kd-stack:kd-short-stack=2: k
 vkray_expect_error(aac_delta_absurd "aac-delta must be 1..1024" render ${CLI_DATA}/one_triangle.scene --accel bvh:aac-delta=1000000 -o ${CLI_OUT}/x.png)
 vkray_expect_error(treelet_passes "bvh-treelet-passes must be 0..16" render ${CLI_DATA}/one_triangle.scene --accel bvh:bvh-treelet-passes=17 -o ${CLI_OUT}/x.png)
 vkray_expect_error(reinsert_batch "bvh-reinsert-batch must be in \\[0.001, 1\\]" render ${CLI_DATA}/one_triangle.scene --accel bvh:bvh-reinsert-batch=2 -o ${CLI_OUT}/x.png)
-vkray_expect_error(treelet_min_kd "bvh-treelet-min applies to bvh, bvh-fast, bvh-hq, bvh-sah, bvh-stackless only" render ${CLI_DATA}/one_triangle.scene --accel kd-stack:bvh-treelet-min=4 -o ${CLI_OUT}/x.png)
+vkray_expect_error(treelet_min_kd "bvh-treelet-min applies to bvh, bvh-fast, bvh-hq, bvh-sah, bvh-stackless, bvh-packet only" render ${CLI_DATA}/one_triangle.scene --accel kd-stack:bvh-treelet-min=4 -o ${CLI_OUT}/x.png)
 # A mistyped accelerator or option gets the nearest name; `--accel help` lists them all, no scene needed.
 vkray_expect_error(accel_typo "--accel kd-rope: unknown accelerator 'kd-rope' \\(did you mean 'kd-ropes'\\?\\)" render ${CLI_DATA}/one_triangle.scene --accel kd-rope -o ${CLI_OUT}/x.png)
 vkray_expect_error(accel_option_typo "unknown tuning option 'aac-delt' \\(did you mean 'aac-delta'\\?\\)" render ${CLI_DATA}/one_triangle.scene --accel bvh:aac-delt=8 -o ${CLI_OUT}/x.png)

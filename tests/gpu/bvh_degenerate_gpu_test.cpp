@@ -39,7 +39,7 @@ vertex 0 1 0
 tri 0 1 2
 )";
 
-const std::vector<std::string> kBvhAccels = {"bvh", "bvh-fast", "bvh-hq", "bvh-sah", "bvh-stackless", "bvh-sphere"};
+const std::vector<std::string> kBvhAccels = {"bvh", "bvh-fast", "bvh-hq", "bvh-sah", "bvh-stackless", "bvh-packet", "bvh-sphere"};
 
 // Renders `s` with `accel` on `ctx` and expects brute force's frame and ray counts.
 void expectBruteForceFrame(const gpu::VulkanContext& ctx, const Scene& s, const std::string& accel,

@@ -3,6 +3,7 @@
 // shared edges count as agreement, gpu_test_util.h) and the same image up to float rounding, with
 // no pixel cut short by lavapipe's loop budget and no ray stopped by the traversal's cap.
 // Thresholds were measured on lavapipe (see each) and leave about a 2x margin.
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <ostream>
@@ -51,7 +52,12 @@ TEST_P(BvhOnGpu, SameHitsAndImageAsReferenceAndBrute) {
     const auto built = accel::buildAccel(scene, accel::resolveAccel(c.accel));
     gpu::GpuRenderReport report;
     const Frame gpuFrame = gpu::renderOnGpu(test::gpuContext(), scene, options, built->gpuData(), &report);
-    EXPECT_EQ(report.kernel, c.accel == "bvh-stackless" ? "bvh_stackless" : c.accel == "bvh-sphere" ? "bvh_sphere" : "bvh");
+    // bvh-fast and bvh-hq run bvh's kernel; bvh-packet its own where the device has subgroup ballot.
+    const bool ownKernel = c.accel == "bvh-stackless" || c.accel == "bvh-sphere" ||
+                           (c.accel == "bvh-packet" && test::gpuContext().info().subgroupBallot);
+    std::string kernel = ownKernel ? c.accel : "bvh";
+    std::replace(kernel.begin(), kernel.end(), '-', '_');
+    EXPECT_EQ(report.kernel, kernel);
     EXPECT_EQ(report.pixelsCutShort, 0u);
     EXPECT_EQ(report.cappedRays, 0u);
     // The CPU reference traces with the same BVH on the CPU, which answers exactly as brute force
@@ -100,6 +106,10 @@ INSTANTIATE_TEST_SUITE_P(Scenes, BvhOnGpu,
                                            BvhCase{"cornell.scene", 128, 128, "bvh-stackless", true},
                                            BvhCase{"objects.scene", 128, 96, "bvh-stackless", true},
                                            BvhCase{"bunny.scene", 160, 120, "bvh-stackless", false},
+                                           BvhCase{"cornell.scene", 128, 128, "bvh-packet", true},
+                                           BvhCase{"objects.scene", 128, 96, "bvh-packet", true},
+                                           BvhCase{"spheres.scene", 160, 90, "bvh-packet", true},
+                                           BvhCase{"bunny.scene", 160, 120, "bvh-packet", false},
                                            BvhCase{"cornell.scene", 128, 128, "bvh-sphere", true},
                                            BvhCase{"objects.scene", 128, 96, "bvh-sphere", true},
                                            BvhCase{"bunny.scene", 160, 120, "bvh-sphere", false}),
@@ -110,6 +120,31 @@ INSTANTIATE_TEST_SUITE_P(Scenes, BvhOnGpu,
                                  if (ch == '-') ch = '_';
                              return name;
                          });
+
+// `bvh-packet` walks `bvh`'s tree with the rays of a subgroup as one packet: every ray must still
+// find the triangle the single-ray stack walk finds (a lane tests every leaf its ray enters, ties
+// by beats()), so the two kernels' frames are the same bit for bit, camera, shadow and secondary
+// rays alike. Odd sizes leave tiles whose last subgroups have lanes outside the image, and the
+// Whitted scenes trace packets of the lanes whose pixels still have rays pending.
+TEST(BvhPacketOnGpu, SameFramesAsTheStackWalk) {
+    for (const char* file : {"cornell.scene", "default.scene", "lights.scene", "objects.scene", "spheres.scene"}) {
+        const Scene scene = loadScene(std::filesystem::path(VKRAY_SOURCE_DIR) / "scenes" / file);
+        const RenderOptions options{.width = 125, .height = 93, .maxDepth = scene.maxDepth};
+        gpu::GpuRenderReport stack, packet;
+        const Frame a = test::renderGpu(scene, options, &stack, "bvh");
+        const Frame b = test::renderGpu(scene, options, &packet, "bvh-packet");
+        EXPECT_EQ(packet.kernel, test::gpuContext().info().subgroupBallot ? "bvh_packet" : "bvh");
+        EXPECT_EQ(packet.pixelsCutShort, 0u) << file;
+        EXPECT_EQ(packet.raysTraced, stack.raysTraced) << file;
+        EXPECT_EQ(packet.shadowRays, stack.shadowRays) << file;
+        ASSERT_EQ(a.color.size(), b.color.size()) << file;
+        size_t differing = 0;
+        for (size_t i = 0; i < a.color.size(); ++i)
+            differing += a.primId[i] != b.primId[i] || a.depth[i] != b.depth[i] || a.color[i][0] != b.color[i][0] ||
+                         a.color[i][1] != b.color[i][1] || a.color[i][2] != b.color[i][2];
+        EXPECT_EQ(differing, 0u) << file;
+    }
+}
 
 }  // namespace
 }  // namespace vkray

@@ -145,6 +145,12 @@ TEST(ResumablePixels, BvhOverOverlappingTrianglesBeyondTheLoopBudgetMatchesTheKd
     expectResumedLikeReference(kBurstScene, "bvh", "kd-stack");
 }
 
+// bvh-packet's resumable variant walks closest hits one ray at a time, stackless
+// (render_bvh_packet.comp): its resumed tiles must match too.
+TEST(ResumablePixels, BvhPacketOverOverlappingTrianglesBeyondTheLoopBudgetMatchesTheKdTree) {
+    expectResumedLikeReference(kBurstScene, "bvh-packet", "kd-stack");
+}
+
 // The heavy scene under a kd-tree held to depth 1: two leaves of up to 25,704 triangles. The plain
 // kernel tests one triangle a leaf-loop pass and runs out of llvmpipe's budget; the resumable
 // variant, specialised to test four a pass for such leaves (ShaderFeatures::leafSlots()), finishes

@@ -83,7 +83,8 @@ class IterationCap : public ::testing::TestWithParam<accel::Traversal> {};
 TEST_P(IterationCap, RunawayRaysEndAndAreCounted) {
     const Scene scene = oneTriangleScene();
     const accel::Traversal traversal = GetParam();
-    const bool bvh = traversal == accel::Traversal::Bvh || traversal == accel::Traversal::BvhStackless || traversal == accel::Traversal::BvhSphere;
+    const bool bvh = traversal == accel::Traversal::Bvh || traversal == accel::Traversal::BvhStackless ||
+                     traversal == accel::Traversal::BvhPacket || traversal == accel::Traversal::BvhSphere;
     const accel::GpuAccelData data = bvh ? cyclicBvh(traversal) : cyclicKd(traversal);
     RenderOptions options{.width = kSize, .height = kSize, .maxDepth = 1};
     gpu::GpuRenderReport report;
@@ -96,7 +97,7 @@ TEST_P(IterationCap, RunawayRaysEndAndAreCounted) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Stress, IterationCap,
-                         ::testing::Values(accel::Traversal::Bvh, accel::Traversal::BvhStackless, accel::Traversal::BvhSphere, accel::Traversal::KdStack, accel::Traversal::KdRestart,
+                         ::testing::Values(accel::Traversal::Bvh, accel::Traversal::BvhStackless, accel::Traversal::BvhPacket, accel::Traversal::BvhSphere, accel::Traversal::KdStack, accel::Traversal::KdRestart,
                                            accel::Traversal::KdPushDown, accel::Traversal::KdShortStack, accel::Traversal::KdRopes,
                                            accel::Traversal::KdBacktrack),
                          [](const auto& info) { return std::string(gpu::kernelName(info.param)); });

@@ -34,7 +34,7 @@ namespace vkray {
 namespace {
 
 const std::vector<std::string> kAccels = {"brute",      "bvh-fast",      "bvh-hq",     "bvh-stackless",
-                                          "bvh-sphere", "kd-stack",      "kd-shortstack", "kd-restart",
+                                          "bvh-packet", "bvh-sphere", "kd-stack",      "kd-shortstack", "kd-restart",
                                           "kd-pushdown", "kd-ropes",     "kd-backtrack"};
 
 struct StressCase {

@@ -31,17 +31,17 @@ BinaryTree buildTree(const PrimitiveSet& prims, const Config& config, PhaseLog& 
 
 class BvhAccel final : public accel::BuiltAccel {
 public:
-    BvhAccel(const Config& config, bool stackless, BuildResult result, int threads)
-        : config_(config), stackless_(stackless), flat_(std::move(result.flat)), phases_(std::move(result.phases)),
+    BvhAccel(const Config& config, accel::BvhWalk walk, BuildResult result, int threads)
+        : config_(config), walk_(walk), flat_(std::move(result.flat)), phases_(std::move(result.phases)),
           totalMs_(result.totalMs), reinserted_(result.reinsertIterations), threads_(threads) {}
 
     std::unique_ptr<geometry::Tracer> makeTracer(const Scene& scene) const override {
-        return std::make_unique<BvhTracer>(flat_, scene.triangles, stackless_);
+        return std::make_unique<BvhTracer>(flat_, scene.triangles, walk_ == accel::BvhWalk::Stackless);
     }
 
     accel::GpuAccelData gpuData() const override {
         accel::GpuAccelData data;
-        data.traversal = accel::bvhTraversal(config_, stackless_);
+        data.traversal = accel::bvhTraversal(config_, walk_);
         data.triangleOrder = flat_.triangleOrder;
         // Every BVH kernel walks its shadow rays stackless, by the parent links: a box node holds
         // its own, sphere nodes' are an array beside them. The nodes are made in parallel, on as
@@ -99,7 +99,7 @@ private:
     bool spheres() const { return config_.container == Config::Container::Sphere; }
 
     Config config_;
-    bool stackless_;
+    accel::BvhWalk walk_;
     FlatBvh flat_;
     std::vector<std::pair<std::string, double>> phases_;
     double totalMs_;
@@ -151,19 +151,26 @@ BuildResult buildFlatBvh(std::span<const Triangle> triangles, const Config& conf
 
 namespace vkray::accel {
 
-Traversal bvhTraversal(const bvh::Config& config, bool stackless) {
+Traversal bvhTraversal(const bvh::Config& config, BvhWalk walk) {
     if (config.container == bvh::Config::Container::Sphere) return Traversal::BvhSphere;
-    return stackless ? Traversal::BvhStackless : Traversal::Bvh;
+    switch (walk) {
+    case BvhWalk::Stack: return Traversal::Bvh;
+    case BvhWalk::Stackless: return Traversal::BvhStackless;
+    case BvhWalk::Packet: return Traversal::BvhPacket;
+    }
+    return Traversal::Bvh;
 }
 
-std::unique_ptr<BuiltAccel> buildBvhAccel(const Scene& scene, const bvh::Config& config, bool stackless,
+std::unique_ptr<BuiltAccel> buildBvhAccel(const Scene& scene, const bvh::Config& config, BvhWalk walk,
                                           const BuildOptions& options) {
     if (config.builder == bvh::Config::Builder::Aac) bvh::validateAacConfig(config);
     if (config.container == bvh::Config::Container::Sphere &&
-        (config.builder != bvh::Config::Builder::Aac || config.treeletPasses > 0 || config.reinsertIterations > 0 || stackless))
-        throw Error("sphere containers are built by AAC and walked with a stack: no binned SAH, treelets, reinsertion or stackless walk");
+        (config.builder != bvh::Config::Builder::Aac || config.treeletPasses > 0 || config.reinsertIterations > 0 ||
+         walk != BvhWalk::Stack))
+        throw Error("sphere containers are built by AAC and walked with a stack: no binned SAH, treelets, reinsertion, "
+                    "stackless or packet walk");
     bvh::BuildResult result = bvh::buildFlatBvh(scene.triangles, config, options.threads, options.progress);
-    return std::make_unique<bvh::BvhAccel>(config, stackless, std::move(result), options.threads);
+    return std::make_unique<bvh::BvhAccel>(config, walk, std::move(result), options.threads);
 }
 
 }  // namespace vkray::accel

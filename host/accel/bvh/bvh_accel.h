@@ -1,6 +1,6 @@
 // Entry point of the bvh family for accel/accel.cpp, and the whole build (builder, leaf collapse,
 // flattening) for tests and benchmarks. The presets (bvh, bvh-fast, bvh-hq, bvh-sah, bvh-stackless,
-// bvh-sphere) and their overrides are resolved in accel/accel_spec.cpp; this file builds whatever
+// bvh-packet, bvh-sphere) and their overrides are resolved in accel/accel_spec.cpp; this file builds whatever
 // Config it is given.
 #pragma once
 
@@ -16,11 +16,12 @@
 
 namespace vkray::accel {
 
-// The GPU traversal of a BVH of `config` (its container), with a stack or, `stackless`, parent links.
-Traversal bvhTraversal(const bvh::Config& config, bool stackless);
+// The GPU traversal of a BVH of `config` (its container) walked by `walk`.
+Traversal bvhTraversal(const bvh::Config& config, BvhWalk walk);
 
-// `stackless`: walked with parent links instead of a stack (bvh-stackless), on the GPU and the CPU.
-std::unique_ptr<BuiltAccel> buildBvhAccel(const Scene& scene, const bvh::Config& config, bool stackless,
+// `walk`: how the kernel walks the tree. The CPU tracer walks it with parent links for
+// BvhWalk::Stackless (bvh-stackless), else with a stack: a packet's hits are its rays' own.
+std::unique_ptr<BuiltAccel> buildBvhAccel(const Scene& scene, const bvh::Config& config, BvhWalk walk,
                                           const BuildOptions& options);
 
 }  // namespace vkray::accel

@@ -277,7 +277,7 @@ TEST(BvhAccel, BuildReportsPhasesAndStats) {
                                     EXPECT_LE(f, 1.0);
                                     phases.push_back(p);
                                 }};
-    const auto built = accel::buildBvhAccel(s, Config::aacHq(), false, options);
+    const auto built = accel::buildBvhAccel(s, Config::aacHq(), accel::BvhWalk::Stack, options);
     EXPECT_EQ(phases.front(), "primitives");
     EXPECT_EQ(phases.back(), "done");
     const accel::GpuAccelData gpu = built->gpuData();
@@ -300,7 +300,7 @@ TEST(BvhAccel, BuildReportsPhasesAndStats) {
     EXPECT_EQ(std::find(keys.begin(), keys.end(), "collapse_ms"), keys.end());
     // With treelet restructuring after the clustering, the collapse is a pass of its own.
     std::vector<std::string> restructuredKeys;
-    for (const accel::AccelStat& st : accel::buildBvhAccel(s, Config::aacHqRestructured(), false, {.threads = 2, .progress = {}})->stats())
+    for (const accel::AccelStat& st : accel::buildBvhAccel(s, Config::aacHqRestructured(), accel::BvhWalk::Stack, {.threads = 2, .progress = {}})->stats())
         restructuredKeys.push_back(st.key);
     for (const char* k : {"treelets_ms", "collapse_ms"})
         EXPECT_NE(std::find(restructuredKeys.begin(), restructuredKeys.end(), k), restructuredKeys.end()) << k;
