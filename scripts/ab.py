@@ -8,7 +8,7 @@ usage: scripts/ab.py [--rounds N] [--warmup N] [--metric M] [--rotate] [--dump F
 SPEC      a vkray binary, or BINARY:KERNEL_DIR: that binary reading its kernels from KERNEL_DIR
           (VKRAY_KERNEL_DIR, one render_<kernel>[_resumable][_split].spv each; docs/architecture.md).
           Any executable that runs vkray will do: a wrapper that sets VK_ICD_FILENAMES compares two
-          Vulkan drivers (docs/performance.md, "Two lavapipes"). The first SPEC is the baseline.
+          Vulkan drivers (docs/drivers.md). The first SPEC is the baseline.
 --rounds  timed rounds (default 7); each runs every SPEC once, in order.
 --warmup  untimed rounds first (default 1): Mesa's disk cache then holds every kernel's machine code.
 --metric  what is compared: a field of `vkray render --json`'s report, dotted (default gpu.gpu_ms,
