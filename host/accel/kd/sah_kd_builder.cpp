@@ -11,6 +11,7 @@
 #include <mutex>
 #include <new>
 #include <optional>
+#include <stdexcept>
 #include <string>
 
 #include <tbb/enumerable_thread_specific.h>
@@ -65,15 +66,26 @@ struct NodeDeleter {
 };
 using NodePtr = std::unique_ptr<BuildNode, NodeDeleter>;
 
+// A subtree under kTimedEvents events, built on one worker straight in the flat layout
+// (kd_layout.h) with indices relative to its root: its root's above-child and parent links and its
+// leaves' first entries are offsets that flatten() adds its place to. Millions of small nodes are
+// then written once, not allocated as build nodes, walked and freed.
+struct FlatSubtree {
+    std::vector<gpu::KdNode, tbb::scalable_allocator<gpu::KdNode>> nodes;
+    std::vector<gpu::KdNodeExtra, tbb::scalable_allocator<gpu::KdNodeExtra>> extra;  // parent 0 at the root
+};
+
 struct BuildNode {
-    int axis = -1;  // -1: leaf
+    static constexpr int kLeaf = -1, kFlat = -2;
+    int axis = kLeaf;  // 0-2: inner node
     float split = 0.0f;
     uint32_t subtreeNodes = 1;  // nodes of its subtree, itself included (the flat layout's offsets)
     uint64_t subtreeRefs = 0;   // index-list entries of its subtree's leaves
     NodePtr below, above;
-    TriangleList triangles;  // leaves only, ascending
+    TriangleList triangles;  // a leaf's, ascending; a flat subtree's index list
+    FlatSubtree flat;        // kFlat only
 
-    bool emptyLeaf() const { return axis < 0 && triangles.empty(); }
+    bool emptyLeaf() const { return axis == kLeaf && triangles.empty(); }
 
     static void* operator new(size_t bytes) {
         if (void* p = scalable_malloc(bytes)) return p;
@@ -172,6 +184,8 @@ struct WorkerScratch {
     std::vector<Side> side;
     std::vector<uint32_t> straddling;
     std::array<NodeEvents, 2> fresh;  // the straddlers' events in the child below, above
+    FlatSubtree flat;          // the small subtree being built (buildFlat)
+    TriangleList flatIndices;  // its index list
     std::array<uint64_t, kPhaseCount> ticks{};
     bool inSmallSubtree = false;  // timed as a whole (kSmall): its phases are not
     uint64_t doneWeight = 0;      // leaves' progress weights not yet added to the build's
@@ -207,6 +221,11 @@ private:
     void splitEventsOn(WorkerScratch& w, NodeEvents& ev, const SplitChoice& s, const Box& below, const Box& above,
                        bool parallel, NodeEvents& belowEv, NodeEvents& aboveEv);
     NodePtr makeLeaf(WorkerScratch& w, const NodeEvents& ev, int depth, size_t n);
+    // A small subtree (under kTimedEvents events) from buildFlat, as a leaf when it is one.
+    NodePtr buildSmall(WorkerScratch& w, NodeEvents ev, const Box& box, int depth, size_t n, double budget);
+    // Appends the subtree to w.flat in depth-first order; `parent`: relative to the small root.
+    void buildFlat(WorkerScratch& w, NodeEvents ev, const Box& box, int depth, size_t n, double budget,
+                   uint32_t parent);
     void addProgress(WorkerScratch& w);
     // Ticks since `start` to `phase` of `w`, unless w is in a small subtree (timed as a whole).
     static void lap(WorkerScratch& w, Phase phase, uint64_t start) {
@@ -423,6 +442,55 @@ NodePtr Builder::makeLeaf(WorkerScratch& w, const NodeEvents& ev, int depth, siz
     return leaf;
 }
 
+NodePtr Builder::buildSmall(WorkerScratch& w, NodeEvents ev, const Box& box, int depth, size_t n, double budget) {
+    w.flat.nodes.clear();
+    w.flat.extra.clear();
+    w.flatIndices.clear();
+    buildFlat(w, std::move(ev), box, depth, n, budget, 0);
+    const gpu::KdNode& root = w.flat.nodes[0];
+    if (root.isLeaf() && root.triangleCount() == 0) return NodePtr(&kEmptyLeaf);
+    NodePtr node(new BuildNode);
+    node->axis = root.isLeaf() ? BuildNode::kLeaf : BuildNode::kFlat;
+    node->triangles.assign(w.flatIndices.begin(), w.flatIndices.end());
+    node->subtreeRefs = node->triangles.size();
+    if (node->axis == BuildNode::kFlat) {
+        node->flat.nodes.assign(w.flat.nodes.begin(), w.flat.nodes.end());
+        node->flat.extra.assign(w.flat.extra.begin(), w.flat.extra.end());
+        node->subtreeNodes = uint32_t(w.flat.nodes.size());
+    }
+    return node;
+}
+
+// build() below kTimedEvents, with the same choices, written as flatten() would write them.
+void Builder::buildFlat(WorkerScratch& w, NodeEvents ev, const Box& box, int depth, size_t n, double budget,
+                        uint32_t parent) {
+    const auto index = uint32_t(w.flat.nodes.size());
+    w.flat.nodes.emplace_back();
+    w.flat.extra.push_back(gpu::KdNodeExtra{box.lo, parent, box.hi, 0});
+    SplitChoice s;
+    if (n > 0 && depth < maxDepth_) s = findBestSplit(w, ev, box, n, budget, false);
+    if (s.axis < 0 || s.cost >= config_.intersectionCost * double(n)) {
+        const auto first = uint32_t(w.flatIndices.size());
+        if (!ev[0].empty()) {  // every triangle has an event on each axis
+            for (const Event& e : ev[0])
+                if (e.type() != EventType::End) w.flatIndices.push_back(e.triangle());
+            std::sort(w.flatIndices.begin() + first, w.flatIndices.end());
+        }
+        w.flat.nodes[index] = gpu::KdNode::leaf(first, uint32_t(w.flatIndices.size() - first));
+        w.doneWeight += uint64_t(1) << (62 - depth);
+        if (w.doneWeight >= kProgressStep) addProgress(w);
+        return;
+    }
+    const auto [belowBox, aboveBox] = splitBox(box, s.axis, s.pos);
+    auto [belowEv, aboveEv] = splitEvents(w, std::move(ev), s, belowBox, aboveBox, false);
+    const double share = budget / double(s.below + s.above);
+    buildFlat(w, std::move(belowEv), belowBox, depth + 1, s.below, share * double(s.below), index);
+    const auto aboveIndex = uint32_t(w.flat.nodes.size());
+    buildFlat(w, std::move(aboveEv), aboveBox, depth + 1, s.above, share * double(s.above), index);
+    const auto empty = [&](uint32_t i) { return w.flat.nodes[i].isLeaf() && w.flat.nodes[i].triangleCount() == 0; };
+    w.flat.nodes[index] = gpu::KdNode::inner(s.axis, s.pos, aboveIndex, empty(index + 1), empty(aboveIndex));
+}
+
 void Builder::addProgress(WorkerScratch& w) {
     const uint64_t done = doneWeight_.fetch_add(w.doneWeight) + w.doneWeight;
     w.doneWeight = 0;
@@ -454,7 +522,7 @@ NodePtr Builder::build(NodeEvents ev, const Box& box, int depth, size_t n, doubl
     if (!w.inSmallSubtree && ev[0].size() < kTimedEvents) {
         const uint64_t t = ticks();
         w.inSmallSubtree = true;
-        NodePtr subtree = build(std::move(ev), box, depth, n, budget, &w);
+        NodePtr subtree = buildSmall(w, std::move(ev), box, depth, n, budget);
         w.inSmallSubtree = false;
         w.ticks[kSmall] += ticks() - t;
         return subtree;
@@ -489,10 +557,35 @@ NodePtr Builder::build(NodeEvents ev, const Box& box, int depth, size_t n, doubl
 // `first` onwards, whose places its subtree sizes give, so the subtrees near the root are written
 // as parallel tasks; it consumes the tree, which is then freed in parallel too (millions of nodes
 // and leaf lists freed one by one would be a serial tail of the build).
+// Copies a flat subtree to node `index` and index-list entry `first` onwards, its relative links
+// made absolute.
+void placeFlat(const BuildNode& n, uint32_t index, uint64_t first, uint32_t parent, KdTree& out) {
+    const FlatSubtree& f = n.flat;
+    for (size_t i = 0; i < f.nodes.size(); ++i) {
+        gpu::KdNode node = f.nodes[i];
+        if (node.isLeaf()) {
+            node.word0 += uint32_t(first);
+        } else {
+            if (uint64_t(index) + node.aboveChild() >= (uint64_t(1) << (32u - VKRAY_KD_CHILD_SHIFT)))
+                throw std::length_error("kd node: axis or child index out of range");
+            node.word1 += index << VKRAY_KD_CHILD_SHIFT;
+        }
+        out.nodes[index + i] = node;
+        gpu::KdNodeExtra extra = f.extra[i];
+        extra.parent = i == 0 ? parent : extra.parent + index;
+        out.extra[index + i] = extra;
+    }
+    std::copy(n.triangles.begin(), n.triangles.end(), out.indices.begin() + std::ptrdiff_t(first));
+}
+
 void flatten(NodePtr n, uint32_t index, uint64_t first, uint32_t parent, const Box& box,
              KdTree& out, int depth) {
+    if (n->axis == BuildNode::kFlat) {
+        placeFlat(*n, index, first, parent, out);
+        return;
+    }
     out.extra[index] = gpu::KdNodeExtra{box.lo, parent, box.hi, 0};
-    if (n->axis < 0) {
+    if (n->axis == BuildNode::kLeaf) {
         out.nodes[index] = gpu::KdNode::leaf(uint32_t(first), uint32_t(n->triangles.size()));
         std::copy(n->triangles.begin(), n->triangles.end(), out.indices.begin() + std::ptrdiff_t(first));
         return;
