@@ -67,13 +67,11 @@ struct NodeDeleter {
 using NodePtr = std::unique_ptr<BuildNode, NodeDeleter>;
 
 // A subtree under kTimedEvents events, built on one worker straight in the flat layout
-// (kd_layout.h) with indices relative to its root: its root's above-child and parent links and its
-// leaves' first entries are offsets that flatten() adds its place to. Millions of small nodes are
-// then written once, not allocated as build nodes, walked and freed.
-struct FlatSubtree {
-    std::vector<gpu::KdNode, tbb::scalable_allocator<gpu::KdNode>> nodes;
-    std::vector<gpu::KdNodeExtra, tbb::scalable_allocator<gpu::KdNodeExtra>> extra;  // parent 0 at the root
-};
+// (kd_layout.h) with indices relative to its root: its above-child links and its leaves' first
+// entries are offsets that flatten() adds its place to, and flatten() derives the boxes and parent
+// links (8 bytes a node held until then, not 40). Millions of small nodes are then written once,
+// not allocated as build nodes, walked and freed.
+using FlatSubtree = std::vector<gpu::KdNode, tbb::scalable_allocator<gpu::KdNode>>;
 
 struct BuildNode {
     static constexpr int kLeaf = -1, kFlat = -2;
@@ -223,9 +221,8 @@ private:
     NodePtr makeLeaf(WorkerScratch& w, const NodeEvents& ev, int depth, size_t n);
     // A small subtree (under kTimedEvents events) from buildFlat, as a leaf when it is one.
     NodePtr buildSmall(WorkerScratch& w, NodeEvents ev, const Box& box, int depth, size_t n, double budget);
-    // Appends the subtree to w.flat in depth-first order; `parent`: relative to the small root.
-    void buildFlat(WorkerScratch& w, NodeEvents ev, const Box& box, int depth, size_t n, double budget,
-                   uint32_t parent);
+    // Appends the subtree to w.flat in depth-first order.
+    void buildFlat(WorkerScratch& w, NodeEvents ev, const Box& box, int depth, size_t n, double budget);
     void addProgress(WorkerScratch& w);
     // Ticks since `start` to `phase` of `w`, unless w is in a small subtree (timed as a whole).
     static void lap(WorkerScratch& w, Phase phase, uint64_t start) {
@@ -443,30 +440,26 @@ NodePtr Builder::makeLeaf(WorkerScratch& w, const NodeEvents& ev, int depth, siz
 }
 
 NodePtr Builder::buildSmall(WorkerScratch& w, NodeEvents ev, const Box& box, int depth, size_t n, double budget) {
-    w.flat.nodes.clear();
-    w.flat.extra.clear();
+    w.flat.clear();
     w.flatIndices.clear();
-    buildFlat(w, std::move(ev), box, depth, n, budget, 0);
-    const gpu::KdNode& root = w.flat.nodes[0];
+    buildFlat(w, std::move(ev), box, depth, n, budget);
+    const gpu::KdNode& root = w.flat[0];
     if (root.isLeaf() && root.triangleCount() == 0) return NodePtr(&kEmptyLeaf);
     NodePtr node(new BuildNode);
     node->axis = root.isLeaf() ? BuildNode::kLeaf : BuildNode::kFlat;
     node->triangles.assign(w.flatIndices.begin(), w.flatIndices.end());
     node->subtreeRefs = node->triangles.size();
     if (node->axis == BuildNode::kFlat) {
-        node->flat.nodes.assign(w.flat.nodes.begin(), w.flat.nodes.end());
-        node->flat.extra.assign(w.flat.extra.begin(), w.flat.extra.end());
-        node->subtreeNodes = uint32_t(w.flat.nodes.size());
+        node->flat.assign(w.flat.begin(), w.flat.end());
+        node->subtreeNodes = uint32_t(w.flat.size());
     }
     return node;
 }
 
 // build() below kTimedEvents, with the same choices, written as flatten() would write them.
-void Builder::buildFlat(WorkerScratch& w, NodeEvents ev, const Box& box, int depth, size_t n, double budget,
-                        uint32_t parent) {
-    const auto index = uint32_t(w.flat.nodes.size());
-    w.flat.nodes.emplace_back();
-    w.flat.extra.push_back(gpu::KdNodeExtra{box.lo, parent, box.hi, 0});
+void Builder::buildFlat(WorkerScratch& w, NodeEvents ev, const Box& box, int depth, size_t n, double budget) {
+    const auto index = uint32_t(w.flat.size());
+    w.flat.emplace_back();
     SplitChoice s;
     if (n > 0 && depth < maxDepth_) s = findBestSplit(w, ev, box, n, budget, false);
     if (s.axis < 0 || s.cost >= config_.intersectionCost * double(n)) {
@@ -476,7 +469,7 @@ void Builder::buildFlat(WorkerScratch& w, NodeEvents ev, const Box& box, int dep
                 if (e.type() != EventType::End) w.flatIndices.push_back(e.triangle());
             std::sort(w.flatIndices.begin() + first, w.flatIndices.end());
         }
-        w.flat.nodes[index] = gpu::KdNode::leaf(first, uint32_t(w.flatIndices.size() - first));
+        w.flat[index] = gpu::KdNode::leaf(first, uint32_t(w.flatIndices.size() - first));
         w.doneWeight += uint64_t(1) << (62 - depth);
         if (w.doneWeight >= kProgressStep) addProgress(w);
         return;
@@ -484,11 +477,11 @@ void Builder::buildFlat(WorkerScratch& w, NodeEvents ev, const Box& box, int dep
     const auto [belowBox, aboveBox] = splitBox(box, s.axis, s.pos);
     auto [belowEv, aboveEv] = splitEvents(w, std::move(ev), s, belowBox, aboveBox, false);
     const double share = budget / double(s.below + s.above);
-    buildFlat(w, std::move(belowEv), belowBox, depth + 1, s.below, share * double(s.below), index);
-    const auto aboveIndex = uint32_t(w.flat.nodes.size());
-    buildFlat(w, std::move(aboveEv), aboveBox, depth + 1, s.above, share * double(s.above), index);
-    const auto empty = [&](uint32_t i) { return w.flat.nodes[i].isLeaf() && w.flat.nodes[i].triangleCount() == 0; };
-    w.flat.nodes[index] = gpu::KdNode::inner(s.axis, s.pos, aboveIndex, empty(index + 1), empty(aboveIndex));
+    buildFlat(w, std::move(belowEv), belowBox, depth + 1, s.below, share * double(s.below));
+    const auto aboveIndex = uint32_t(w.flat.size());
+    buildFlat(w, std::move(aboveEv), aboveBox, depth + 1, s.above, share * double(s.above));
+    const auto empty = [&](uint32_t i) { return w.flat[i].isLeaf() && w.flat[i].triangleCount() == 0; };
+    w.flat[index] = gpu::KdNode::inner(s.axis, s.pos, aboveIndex, empty(index + 1), empty(aboveIndex));
 }
 
 void Builder::addProgress(WorkerScratch& w) {
@@ -557,31 +550,32 @@ NodePtr Builder::build(NodeEvents ev, const Box& box, int depth, size_t n, doubl
 // `first` onwards, whose places its subtree sizes give, so the subtrees near the root are written
 // as parallel tasks; it consumes the tree, which is then freed in parallel too (millions of nodes
 // and leaf lists freed one by one would be a serial tail of the build).
-// Copies a flat subtree to node `index` and index-list entry `first` onwards, its relative links
-// made absolute.
-void placeFlat(const BuildNode& n, uint32_t index, uint64_t first, uint32_t parent, KdTree& out) {
-    const FlatSubtree& f = n.flat;
-    for (size_t i = 0; i < f.nodes.size(); ++i) {
-        gpu::KdNode node = f.nodes[i];
-        if (node.isLeaf()) {
-            node.word0 += uint32_t(first);
-        } else {
-            if (uint64_t(index) + node.aboveChild() >= (uint64_t(1) << (32u - VKRAY_KD_CHILD_SHIFT)))
-                throw std::length_error("kd node: axis or child index out of range");
-            node.word1 += index << VKRAY_KD_CHILD_SHIFT;
-        }
-        out.nodes[index + i] = node;
-        gpu::KdNodeExtra extra = f.extra[i];
-        extra.parent = i == 0 ? parent : extra.parent + index;
-        out.extra[index + i] = extra;
+// Writes node `i` of a flat subtree placed at node `base` and index-list entry `first`, and its
+// subtree, its relative links made absolute and its boxes and parent links derived as flatten()
+// derives them.
+void placeFlat(const FlatSubtree& f, uint32_t i, uint32_t base, uint64_t first, uint32_t parent, const Box& box,
+               KdTree& out) {
+    gpu::KdNode node = f[i];
+    out.extra[base + i] = gpu::KdNodeExtra{box.lo, parent, box.hi, 0};
+    if (node.isLeaf()) {
+        node.word0 += uint32_t(first);
+        out.nodes[base + i] = node;
+        return;
     }
-    std::copy(n.triangles.begin(), n.triangles.end(), out.indices.begin() + std::ptrdiff_t(first));
+    if (uint64_t(base) + node.aboveChild() >= (uint64_t(1) << (32u - VKRAY_KD_CHILD_SHIFT)))
+        throw std::length_error("kd node: axis or child index out of range");
+    const auto [belowBox, aboveBox] = splitBox(box, node.axis(), node.split());
+    placeFlat(f, i + 1, base, first, base + i, belowBox, out);
+    placeFlat(f, node.aboveChild(), base, first, base + i, aboveBox, out);
+    node.word1 += base << VKRAY_KD_CHILD_SHIFT;
+    out.nodes[base + i] = node;
 }
 
 void flatten(NodePtr n, uint32_t index, uint64_t first, uint32_t parent, const Box& box,
              KdTree& out, int depth) {
     if (n->axis == BuildNode::kFlat) {
-        placeFlat(*n, index, first, parent, out);
+        placeFlat(n->flat, 0, index, first, parent, box, out);
+        std::copy(n->triangles.begin(), n->triangles.end(), out.indices.begin() + std::ptrdiff_t(first));
         return;
     }
     out.extra[index] = gpu::KdNodeExtra{box.lo, parent, box.hi, 0};
