@@ -32,6 +32,7 @@
 #include "core/timing.h"
 #include "geometry/ray_triangle.h"
 #include "accel/kd/kd_clip.h"
+#include "accel/kd/kd_build_tree.h"
 #include "accel/kd/kd_events.h"
 
 namespace vkray::accel::kd {
@@ -54,51 +55,6 @@ struct SplitChoice {
     size_t below = 0, above = 0;  // triangles on each side
 };
 
-// A leaf's triangle list. The tree's millions of nodes and leaf lists come from oneTBB's scalable
-// allocator: from glibc's, their frees pile up until the next large free merges them all on one
-// thread (malloc_consolidate), a serial pause at the end of every large build.
-using TriangleList = std::vector<uint32_t, tbb::scalable_allocator<uint32_t>>;
-
-struct BuildNode;
-// Frees a build node, except kEmptyLeaf.
-struct NodeDeleter {
-    void operator()(BuildNode* node) const;
-};
-using NodePtr = std::unique_ptr<BuildNode, NodeDeleter>;
-
-// A subtree under kTimedEvents events, built on one worker straight in the flat layout
-// (kd_layout.h) with indices relative to its root: its above-child links and its leaves' first
-// entries are offsets that flatten() adds its place to, and flatten() derives the boxes and parent
-// links (8 bytes a node held until then, not 40). Millions of small nodes are then written once,
-// not allocated as build nodes, walked and freed.
-using FlatSubtree = std::vector<gpu::KdNode, tbb::scalable_allocator<gpu::KdNode>>;
-
-struct BuildNode {
-    static constexpr int kLeaf = -1, kFlat = -2;
-    int axis = kLeaf;  // 0-2: inner node
-    float split = 0.0f;
-    uint32_t subtreeNodes = 1;  // nodes of its subtree, itself included (the flat layout's offsets)
-    uint64_t subtreeRefs = 0;   // index-list entries of its subtree's leaves
-    NodePtr below, above;
-    TriangleList triangles;  // a leaf's, ascending; a flat subtree's index list
-    FlatSubtree flat;        // kFlat only
-
-    bool emptyLeaf() const { return axis == kLeaf && triangles.empty(); }
-
-    static void* operator new(size_t bytes) {
-        if (void* p = scalable_malloc(bytes)) return p;
-        throw std::bad_alloc();
-    }
-    static void operator delete(void* p) { scalable_free(p); }
-};
-
-// The one empty leaf that every empty leaf of every tree is: a tree over small triangles has
-// millions, each else allocated, walked and freed. Never changed.
-BuildNode kEmptyLeaf;
-
-void NodeDeleter::operator()(BuildNode* node) const {
-    if (node != &kEmptyLeaf) delete node;
-}
 
 
 // The node's `n` triangles, ascending.
@@ -109,13 +65,6 @@ TriangleList trianglesOf(const NodeEvents& ev, size_t n) {
         if (e.type() != EventType::End) tris.push_back(e.triangle());
     std::sort(tris.begin(), tris.end());
     return tris;
-}
-
-std::pair<Box, Box> splitBox(const Box& box, int axis, float pos) {
-    Box below = box, above = box;
-    below.hi[axis] = pos;
-    above.lo[axis] = pos;
-    return {below, above};
 }
 
 // A float split the GPU reads back unchanged: strictly inside the box (a split on the boundary cuts
@@ -545,54 +494,6 @@ NodePtr Builder::build(NodeEvents ev, const Box& box, int depth, size_t n, doubl
     return node;
 }
 
-// Depth-first layout (kd_layout.h): below child next, above child by index; parent links and boxes
-// for kd-backtrack in `extra`. Writes the subtree of `n` at node `index` and index-list entry
-// `first` onwards, whose places its subtree sizes give, so the subtrees near the root are written
-// as parallel tasks; it consumes the tree, which is then freed in parallel too (millions of nodes
-// and leaf lists freed one by one would be a serial tail of the build).
-// Writes node `i` of a flat subtree placed at node `base` and index-list entry `first`, and its
-// subtree, its relative links made absolute and its boxes and parent links derived as flatten()
-// derives them.
-void placeFlat(const FlatSubtree& f, uint32_t i, uint32_t base, uint64_t first, uint32_t parent, const Box& box,
-               KdTree& out) {
-    gpu::KdNode node = f[i];
-    out.extra[base + i] = gpu::KdNodeExtra{box.lo, parent, box.hi, 0};
-    if (node.isLeaf()) {
-        node.word0 += uint32_t(first);
-        out.nodes[base + i] = node;
-        return;
-    }
-    if (uint64_t(base) + node.aboveChild() >= (uint64_t(1) << (32u - VKRAY_KD_CHILD_SHIFT)))
-        throw std::length_error("kd node: axis or child index out of range");
-    const auto [belowBox, aboveBox] = splitBox(box, node.axis(), node.split());
-    placeFlat(f, i + 1, base, first, base + i, belowBox, out);
-    placeFlat(f, node.aboveChild(), base, first, base + i, aboveBox, out);
-    node.word1 += base << VKRAY_KD_CHILD_SHIFT;
-    out.nodes[base + i] = node;
-}
-
-void flatten(NodePtr n, uint32_t index, uint64_t first, uint32_t parent, const Box& box,
-             KdTree& out, int depth) {
-    if (n->axis == BuildNode::kFlat) {
-        placeFlat(n->flat, 0, index, first, parent, box, out);
-        std::copy(n->triangles.begin(), n->triangles.end(), out.indices.begin() + std::ptrdiff_t(first));
-        return;
-    }
-    out.extra[index] = gpu::KdNodeExtra{box.lo, parent, box.hi, 0};
-    if (n->axis == BuildNode::kLeaf) {
-        out.nodes[index] = gpu::KdNode::leaf(uint32_t(first), uint32_t(n->triangles.size()));
-        std::copy(n->triangles.begin(), n->triangles.end(), out.indices.begin() + std::ptrdiff_t(first));
-        return;
-    }
-    const auto [belowBox, aboveBox] = splitBox(box, n->axis, n->split);
-    const uint32_t aboveIndex = index + 1 + n->below->subtreeNodes;
-    const uint64_t aboveFirst = first + n->below->subtreeRefs;
-    out.nodes[index] = gpu::KdNode::inner(n->axis, n->split, aboveIndex, n->below->emptyLeaf(), n->above->emptyLeaf());
-    forkJoin(depth < kParallelDepth,
-             [&, &bBox = belowBox] { flatten(std::move(n->below), index + 1, first, index, bBox, out, depth + 1); },
-             [&, &aBox = aboveBox] { flatten(std::move(n->above), aboveIndex, aboveFirst, index, aBox, out, depth + 1); });
-}
-
 }  // namespace
 
 KdBuildResult buildSahKdTree(const std::vector<Triangle>& triangles, const KdConfig& config, int threads,
@@ -644,7 +545,7 @@ KdBuildResult buildSahKdTree(const std::vector<Triangle>& triangles, const KdCon
         resizeForOverwrite(result.tree.nodes, tree->subtreeNodes);
         resizeForOverwrite(result.tree.extra, tree->subtreeNodes);
         resizeForOverwrite(result.tree.indices, size_t(tree->subtreeRefs));
-        flatten(std::move(tree), 0, 0, VKRAY_KD_NO_PARENT, root, result.tree, 0);
+        flattenKdTree(std::move(tree), 0, 0, VKRAY_KD_NO_PARENT, root, result.tree, 0);
         result.tree.header = gpu::KdTreeHeader{root.lo, uint32_t(result.tree.nodes.size()), root.hi,
                                                uint32_t(result.tree.indices.size())};
         result.times.flattenMs = msSince(flattenStart);
