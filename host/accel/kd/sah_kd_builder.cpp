@@ -11,6 +11,7 @@
 #include <mutex>
 #include <new>
 #include <optional>
+#include <stdexcept>
 #include <string>
 
 #include <tbb/enumerable_thread_specific.h>
@@ -31,6 +32,7 @@
 #include "core/timing.h"
 #include "geometry/ray_triangle.h"
 #include "accel/kd/kd_clip.h"
+#include "accel/kd/kd_build_tree.h"
 #include "accel/kd/kd_events.h"
 
 namespace vkray::accel::kd {
@@ -53,42 +55,6 @@ struct SplitChoice {
     size_t below = 0, above = 0;  // triangles on each side
 };
 
-// A leaf's triangle list. The tree's millions of nodes and leaf lists come from oneTBB's scalable
-// allocator: from glibc's, their frees pile up until the next large free merges them all on one
-// thread (malloc_consolidate), a serial pause at the end of every large build.
-using TriangleList = std::vector<uint32_t, tbb::scalable_allocator<uint32_t>>;
-
-struct BuildNode;
-// Frees a build node, except kEmptyLeaf.
-struct NodeDeleter {
-    void operator()(BuildNode* node) const;
-};
-using NodePtr = std::unique_ptr<BuildNode, NodeDeleter>;
-
-struct BuildNode {
-    int axis = -1;  // -1: leaf
-    float split = 0.0f;
-    uint32_t subtreeNodes = 1;  // nodes of its subtree, itself included (the flat layout's offsets)
-    uint64_t subtreeRefs = 0;   // index-list entries of its subtree's leaves
-    NodePtr below, above;
-    TriangleList triangles;  // leaves only, ascending
-
-    bool emptyLeaf() const { return axis < 0 && triangles.empty(); }
-
-    static void* operator new(size_t bytes) {
-        if (void* p = scalable_malloc(bytes)) return p;
-        throw std::bad_alloc();
-    }
-    static void operator delete(void* p) { scalable_free(p); }
-};
-
-// The one empty leaf that every empty leaf of every tree is: a tree over small triangles has
-// millions, each else allocated, walked and freed. Never changed.
-BuildNode kEmptyLeaf;
-
-void NodeDeleter::operator()(BuildNode* node) const {
-    if (node != &kEmptyLeaf) delete node;
-}
 
 
 // The node's `n` triangles, ascending.
@@ -99,13 +65,6 @@ TriangleList trianglesOf(const NodeEvents& ev, size_t n) {
         if (e.type() != EventType::End) tris.push_back(e.triangle());
     std::sort(tris.begin(), tris.end());
     return tris;
-}
-
-std::pair<Box, Box> splitBox(const Box& box, int axis, float pos) {
-    Box below = box, above = box;
-    below.hi[axis] = pos;
-    above.lo[axis] = pos;
-    return {below, above};
 }
 
 // A float split the GPU reads back unchanged: strictly inside the box (a split on the boundary cuts
@@ -172,6 +131,8 @@ struct WorkerScratch {
     std::vector<Side> side;
     std::vector<uint32_t> straddling;
     std::array<NodeEvents, 2> fresh;  // the straddlers' events in the child below, above
+    FlatSubtree flat;          // the small subtree being built (buildFlat)
+    TriangleList flatIndices;  // its index list
     std::array<uint64_t, kPhaseCount> ticks{};
     bool inSmallSubtree = false;  // timed as a whole (kSmall): its phases are not
     uint64_t doneWeight = 0;      // leaves' progress weights not yet added to the build's
@@ -207,6 +168,10 @@ private:
     void splitEventsOn(WorkerScratch& w, NodeEvents& ev, const SplitChoice& s, const Box& below, const Box& above,
                        bool parallel, NodeEvents& belowEv, NodeEvents& aboveEv);
     NodePtr makeLeaf(WorkerScratch& w, const NodeEvents& ev, int depth, size_t n);
+    // A small subtree (under kTimedEvents events) from buildFlat, as a leaf when it is one.
+    NodePtr buildSmall(WorkerScratch& w, NodeEvents ev, const Box& box, int depth, size_t n, double budget);
+    // Appends the subtree to w.flat in depth-first order.
+    void buildFlat(WorkerScratch& w, NodeEvents ev, const Box& box, int depth, size_t n, double budget);
     void addProgress(WorkerScratch& w);
     // Ticks since `start` to `phase` of `w`, unless w is in a small subtree (timed as a whole).
     static void lap(WorkerScratch& w, Phase phase, uint64_t start) {
@@ -423,6 +388,51 @@ NodePtr Builder::makeLeaf(WorkerScratch& w, const NodeEvents& ev, int depth, siz
     return leaf;
 }
 
+NodePtr Builder::buildSmall(WorkerScratch& w, NodeEvents ev, const Box& box, int depth, size_t n, double budget) {
+    w.flat.clear();
+    w.flatIndices.clear();
+    buildFlat(w, std::move(ev), box, depth, n, budget);
+    const gpu::KdNode& root = w.flat[0];
+    if (root.isLeaf() && root.triangleCount() == 0) return NodePtr(&kEmptyLeaf);
+    NodePtr node(new BuildNode);
+    node->axis = root.isLeaf() ? BuildNode::kLeaf : BuildNode::kFlat;
+    node->triangles.assign(w.flatIndices.begin(), w.flatIndices.end());
+    node->subtreeRefs = node->triangles.size();
+    if (node->axis == BuildNode::kFlat) {
+        node->flat.assign(w.flat.begin(), w.flat.end());
+        node->subtreeNodes = uint32_t(w.flat.size());
+    }
+    return node;
+}
+
+// build() below kTimedEvents, with the same choices, written as flatten() would write them.
+void Builder::buildFlat(WorkerScratch& w, NodeEvents ev, const Box& box, int depth, size_t n, double budget) {
+    const auto index = uint32_t(w.flat.size());
+    w.flat.emplace_back();
+    SplitChoice s;
+    if (n > 0 && depth < maxDepth_) s = findBestSplit(w, ev, box, n, budget, false);
+    if (s.axis < 0 || s.cost >= config_.intersectionCost * double(n)) {
+        const auto first = uint32_t(w.flatIndices.size());
+        if (!ev[0].empty()) {  // every triangle has an event on each axis
+            for (const Event& e : ev[0])
+                if (e.type() != EventType::End) w.flatIndices.push_back(e.triangle());
+            std::sort(w.flatIndices.begin() + first, w.flatIndices.end());
+        }
+        w.flat[index] = gpu::KdNode::leaf(first, uint32_t(w.flatIndices.size() - first));
+        w.doneWeight += uint64_t(1) << (62 - depth);
+        if (w.doneWeight >= kProgressStep) addProgress(w);
+        return;
+    }
+    const auto [belowBox, aboveBox] = splitBox(box, s.axis, s.pos);
+    auto [belowEv, aboveEv] = splitEvents(w, std::move(ev), s, belowBox, aboveBox, false);
+    const double share = budget / double(s.below + s.above);
+    buildFlat(w, std::move(belowEv), belowBox, depth + 1, s.below, share * double(s.below));
+    const auto aboveIndex = uint32_t(w.flat.size());
+    buildFlat(w, std::move(aboveEv), aboveBox, depth + 1, s.above, share * double(s.above));
+    const auto empty = [&](uint32_t i) { return w.flat[i].isLeaf() && w.flat[i].triangleCount() == 0; };
+    w.flat[index] = gpu::KdNode::inner(s.axis, s.pos, aboveIndex, empty(index + 1), empty(aboveIndex));
+}
+
 void Builder::addProgress(WorkerScratch& w) {
     const uint64_t done = doneWeight_.fetch_add(w.doneWeight) + w.doneWeight;
     w.doneWeight = 0;
@@ -454,7 +464,7 @@ NodePtr Builder::build(NodeEvents ev, const Box& box, int depth, size_t n, doubl
     if (!w.inSmallSubtree && ev[0].size() < kTimedEvents) {
         const uint64_t t = ticks();
         w.inSmallSubtree = true;
-        NodePtr subtree = build(std::move(ev), box, depth, n, budget, &w);
+        NodePtr subtree = buildSmall(w, std::move(ev), box, depth, n, budget);
         w.inSmallSubtree = false;
         w.ticks[kSmall] += ticks() - t;
         return subtree;
@@ -482,28 +492,6 @@ NodePtr Builder::build(NodeEvents ev, const Box& box, int depth, size_t n, doubl
     node->subtreeNodes = 1 + node->below->subtreeNodes + node->above->subtreeNodes;
     node->subtreeRefs = node->below->subtreeRefs + node->above->subtreeRefs;
     return node;
-}
-
-// Depth-first layout (kd_layout.h): below child next, above child by index; parent links and boxes
-// for kd-backtrack in `extra`. Writes the subtree of `n` at node `index` and index-list entry
-// `first` onwards, whose places its subtree sizes give, so the subtrees near the root are written
-// as parallel tasks; it consumes the tree, which is then freed in parallel too (millions of nodes
-// and leaf lists freed one by one would be a serial tail of the build).
-void flatten(NodePtr n, uint32_t index, uint64_t first, uint32_t parent, const Box& box,
-             KdTree& out, int depth) {
-    out.extra[index] = gpu::KdNodeExtra{box.lo, parent, box.hi, 0};
-    if (n->axis < 0) {
-        out.nodes[index] = gpu::KdNode::leaf(uint32_t(first), uint32_t(n->triangles.size()));
-        std::copy(n->triangles.begin(), n->triangles.end(), out.indices.begin() + std::ptrdiff_t(first));
-        return;
-    }
-    const auto [belowBox, aboveBox] = splitBox(box, n->axis, n->split);
-    const uint32_t aboveIndex = index + 1 + n->below->subtreeNodes;
-    const uint64_t aboveFirst = first + n->below->subtreeRefs;
-    out.nodes[index] = gpu::KdNode::inner(n->axis, n->split, aboveIndex, n->below->emptyLeaf(), n->above->emptyLeaf());
-    forkJoin(depth < kParallelDepth,
-             [&, &bBox = belowBox] { flatten(std::move(n->below), index + 1, first, index, bBox, out, depth + 1); },
-             [&, &aBox = aboveBox] { flatten(std::move(n->above), aboveIndex, aboveFirst, index, aBox, out, depth + 1); });
 }
 
 }  // namespace
@@ -557,7 +545,7 @@ KdBuildResult buildSahKdTree(const std::vector<Triangle>& triangles, const KdCon
         resizeForOverwrite(result.tree.nodes, tree->subtreeNodes);
         resizeForOverwrite(result.tree.extra, tree->subtreeNodes);
         resizeForOverwrite(result.tree.indices, size_t(tree->subtreeRefs));
-        flatten(std::move(tree), 0, 0, VKRAY_KD_NO_PARENT, root, result.tree, 0);
+        flattenKdTree(std::move(tree), 0, 0, VKRAY_KD_NO_PARENT, root, result.tree, 0);
         result.tree.header = gpu::KdTreeHeader{root.lo, uint32_t(result.tree.nodes.size()), root.hi,
                                                uint32_t(result.tree.indices.size())};
         result.times.flattenMs = msSince(flattenStart);
