@@ -57,6 +57,25 @@ KdPacketPart kdPacketPart(uvec2 n, uint index, uint child, int visit, uint first
                         cutMin ? kdAxis(n) : minAxis, cutMax ? thit : segMax, cutMax ? kdAxis(n) : maxAxis);
 }
 
+// kd-stack's step at inner node `node` (n) for a `live` lane: its parts in the near and the far
+// child, near and far by the packet's signs (`octant`); a lane not live takes part in neither.
+void kdPacketStep(KdRay r, uvec2 n, uint node, uint octant, bool live, float segMin, uint minAxis, float segMax,
+                  uint maxAxis, inout KdPass pass, out uint near, out uint far, out KdPacketPart nearPart,
+                  out KdPacketPart farPart) {
+    const bool up = ((octant >> kdAxis(n)) & 1u) != 0u;
+    near = up ? node + 1u : kdAboveChild(n);
+    far = up ? kdAboveChild(n) : node + 1u;
+    nearPart = KdPacketPart(false, 0.0, 0u, 0.0, 0u);
+    farPart = nearPart;
+    if (!live) return;
+    countNode();
+    uint first, second;
+    float thit;
+    const int visit = kdStepInner(r, n, node, segMin, minAxis, segMax, maxAxis, pass, first, second, thit);
+    nearPart = kdPacketPart(n, node, near, visit, first, thit, segMin, minAxis, segMax, maxAxis);
+    farPart = kdPacketPart(n, node, far, visit, first, thit, segMin, minAxis, segMax, maxAxis);
+}
+
 // One pass of the packet of the lanes active at the call, all pointing into `octant`, each over its
 // own segment of its ray clipped to the root box. Returns whether the lane's pass ended by its own
 // rule (false: the packet's step count reached the cap, or the driver cut the loop short). `steps`
@@ -94,17 +113,9 @@ bool kdPacketPass(KdRay r, WatertightRay w, uint octant, float segMin, uint minA
         uvec2 n = kdNode(node);
         for (; more && !kdIsLeaf(n) && packetSteps < VKRAY_KD_MAX_STEPS; ++packetSteps) {
             // Near and far by the packet's signs: the same child for every lane that reaches both.
-            const bool up = ((octant >> kdAxis(n)) & 1u) != 0u;
-            const uint near = up ? node + 1u : kdAboveChild(n), far = up ? kdAboveChild(n) : node + 1u;
-            KdPacketPart nearPart = KdPacketPart(false, 0.0, 0u, 0.0, 0u), farPart = nearPart;
-            if (live) {
-                countNode();
-                uint first, second;
-                float thit;
-                const int visit = kdStepInner(r, n, node, segMin, minAxis, segMax, maxAxis, pass, first, second, thit);
-                nearPart = kdPacketPart(n, node, near, visit, first, thit, segMin, minAxis, segMax, maxAxis);
-                farPart = kdPacketPart(n, node, far, visit, first, thit, segMin, minAxis, segMax, maxAxis);
-            }
+            uint near, far;
+            KdPacketPart nearPart, farPart;
+            kdPacketStep(r, n, node, octant, live, segMin, minAxis, segMax, maxAxis, pass, near, far, nearPart, farPart);
             const bool anyNear = subgroupAny(nearPart.takes), anyFar = subgroupAny(farPart.takes);
             if (anyNear && anyFar) {
                 if (top == VKRAY_KD_STACK_SIZE) {  // deeper than the builder goes: malformed
