@@ -1,7 +1,7 @@
 // The packet walk of the SAH kd-tree (`kd-packet`): the rays of a subgroup's lanes that call a
 // trace together walk kd-stack's tree as packets (Wald, Slusallek, Benthin and Wagner, "Interactive
-// Rendering with Coherent Ray Tracing", Eurographics 2001, section 4; on the GPU, Horn, Sugerman,
-// Houston and Hanrahan, "Interactive k-D Tree GPU Raytracing", I3D 2007, section 5). The node to
+// Rendering with Coherent Ray Tracing", Eurographics 2001; on the GPU, Horn, Sugerman,
+// Houston and Hanrahan, "Interactive k-D Tree GPU Raytracing", I3D 2007). The node to
 // visit and the stack's nodes are the packet's, the same in every lane; each lane keeps its own
 // segment [segMin, segMax] of its ray, takes kd-stack's step at the node (kdStepInner) on it, and
 // sits out the children its segment does not reach. The packet descends into the near child when
