@@ -33,12 +33,13 @@ namespace vkray::accel {
 // RayQuery: the driver's (its structure built on the device from the scene's triangles).
 enum class Traversal {
     Brute, Bvh, BvhStackless, BvhPacket, BvhSphere, KdStack, KdRestart, KdBacktrack, KdPushDown, KdShortStack, KdRopes,
-    RayQuery
+    KdPacket, RayQuery
 };
 inline constexpr std::array kTraversals{Traversal::Brute,       Traversal::Bvh,        Traversal::BvhStackless,
                                         Traversal::BvhPacket,   Traversal::BvhSphere,  Traversal::KdStack,
                                         Traversal::KdRestart,   Traversal::KdBacktrack, Traversal::KdPushDown,
-                                        Traversal::KdShortStack, Traversal::KdRopes,   Traversal::RayQuery};
+                                        Traversal::KdShortStack, Traversal::KdRopes,   Traversal::KdPacket,
+                                        Traversal::RayQuery};
 
 // Its name, as structure files record it: the accelerator that walks it (accel_spec.cpp's names).
 constexpr std::string_view traversalName(Traversal t) {
@@ -54,6 +55,7 @@ constexpr std::string_view traversalName(Traversal t) {
     case Traversal::KdPushDown: return "kd-pushdown";
     case Traversal::KdRopes: return "kd-ropes";
     case Traversal::KdShortStack: return "kd-shortstack";
+    case Traversal::KdPacket: return "kd-packet";
     case Traversal::RayQuery: return "rayquery";
     }
     return "";

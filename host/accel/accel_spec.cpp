@@ -48,6 +48,9 @@ const AccelEntry kAccels[] = {
     {"kd-backtrack", Family::Kd, {}, kd::Traversal::Backtrack},
     {"kd-stack", Family::Kd, {}, kd::Traversal::Stack},
     {"kd-shortstack", Family::Kd, {}, kd::Traversal::ShortStack},
+    // kd-stack's tree walked by the rays of a subgroup as packets (Wald et al. 2001; Horn et al.
+    // 2007; docs/kdtree.md).
+    {"kd-packet", Family::Kd, {}, kd::Traversal::Packet},
     {"brute", Family::Brute, {}},
     // The driver's own BVH and traversal (VK_KHR_acceleration_structure, VK_KHR_ray_query): in
     // hardware on GPUs with ray-tracing units. A yardstick beside Embree, not one of vkray's own.
@@ -129,7 +132,7 @@ AccelSpec specOf(const AccelEntry& e) {
     return spec;
 }
 
-// "kd-max-depth applies to kd-restart, kd-pushdown, kd-backtrack, kd-stack, kd-shortstack only".
+// "kd-max-depth applies to kd-restart, kd-pushdown, kd-backtrack, kd-stack, kd-shortstack, kd-packet only".
 std::string notApplicable(const TuningOption& o) {
     std::vector<std::string> names;
     for (const AccelEntry& e : kAccels)

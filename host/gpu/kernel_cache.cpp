@@ -8,7 +8,9 @@
 namespace vkray::gpu {
 
 accel::Traversal kernelTraversal(const VulkanContext& ctx, accel::Traversal traversal) {
-    if (traversal == accel::Traversal::BvhPacket && !ctx.info().subgroupBallot) return accel::Traversal::Bvh;
+    if (ctx.info().subgroupBallot) return traversal;
+    if (traversal == accel::Traversal::BvhPacket) return accel::Traversal::Bvh;
+    if (traversal == accel::Traversal::KdPacket) return accel::Traversal::KdStack;
     return traversal;
 }
 

@@ -21,9 +21,9 @@
 
 namespace vkray::gpu {
 
-// The traversal whose kernel runs `traversal` on ctx's device: itself, but for `bvh-packet` on a
-// device without subgroup ballot operations (its kernel's subgroupBroadcastFirst), which runs
-// `bvh`'s kernel: the same tree and the same hits, walked one ray a lane.
+// The traversal whose kernel runs `traversal` on ctx's device: itself, but for `bvh-packet` and
+// `kd-packet` on a device without subgroup ballot operations (their kernels' subgroupBroadcastFirst),
+// which run `bvh`'s and `kd-stack`'s kernels: the same tree and the same hits, one ray a lane.
 accel::Traversal kernelTraversal(const VulkanContext& ctx, accel::Traversal traversal);
 
 // Renders that share a cache must not run at the same time (a kernel has one descriptor set).

@@ -33,8 +33,8 @@ struct DeviceInfo {
     // Subgroup vote and arithmetic operations in compute shaders (the kernels' subgroupAll and
     // subgroupAdd; every desktop GPU and lavapipe have them).
     bool subgroupOps = false;
-    // Subgroup ballot operations in compute shaders besides: the `bvh-packet` kernel's
-    // subgroupBroadcastFirst (kernelTraversal(), kernel_cache.h).
+    // Subgroup ballot operations in compute shaders besides: the `bvh-packet` and
+    // `kd-packet` kernels' subgroupBroadcastFirst (kernelTraversal(), kernel_cache.h).
     bool subgroupBallot = false;
     // Invocations that run together (VkPhysicalDeviceSubgroupProperties::subgroupSize): 8 on
     // llvmpipe with 256-bit vectors, 32 on NVIDIA, 32 or 64 on AMD.

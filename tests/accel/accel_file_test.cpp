@@ -147,7 +147,7 @@ TEST_P(EveryStructure, LoadsByteForByteWhatWasBuilt) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Names, EveryStructure,
-                         ::testing::Values("bvh", "bvh-fast", "bvh-sah", "bvh-stackless", "bvh-packet", "bvh-sphere", "kd-stack", "kd-shortstack", "kd-restart",
+                         ::testing::Values("bvh", "bvh-fast", "bvh-sah", "bvh-stackless", "bvh-packet", "bvh-sphere", "kd-stack", "kd-shortstack", "kd-packet", "kd-restart",
                                            "kd-pushdown", "kd-ropes", "kd-backtrack"),
                          [](const auto& info) {
                              std::string n = info.param;

@@ -22,7 +22,7 @@ namespace {
 
 TEST(Accel, EveryNameResolvesToItsFamilyAndTraversal) {
     for (const std::string name :
-         {"bvh", "bvh-fast", "bvh-hq", "bvh-stackless", "bvh-packet", "bvh-sphere", "kd-restart", "kd-pushdown", "kd-ropes", "kd-backtrack", "kd-stack", "kd-shortstack",
+         {"bvh", "bvh-fast", "bvh-hq", "bvh-stackless", "bvh-packet", "bvh-sphere", "kd-restart", "kd-pushdown", "kd-ropes", "kd-backtrack", "kd-stack", "kd-shortstack", "kd-packet",
           "brute"})
         EXPECT_NE(std::find(accelNames().begin(), accelNames().end(), name), accelNames().end()) << name;
     EXPECT_EQ(resolveAccel("brute").family, Family::Brute);
@@ -111,7 +111,7 @@ TEST(AccelSpec, EveryTuningOptionIsRangeCheckedAndNamed) {
     // builder honours, not silently clamped.
     expectError("kd-restart", "kd-max-depth", "57", "must be 1..56");
     expectError("kd-restart", "kd-max-depth", "0", "must be 1..56");
-    expectError("bvh", "kd-max-depth", "10", "applies to kd-restart, kd-pushdown, kd-ropes, kd-backtrack, kd-stack, kd-shortstack only");
+    expectError("bvh", "kd-max-depth", "10", "applies to kd-restart, kd-pushdown, kd-ropes, kd-backtrack, kd-stack, kd-shortstack, kd-packet only");
     expectError("kd-stack", "aac-delta", "8", "applies to bvh, bvh-fast, bvh-hq, bvh-stackless, bvh-packet, bvh-sphere only");
     // Treelet restructuring prices boxes.
     expectError("bvh-sphere", "bvh-treelet-passes", "2", "applies to bvh, bvh-fast, bvh-hq, bvh-sah, bvh-stackless, bvh-packet only");

@@ -184,7 +184,7 @@ add_test(NAME cli.render_accel.bvh
                  -o ${CLI_OUT}/default-bvh.png --stats)
 set_tests_properties(cli.render_accel.bvh PROPERTIES TIMEOUT 300 ENVIRONMENT "VKRAY_VALIDATION=1"
   FIXTURES_SETUP accel_bvh)
-foreach(accel bvh bvh-fast bvh-hq bvh-sah bvh-stackless bvh-packet bvh-sphere kd-stack kd-shortstack kd-restart kd-pushdown kd-ropes kd-backtrack)
+foreach(accel bvh bvh-fast bvh-hq bvh-sah bvh-stackless bvh-packet bvh-sphere kd-stack kd-shortstack kd-packet kd-restart kd-pushdown kd-ropes kd-backtrack)
   if(NOT accel STREQUAL "bvh")
     add_test(NAME cli.render_accel.${accel}
              COMMAND ${CLI_DIR}/expect_output.sh "accel ${accel}"
@@ -232,7 +232,7 @@ vkray_expect_error(kd_empty_bonus "kd-empty-bonus must be in \\[0, 1\\]" render 
 vkray_expect_error(kd_empty_min "kd-empty-min must be in \\[0, 1\\]" render ${CLI_DATA}/one_triangle.scene --accel kd-restart:kd-empty-min=2 -o ${CLI_OUT}/x.png)
 vkray_expect_error(kd_cost_nan "'kd-intersection-cost=nan': the value is not a number" render ${CLI_DATA}/one_triangle.scene --accel kd-stack:kd-intersection-cost=nan -o ${CLI_OUT}/x.png)
 vkray_expect_error(kd_max_duplication "kd-max-duplication must be a number of references per triangle, 1 or more" render ${CLI_DATA}/one_triangle.scene --accel kd-stack:kd-max-duplication=0.5 -o ${CLI_OUT}/x.png)
-vkray_expect_error(kd_max_duplication_bvh "--accel bvh:kd-max-duplication=4: kd-max-duplication applies to kd-restart, kd-pushdown, kd-ropes, kd-backtrack, kd-stack, kd-shortstack only" render ${CLI_DATA}/one_triangle.scene --accel bvh:kd-max-duplication=4 -o ${CLI_OUT}/x.png)
+vkray_expect_error(kd_max_duplication_bvh "--accel bvh:kd-max-duplication=4: kd-max-duplication applies to kd-restart, kd-pushdown, kd-ropes, kd-backtrack, kd-stack, kd-shortstack, kd-packet only" render ${CLI_DATA}/one_triangle.scene --accel bvh:kd-max-duplication=4 -o ${CLI_OUT}/x.png)
 vkray_expect_error(kd_short_stack_range "kd-short-stack must be 1..56 \\(got 0\\)" render ${CLI_DATA}/one_triangle.scene --accel kd-shortstack:kd-short-stack=0 -o ${CLI_OUT}/x.png)
 vkray_expect_error(kd_short_stack_kd_stack "--accel kd-stack:kd-short-stack=2: kd-short-stack applies to kd-shortstack only" render ${CLI_DATA}/one_triangle.scene --accel kd-stack:kd-short-stack=2 -o ${CLI_OUT}/x.png)
 vkray_expect_error(aac_delta_absurd "aac-delta must be 1..1024" render ${CLI_DATA}/one_triangle.scene --accel bvh:aac-delta=1000000 -o ${CLI_OUT}/x.png)

@@ -138,11 +138,7 @@ TEST(BvhPacketOnGpu, SameFramesAsTheStackWalk) {
         EXPECT_EQ(packet.raysTraced, stack.raysTraced) << file;
         EXPECT_EQ(packet.shadowRays, stack.shadowRays) << file;
         ASSERT_EQ(a.color.size(), b.color.size()) << file;
-        size_t differing = 0;
-        for (size_t i = 0; i < a.color.size(); ++i)
-            differing += a.primId[i] != b.primId[i] || a.depth[i] != b.depth[i] || a.color[i][0] != b.color[i][0] ||
-                         a.color[i][1] != b.color[i][1] || a.color[i][2] != b.color[i][2];
-        EXPECT_EQ(differing, 0u) << file;
+        EXPECT_EQ(test::differingPixels(a, b), 0u) << file;
     }
 }
 

@@ -78,6 +78,15 @@ inline Frame renderGpu(const Scene& scene, const RenderOptions& options, gpu::Gp
 }
 
 // The colour of a Frame as it would be written to an 8-bit file (clamped, quantised).
+// Pixels whose primary triangle, depth or colour differ between two frames of one size, bit for bit.
+inline size_t differingPixels(const Frame& a, const Frame& b) {
+    size_t differing = 0;
+    for (size_t i = 0; i < a.color.size(); ++i)
+        differing += a.primId[i] != b.primId[i] || a.depth[i] != b.depth[i] || a.color[i][0] != b.color[i][0] ||
+                     a.color[i][1] != b.color[i][1] || a.color[i][2] != b.color[i][2];
+    return differing;
+}
+
 inline Image quantisedColor(const Frame& f) {
     Image img(f.width, f.height, 3);
     for (size_t i = 0; i < f.color.size(); ++i)

@@ -99,7 +99,7 @@ TEST_P(IterationCap, RunawayRaysEndAndAreCounted) {
 INSTANTIATE_TEST_SUITE_P(Stress, IterationCap,
                          ::testing::Values(accel::Traversal::Bvh, accel::Traversal::BvhStackless, accel::Traversal::BvhPacket, accel::Traversal::BvhSphere, accel::Traversal::KdStack, accel::Traversal::KdRestart,
                                            accel::Traversal::KdPushDown, accel::Traversal::KdShortStack, accel::Traversal::KdRopes,
-                                           accel::Traversal::KdBacktrack),
+                                           accel::Traversal::KdBacktrack, accel::Traversal::KdPacket),
                          [](const auto& info) { return std::string(gpu::kernelName(info.param)); });
 
 }  // namespace

@@ -35,7 +35,7 @@ namespace {
 
 const std::vector<std::string> kAccels = {"brute",      "bvh-fast",      "bvh-hq",     "bvh-stackless",
                                           "bvh-packet", "bvh-sphere", "kd-stack",      "kd-shortstack", "kd-restart",
-                                          "kd-pushdown", "kd-ropes",     "kd-backtrack"};
+                                          "kd-pushdown", "kd-ropes",     "kd-backtrack", "kd-packet"};
 
 struct StressCase {
     std::string name;  // test name

@@ -128,6 +128,7 @@ Traversal kdTraversal(kd::Traversal traversal) {
     case kd::Traversal::PushDown: return Traversal::KdPushDown;
     case kd::Traversal::ShortStack: return Traversal::KdShortStack;
     case kd::Traversal::Ropes: return Traversal::KdRopes;
+    case kd::Traversal::Packet: return Traversal::KdPacket;
     }
     return Traversal::KdRestart;
 }

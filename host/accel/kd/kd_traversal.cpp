@@ -456,7 +456,8 @@ std::unique_ptr<KdTracer> makeKdTracer(kd::Traversal traversal, const KdTree& tr
                                        std::vector<geometry::TriangleVertices> triangles, int maxSteps,
                                        int shortStack) {
     switch (traversal) {
-    case kd::Traversal::Stack: return std::make_unique<KdStackTracer>(tree, std::move(triangles), maxSteps, 0);
+    case kd::Traversal::Stack:
+    case kd::Traversal::Packet: return std::make_unique<KdStackTracer>(tree, std::move(triangles), maxSteps, 0);
     case kd::Traversal::ShortStack:
         return std::make_unique<KdStackTracer>(tree, std::move(triangles), maxSteps,
                                                shortStack > 0 ? shortStack : VKRAY_KD_SHORT_STACK_SIZE);

@@ -67,8 +67,10 @@ struct KdConfig {
 // Sugerman, Houston and Hanrahan, "Interactive k-D Tree GPU Raytracing", I3D 2007, section 4.1), and
 // the stack traversal with a short stack that falls back to that restart (section 4.2); and
 // kd-restart that goes on from a leaf by its ropes (Popov, Guenther, Seidel and Slusallek,
-// "Stackless KD-Tree Traversal for High Performance GPU Ray Tracing", Eurographics 2007).
-enum class Traversal { Stack, Restart, Backtrack, PushDown, ShortStack, Ropes };
+// "Stackless KD-Tree Traversal for High Performance GPU Ray Tracing", Eurographics 2007); and the
+// stack traversal walked by a subgroup's rays as packets on the GPU (Wald et al. 2001; Horn et al.
+// 2007), whose hits, and CPU twin, are the stack traversal's.
+enum class Traversal { Stack, Restart, Backtrack, PushDown, ShortStack, Ropes, Packet };
 
 // An axis-aligned box in float (the scene's precision; every split lies on a float).
 struct Box {
