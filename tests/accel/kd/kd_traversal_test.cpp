@@ -428,6 +428,7 @@ INSTANTIATE_TEST_SUITE_P(Traversals, KdTraversalTest,
                              case kd::Traversal::PushDown: return std::string("PushDown");
                              case kd::Traversal::ShortStack: return std::string("ShortStack");
                              case kd::Traversal::Ropes: return std::string("Ropes");
+                             case kd::Traversal::Packet: return std::string("Packet");  // the GPU's; on the CPU, Stack's walk
                              }
                              return std::string("Unknown");
                          });
