@@ -11,6 +11,7 @@
 #include <time.h>
 
 #include <cstdio>
+#include <cstdlib>
 #include <exception>
 #include <map>
 #include <memory>
@@ -18,12 +19,11 @@
 #include <utility>
 #include <vector>
 
-#ifdef VKRAY_HAVE_EMBREE
-#include <embree3/rtcore.h>
-#endif
+#include <CLI/CLI.hpp>
 
 #include "accel/accel.h"
 #include "accel/accel_spec.h"
+#include "bench/embree_baseline.h"
 #include "bench/spread.h"
 #include "core/timing.h"
 #include "scene/scene_parser.h"
@@ -57,70 +57,23 @@ struct Options {
     std::vector<std::string> scenes;
 };
 
+// The command line through CLI11, as vkray's own: --help, and one line naming a bad flag.
 Options parseArgs(int argc, char** argv) {
     Options o;
-    for (int i = 1; i < argc; ++i) {
-        const std::string a = argv[i];
-        const auto next = [&]() -> std::string {
-            if (i + 1 >= argc) throw std::runtime_error(a + " needs a value");
-            return argv[++i];
-        };
-        if (a == "--runs") o.runs = std::max(1, std::stoi(next()));
-        else if (a == "--threads") o.threads = std::max(1, std::stoi(next()));
-        else if (a == "--bvh") o.bvh = next();
-        else if (a == "--kd") o.kd = next();
-        else o.scenes.push_back(a);
+    CLI::App app("kd-tree build against Embree's HIGH BVH build and a vkray BVH build", "vkray_bench_kd_build");
+    app.add_option("--runs", o.runs, "Timed builds of each, after one warm-up")->check(CLI::Range(1, 1 << 20));
+    app.add_option("--threads", o.threads, "Worker threads of every build")->check(CLI::Range(1, 1 << 20));
+    app.add_option("--bvh", o.bvh, "The vkray BVH to compare with");
+    app.add_option("--kd", o.kd, "The kd accelerator whose tree is built");
+    app.add_option("scenes", o.scenes, "Scene files")->required();
+    try {
+        app.parse(argc, argv);
+    } catch (const CLI::ParseError& e) {
+        std::exit(app.exit(e));
     }
-    if (o.scenes.empty())
-        throw std::runtime_error("usage: vkray_bench_kd_build [--runs N] [--threads N] [--bvh NAME] [--kd NAME] SCENE...");
     return o;
 }
 
-#ifdef VKRAY_HAVE_EMBREE
-// Embree's BVH over the triangles as given, high quality, on its own `threads` workers: one build a
-// call, the scene made and committed within the timing, the vertex array made before it.
-class EmbreeBuild {
-public:
-    EmbreeBuild(const Scene& scene, int threads) : vertices_(9 * scene.triangles.size() + 1) {
-        for (size_t t = 0; t < scene.triangles.size(); ++t) {
-            const Triangle& tri = scene.triangles[t];
-            const glm::vec3 p[3] = {tri.p0, tri.p1, tri.p2};
-            for (int k = 0; k < 3; ++k)
-                for (int c = 0; c < 3; ++c) vertices_[9 * t + 3 * k + c] = p[k][c];
-        }
-        indices_.resize(3 * scene.triangles.size());
-        for (size_t i = 0; i < indices_.size(); ++i) indices_[i] = unsigned(i);
-        device_ = rtcNewDevice(("threads=" + std::to_string(threads)).c_str());
-        if (!device_) throw std::runtime_error("Embree: rtcNewDevice failed");
-    }
-    ~EmbreeBuild() { rtcReleaseDevice(device_); }
-    EmbreeBuild(const EmbreeBuild&) = delete;
-    EmbreeBuild& operator=(const EmbreeBuild&) = delete;
-
-    RTCScene build() {
-        RTCScene scene = rtcNewScene(device_);
-        rtcSetSceneBuildQuality(scene, RTC_BUILD_QUALITY_HIGH);
-        RTCGeometry geom = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_TRIANGLE);
-        rtcSetGeometryBuildQuality(geom, RTC_BUILD_QUALITY_HIGH);
-        const size_t n = indices_.size() / 3;
-        rtcSetSharedGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, vertices_.data(), 0,
-                                   3 * sizeof(float), 3 * n);
-        rtcSetSharedGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, indices_.data(), 0,
-                                   3 * sizeof(unsigned), n);
-        rtcCommitGeometry(geom);
-        rtcAttachGeometry(scene, geom);
-        rtcReleaseGeometry(geom);
-        rtcCommitScene(scene);
-        if (rtcGetDeviceError(device_) != RTC_ERROR_NONE) throw std::runtime_error("Embree: the build failed");
-        return scene;
-    }
-
-private:
-    std::vector<float> vertices_;  // one float over: Embree reads vertices 16 bytes at a time
-    std::vector<unsigned> indices_;
-    RTCDevice device_ = nullptr;
-};
-#endif
 
 void printSpread(const char* what, const bench::Spread& s) {
     std::printf("  %-28s %9.1f ms (min %.1f, max %.1f)\n", what, s.median, s.min, s.max);
@@ -135,9 +88,7 @@ void benchScene(const std::string& file, const Options& o) {
     std::vector<double> kdMs, bvhMs, embreeMs, kdCpu, bvhCpu, embreeCpu;
     std::map<std::string, std::vector<double>> phases;
     std::vector<accel::AccelStat> last;
-#ifdef VKRAY_HAVE_EMBREE
-    EmbreeBuild embree(scene, o.threads);
-#endif
+    const std::unique_ptr<bench::EmbreeBuild> embree = bench::makeEmbreeBuild(scene, o.threads);
     for (int r = 0; r <= o.runs; ++r) {  // run 0: the warm-up
         std::unique_ptr<accel::BuiltAccel> kd, bvh;
         const auto [k, kCpu] = timed([&] { kd = accel::buildAccel(scene, kdSpec, options); });
@@ -145,15 +96,14 @@ void benchScene(const std::string& file, const Options& o) {
         kd.reset();
         const auto [b, bCpu] = timed([&] { bvh = accel::buildAccel(scene, bvhSpec, options); });
         bvh.reset();
-#ifdef VKRAY_HAVE_EMBREE
-        RTCScene built = nullptr;
-        const auto [e, eCpu] = timed([&] { built = embree.build(); });
-        rtcReleaseScene(built);
-        if (r > 0) {
-            embreeMs.push_back(e);
-            embreeCpu.push_back(eCpu);
+        if (embree) {
+            const auto [e, eCpu] = timed([&] { embree->build(); });
+            embree->release();
+            if (r > 0) {
+                embreeMs.push_back(e);
+                embreeCpu.push_back(eCpu);
+            }
         }
-#endif
         if (r == 0) continue;
         kdMs.push_back(k);
         bvhMs.push_back(b);
@@ -168,15 +118,15 @@ void benchScene(const std::string& file, const Options& o) {
     const double kdC = bench::spreadOf(kdCpu).median, bvhC = bench::spreadOf(bvhCpu).median;
     std::printf("  %s / %s: %.2fx wall, %.2fx CPU (%.0f / %.0f ms)\n", o.kd.c_str(), o.bvh.c_str(),
                 kd.median / bvh.median, kdC / bvhC, kdC, bvhC);
-#ifdef VKRAY_HAVE_EMBREE
-    const bench::Spread em = bench::spreadOf(embreeMs);
-    const double emC = bench::spreadOf(embreeCpu).median;
-    printSpread("Embree 3 BVH, HIGH quality", em);
-    std::printf("  %s / Embree HIGH: %.2fx wall, %.2fx CPU (%.0f / %.0f ms)\n", o.kd.c_str(), kd.median / em.median,
-                kdC / emC, kdC, emC);
-#else
-    std::printf("  Embree: not in this build (install libembree-dev)\n");
-#endif
+    if (embree) {
+        const bench::Spread em = bench::spreadOf(embreeMs);
+        const double emC = bench::spreadOf(embreeCpu).median;
+        printSpread("Embree 3 BVH, HIGH quality", em);
+        std::printf("  %s / Embree HIGH: %.2fx wall, %.2fx CPU (%.0f / %.0f ms)\n", o.kd.c_str(), kd.median / em.median,
+                    kdC / emC, kdC, emC);
+    } else {
+        std::printf("  Embree: %s\n", bench::embreeMissingNote());
+    }
     for (const accel::AccelStat& s : last) {
         const auto p = phases.find(s.key);
         if (p != phases.end()) std::printf("  %-28s %9.1f ms (%s)\n", s.key.c_str(), bench::spreadOf(p->second).median, s.unit.c_str());

@@ -29,6 +29,18 @@ void onEmbreeError(void* user, RTCError code, const char* text) {
     if (sink->message.empty()) sink->message = "Embree error " + std::to_string(int(code)) + ": " + (text ? text : "");
 }
 
+// The scene's triangles as Embree's arrays: three vertices each, in order, indexed 0, 1, 2, ...
+void writeTriangles(const Scene& scene, float* vertices, unsigned* indices) {
+    for (size_t t = 0; t < scene.triangles.size(); ++t) {
+        const Triangle& tri = scene.triangles[t];
+        const glm::vec3 p[3] = {tri.p0, tri.p1, tri.p2};
+        for (int k = 0; k < 3; ++k) {
+            for (int c = 0; c < 3; ++c) vertices[9 * t + 3 * k + c] = p[k][c];
+            indices[3 * t + k] = unsigned(3 * t + k);
+        }
+    }
+}
+
 class Embree final : public EmbreeBaseline {
 public:
     Embree(const Scene& scene, int width, int height)
@@ -46,14 +58,7 @@ public:
         auto* indices = static_cast<unsigned*>(
             rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(unsigned), n));
         check();
-        for (size_t t = 0; t < n; ++t) {
-            const Triangle& tri = scene.triangles[t];
-            const glm::vec3 p[3] = {tri.p0, tri.p1, tri.p2};
-            for (int k = 0; k < 3; ++k) {
-                for (int c = 0; c < 3; ++c) vertices[9 * t + 3 * k + c] = p[k][c];
-                indices[3 * t + k] = unsigned(3 * t + k);
-            }
-        }
+        writeTriangles(scene, vertices, indices);
         rtcCommitGeometry(geom);
         rtcAttachGeometry(scene_, geom);
         rtcReleaseGeometry(geom);
@@ -153,6 +158,53 @@ private:
     std::string version_;
 };
 
+class Build final : public EmbreeBuild {
+public:
+    Build(const Scene& scene, int threads)
+        : vertices_(9 * scene.triangles.size() + 1), indices_(3 * scene.triangles.size()) {
+        writeTriangles(scene, vertices_.data(), indices_.data());
+        device_ = rtcNewDevice(("threads=" + std::to_string(std::max(1, threads))).c_str());
+        if (!device_) throw Error("Embree: cannot create a device (rtcNewDevice failed)");
+        rtcSetDeviceErrorFunction(device_, onEmbreeError, &errors_);
+    }
+    ~Build() override {
+        release();
+        rtcReleaseDevice(device_);
+    }
+    Build(const Build&) = delete;
+    Build& operator=(const Build&) = delete;
+
+    void build() override {
+        release();
+        RTCScene scene = scene_ = rtcNewScene(device_);
+        rtcSetSceneBuildQuality(scene, RTC_BUILD_QUALITY_HIGH);
+        RTCGeometry geom = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_TRIANGLE);
+        rtcSetGeometryBuildQuality(geom, RTC_BUILD_QUALITY_HIGH);
+        const size_t n = indices_.size() / 3;
+        rtcSetSharedGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, vertices_.data(), 0,
+                                   3 * sizeof(float), 3 * n);
+        rtcSetSharedGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, indices_.data(), 0,
+                                   3 * sizeof(unsigned), n);
+        rtcCommitGeometry(geom);
+        rtcAttachGeometry(scene, geom);
+        rtcReleaseGeometry(geom);
+        rtcCommitScene(scene);
+        if (!errors_.message.empty()) throw Error(errors_.message);
+    }
+
+    void release() override {
+        if (scene_) rtcReleaseScene(scene_);
+        scene_ = nullptr;
+    }
+
+private:
+    std::vector<float> vertices_;  // one float over: Embree reads vertices 16 bytes at a time
+    std::vector<unsigned> indices_;
+    ErrorSink errors_;
+    RTCDevice device_ = nullptr;
+    RTCScene scene_ = nullptr;
+};
+
 }  // namespace
 
 bool embreeAvailable() { return true; }
@@ -160,6 +212,10 @@ const char* embreeMissingNote() { return ""; }
 
 std::unique_ptr<EmbreeBaseline> makeEmbreeBaseline(const Scene& scene, int width, int height) {
     return std::make_unique<Embree>(scene, width, height);
+}
+
+std::unique_ptr<EmbreeBuild> makeEmbreeBuild(const Scene& scene, int threads) {
+    return std::make_unique<Build>(scene, threads);
 }
 
 }  // namespace vkray::bench
@@ -173,6 +229,7 @@ const char* embreeMissingNote() {
     return "this vkray was built without Embree (install libembree-dev and rebuild for the CPU baseline)";
 }
 std::unique_ptr<EmbreeBaseline> makeEmbreeBaseline(const Scene&, int, int) { return nullptr; }
+std::unique_ptr<EmbreeBuild> makeEmbreeBuild(const Scene&, int) { return nullptr; }
 
 }  // namespace vkray::bench
 

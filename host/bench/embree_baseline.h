@@ -45,4 +45,18 @@ const char* embreeMissingNote();
 // Embree reports an error.
 std::unique_ptr<EmbreeBaseline> makeEmbreeBaseline(const Scene& scene, int width, int height);
 
+// Embree's high-quality BVH over the scene's triangles (as given), built anew at each build() on
+// `threads` workers from vertex and index arrays made once before: the build-time yardstick of
+// vkray's builders (benchmarks/kd_build.cpp).
+class EmbreeBuild {
+public:
+    virtual ~EmbreeBuild() = default;
+    // One build, committed; throws vkray::Error when Embree reports an error.
+    virtual void build() = 0;
+    // Frees the last build's BVH (apart from build(), so that a timing of it leaves the free out).
+    virtual void release() = 0;
+};
+// Null in a build without Embree (embreeAvailable()).
+std::unique_ptr<EmbreeBuild> makeEmbreeBuild(const Scene& scene, int threads);
+
 }  // namespace vkray::bench

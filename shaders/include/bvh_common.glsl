@@ -149,6 +149,30 @@ void sortByKey(inout vec4 key, inout uvec4 ref) {
     sortPair(key, ref, 1, 2);
 }
 
+// The stack walks' push (bvh_traversal.glsl, bvh_packet.glsl): entries 1 .. HITS - 1 of the sorted
+// children (KIDS, ENTER), farthest first, so the nearest pops next, onto `stackRef`/`stackEnter` at
+// `top`; `iteration` counts the passes. A loop of hits - 1 passes, not three pushes under `if`s:
+// llvmpipe runs an `if` body for all lanes, and its masked store into a local array reads and
+// writes back every lane's entry whether or not the lane pushes; a loop stops when no lane has an
+// entry left (docs/performance.md, "What lavapipe charges for"). A macro, not a function: GLSL
+// passes arrays by copy.
+#define VKRAY_BVH_PUSH_REST(KIDS, ENTER, HITS)                                     \
+    {                                                                              \
+        uvec4 pushRef = (KIDS).yzwx;                                               \
+        vec4 pushEnter = (ENTER).yzwx;                                             \
+        int slot = top + (HITS) - 2;                                               \
+        for (int i = 1; countPass() && i < (HITS); ++i) {                          \
+            stackRef[slot] = pushRef.x;                                            \
+            stackEnter[slot] = pushEnter.x;                                        \
+            --slot;                                                                \
+            pushRef = pushRef.yzwx;                                                \
+            pushEnter = pushEnter.yzwx;                                            \
+        }                                                                          \
+        const int pushes = max((HITS) - 1, 0);                                     \
+        top += pushes;                                                             \
+        iteration += pushes; /* the pushes' passes count against the cap too */    \
+    }
+
 // Node `index`'s parent link, parent << 2 | its slot there (shared/bvh_layout.h): in the node itself
 // for boxes, in the index view for spheres.
 #ifdef VKRAY_BVH_SPHERES

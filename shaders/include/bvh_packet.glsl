@@ -84,21 +84,7 @@ Hit bvhPacketTrace(vec3 origin, vec3 dir, float tmax) {
                     gLoopCutShort = true;
                     return best;
                 }
-                // The entered children after the first, farthest first, as the stack walk's pushes
-                // (a loop of hits - 1 passes: docs/performance.md, "What lavapipe charges for").
-                uvec4 pushRef = kids.yzwx;
-                vec4 pushEnter = lane.yzwx;
-                int slot = top + hits - 2;
-                for (int i = 1; i < hits; ++i) {
-                    stackRef[slot] = pushRef.x;
-                    stackEnter[slot] = pushEnter.x;
-                    --slot;
-                    pushRef = pushRef.yzwx;
-                    pushEnter = pushEnter.yzwx;
-                }
-                const int pushes = max(hits - 1, 0);
-                top += pushes;
-                iteration += pushes;  // the pushes' passes count against the cap too
+                VKRAY_BVH_PUSH_REST(kids, lane, hits)
                 ref = kids.x;
                 enters = lane.x < kInfinity;
                 haveRef = hits > 0;

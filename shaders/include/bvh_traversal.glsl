@@ -79,24 +79,7 @@ Hit bvhTrace(vec3 origin, vec3 dir, float tmax) {
                     gLoopCutShort = true;
                     return best;
                 }
-                // The entered children after the first, farthest first, so the nearest pops next:
-                // a loop of hits - 1 passes, not three pushes under `if`s. llvmpipe runs an `if`
-                // body for all lanes, and its masked store into a local array reads and writes
-                // back every lane's entry whether or not the lane pushes; a loop stops when no
-                // lane has an entry left (docs/performance.md, "What lavapipe charges for").
-                uvec4 pushRef = kids.yzwx;
-                vec4 pushEnter = key.yzwx;
-                int slot = top + hits - 2;
-                for (int i = 1; countPass() && i < hits; ++i) {
-                    stackRef[slot] = pushRef.x;
-                    stackEnter[slot] = pushEnter.x;
-                    --slot;
-                    pushRef = pushRef.yzwx;
-                    pushEnter = pushEnter.yzwx;
-                }
-                const int pushes = max(hits - 1, 0);
-                top += pushes;
-                iteration += pushes;  // the pushes' passes count against the cap too
+                VKRAY_BVH_PUSH_REST(kids, key, hits)
                 ref = kids.x;
                 haveRef = hits > 0;
             }

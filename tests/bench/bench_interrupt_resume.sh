@@ -5,6 +5,7 @@
 # report; a third --resume finds nothing to measure; --resume with other settings is refused.
 # usage: bench_interrupt_resume.sh VKRAY OUT SCENE...  (three or more)
 set -euo pipefail
+. "$(dirname "$0")/wait_first_scene.sh"
 vkray=$1 out=$2
 shift 2
 scenes=("$@")
@@ -14,11 +15,7 @@ opts=(--size 32x24 --repeat 1 --threads 1 --accel bvh,kd-stack --deltas 8 --maxd
 
 "$vkray" bench "${scenes[@]}" "${opts[@]}" 2>"$out.err1" >/dev/null &
 pid=$!
-for _ in $(seq 2400); do  # up to 240 s for the first scene
-  jq -e '.scenes | length >= 1' "$out/bench.json" >/dev/null 2>&1 && break
-  kill -0 "$pid" 2>/dev/null || break
-  sleep 0.1
-done
+wait_first_scene "$pid" "$out"
 kill -TERM "$pid" 2>/dev/null || true
 rc=0
 wait "$pid" || rc=$?

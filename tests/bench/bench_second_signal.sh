@@ -6,6 +6,7 @@
 # temporary file of an output being written, and a bench.json with the finished scene.
 # usage: bench_second_signal.sh VKRAY OUT SCENE...  (three or more)
 set -euo pipefail
+. "$(dirname "$0")/wait_first_scene.sh"
 vkray=$1 out=$2
 shift 2
 fail() { echo "FAIL: $*"; cat "$out.err" 2>/dev/null; exit 1; }
@@ -13,11 +14,7 @@ rm -rf "$out" "$out.err"
 "$vkray" bench "$@" --size 32x24 --repeat 1 --threads 1 --accel bvh,kd-stack --deltas 8 --maxdepths none \
   --out "$out" 2>"$out.err" >/dev/null &
 pid=$!
-for _ in $(seq 2400); do  # up to 240 s for the first scene
-  jq -e '.scenes | length >= 1' "$out/bench.json" >/dev/null 2>&1 && break
-  kill -0 "$pid" 2>/dev/null || break
-  sleep 0.1
-done
+wait_first_scene "$pid" "$out"
 kill -TERM "$pid" 2>/dev/null || fail "the run ended before the signals"
 for _ in $(seq 2000); do kill -TERM "$pid" 2>/dev/null || break; sleep 0.005; done
 rc=0

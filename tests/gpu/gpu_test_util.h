@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <cstdlib>
+#include <filesystem>
 #include <limits>
 #include <memory>
 #include <string>
@@ -22,6 +23,7 @@
 #include "image/image.h"
 #include "scene/camera.h"
 #include "scene/scene.h"
+#include "scene/scene_parser.h"
 
 namespace vkray::test {
 
@@ -77,7 +79,6 @@ inline Frame renderGpu(const Scene& scene, const RenderOptions& options, gpu::Gp
     return renderGpu(gpuContext(), scene, options, report, accel);
 }
 
-// The colour of a Frame as it would be written to an 8-bit file (clamped, quantised).
 // Pixels whose primary triangle, depth or colour differ between two frames of one size, bit for bit.
 inline size_t differingPixels(const Frame& a, const Frame& b) {
     size_t differing = 0;
@@ -86,6 +87,33 @@ inline size_t differingPixels(const Frame& a, const Frame& b) {
                      a.color[i][1] != b.color[i][1] || a.color[i][2] != b.color[i][2];
     return differing;
 }
+
+// A packet accelerator against the single-ray walk of the same tree: on five hand-made scenes at
+// 125x93 (odd sizes leave tiles whose last subgroups have lanes outside the image; the Whitted
+// scenes trace packets of the lanes whose pixels still have rays pending) the frames are the same
+// bit for bit, and so are the rays traced and, with `sameTriangles`, the triangles tested. The
+// packet runs `packetKernel`, or on a device without subgroup ballot the single walk's kernel.
+inline void expectPacketMatchesSingleRay(std::string_view single, std::string_view singleKernel, std::string_view packet,
+                                         std::string_view packetKernel, bool sameTriangles) {
+    for (const char* file : {"cornell.scene", "default.scene", "lights.scene", "objects.scene", "spheres.scene"}) {
+        const Scene scene = loadScene(std::filesystem::path(VKRAY_SOURCE_DIR) / "scenes" / file);
+        const RenderOptions options{.width = 125, .height = 93, .maxDepth = scene.maxDepth, .countTraversal = sameTriangles};
+        gpu::GpuRenderReport stack, packed;
+        const Frame a = renderGpu(scene, options, &stack, single);
+        const Frame b = renderGpu(scene, options, &packed, packet);
+        EXPECT_EQ(packed.kernel, gpuContext().info().subgroupBallot ? packetKernel : singleKernel);
+        EXPECT_EQ(packed.pixelsCutShort, 0u) << file;
+        EXPECT_EQ(packed.raysTraced, stack.raysTraced) << file;
+        EXPECT_EQ(packed.shadowRays, stack.shadowRays) << file;
+        if (sameTriangles) {
+            EXPECT_EQ(packed.trianglesTested, stack.trianglesTested) << file;
+        }
+        ASSERT_EQ(a.color.size(), b.color.size()) << file;
+        EXPECT_EQ(differingPixels(a, b), 0u) << file;
+    }
+}
+
+// The colour of a Frame as it would be written to an 8-bit file (clamped, quantised).
 
 inline Image quantisedColor(const Frame& f) {
     Image img(f.width, f.height, 3);

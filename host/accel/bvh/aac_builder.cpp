@@ -100,7 +100,7 @@ public:
         resizeForOverwrite(nodes_, 2 * n - 1);  // primitives, then the n - 1 merges fill every slot
         resizeFirstTouched(clusters_, n);
         resizeFirstTouched(free_, n);
-        if (!collapsed_) resizeForOverwrite(counts_, n - 1);  // else the recorder counts them
+        resizeForOverwrite(counts_, n - 1);
         if (spheres_) resizeFirstTouched(sphereOf_, 2 * n - 1);
         if (collapsed_) recorder_.emplace(config_, 2 * n - 1);
         makePrimitiveNodes();
@@ -219,7 +219,7 @@ private:
             nodes_[node].box = box;
             nodes_[node].child[0] = ids[a];
             nodes_[node].child[1] = ids[b];
-            if (!recorder_) counts_[node - keys_.size()] = primitives(ids[a]) + primitives(ids[b]);
+            counts_[node - keys_.size()] = primitives(ids[a]) + primitives(ids[b]);
             if constexpr (Spheres) sphereOf_[node] = mergeSpheres(s.sphere(a), s.sphere(b));
             if (recorder_) recorder_->inner(node, Spheres ? sphereOf_[node].halfArea() : box.halfArea(), ids[a], ids[b]);
 
@@ -296,7 +296,6 @@ private:
 
     // The primitives below node `id`.
     uint32_t primitives(uint32_t id) const {
-        if (recorder_) return recorder_->primitives(id);
         return id < keys_.size() ? 1 : counts_[id - keys_.size()];
     }
 
@@ -377,7 +376,7 @@ private:
     BuildArray<BinaryNode> nodes_;    // primitives at [0, n), then merges in the slots of their ranges
     BuildArray<uint32_t> clusters_;   // per range, its current clusters (node ids)
     BuildArray<uint32_t> free_;       // per range, its unused merge slots
-    BuildArray<uint32_t> counts_;     // without a recorder: per merge node (id - N), the primitives below it
+    BuildArray<uint32_t> counts_;     // per merge node (id - N), the primitives below it
     bool spheres_;                     // sphere containers: every node's sphere in sphereOf_
     std::vector<Sphere> sphereOf_;
     AacReduction reduce_;              // f

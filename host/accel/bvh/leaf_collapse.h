@@ -41,8 +41,6 @@ public:
     void primitive(uint32_t id, double area);
     void inner(uint32_t id, double area, uint32_t left, uint32_t right);
     CollapsedTree finish(uint32_t root, double rootArea);
-    // The primitives below node `id`, recorded.
-    uint32_t primitives(uint32_t id) const { return out_.nodes[id].primitives; }
 
 private:
     const Config& config_;
