@@ -61,6 +61,10 @@ constexpr std::string_view traversalName(Traversal t) {
     return "";
 }
 
+// Whether the kernel of `t` walks closest-hit rays as subgroup packets (bvh_packet.glsl,
+// kd_packet.glsl): its counters then count the steps each lane sat out (GpuPixel.walkEvents).
+constexpr bool isPacketWalk(Traversal t) { return t == Traversal::BvhPacket || t == Traversal::KdPacket; }
+
 struct BuildOptions {
     int threads = 0;  // worker threads; 0 = all cores. The result never depends on it.
     BuildProgress progress;

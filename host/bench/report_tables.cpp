@@ -455,7 +455,9 @@ Table embreeTable(const SceneResult& scene) {
                       ". Embree names the reference's primary triangle on " + formatPercent(e.agreement) +
                       " of the camera rays. Node steps and SIMD efficiency from the statistics variant: the steps a "
                       "ray over the steps a ray as the device's subgroups (of the lanes given) run them, each until "
-                      "its slowest lane is done (Aila and Laine 2009).");
+                      "its slowest lane is done (Aila and Laine 2009); for bvh-packet and kd-packet, the steps their "
+                      "packets took: the SIMD efficiency is then the lanes' use of them, the share of the steps in "
+                      "which a lane's ray entered the node.");
     for (const std::string& n : accelAboutNotes(scene)) t.notes.push_back(n);
     return t;
 }

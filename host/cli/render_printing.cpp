@@ -90,7 +90,8 @@ nlohmann::json gpuJson(const gpu::GpuRenderReport& g) {
     if (g.features.countTraversal)
         j["traversal"] = {{"nodes", g.nodesVisited}, {"leaves", g.leavesVisited},
                           {"triangles", g.trianglesTested}, {"restarts", g.restarts},
-                          {"lockstep", {{"lanes", g.lockstepLanes}, {"nodes", g.lockstepNodes}}}};
+                          {"lockstep", {{"lanes", g.lockstepLanes}, {"nodes", g.lockstepNodes}}},
+                          {"packet_walk", g.packetWalk}, {"idle_steps", g.idleSteps}};
     return j;
 }
 
@@ -116,7 +117,11 @@ void printGpuStats(const gpu::GpuRenderReport& g) {
         std::printf("traversal:   per ray %.2f nodes, %.2f leaves, %.2f triangle tests, %.3f restarts\n",
                     double(g.nodesVisited) / all, double(g.leavesVisited) / all, double(g.trianglesTested) / all,
                     double(g.restarts) / all);
-        if (g.lockstepNodes > 0)
+        if (g.packetWalk && g.lockstepNodes > 0)
+            std::printf("packets:     %.2f node steps a ray as its packet took them, lanes' use %.1f%% (the steps a "
+                        "lane's ray entered; shadow rays walk alone)\n",
+                        double(g.lockstepNodes) / all, 100.0 * double(g.nodesVisited) / double(g.lockstepNodes));
+        else if (g.lockstepNodes > 0)
             std::printf("simd:        %.2f node steps a ray in lock-step over subgroups of %u, SIMD efficiency %.1f%%\n",
                         double(g.lockstepNodes) / all, g.lockstepLanes,
                         100.0 * double(g.nodesVisited) / double(g.lockstepNodes));

@@ -120,6 +120,7 @@ Frame renderOnGpu(const VulkanContext& ctx, const Scene& scene, const RenderOpti
     GpuRenderReport& rep = report ? *report : local;
     rep = GpuRenderReport{};
     rep.kernel = std::string(kernelName(kernelTraversal(ctx, accel.traversal)));
+    rep.packetWalk = accel::isPacketWalk(kernelTraversal(ctx, accel.traversal));
     const GpuFrameParams base = frameParams(scene, options);  // validates camera and size
     const Uploaded buffers = upload(ctx, scene, accel, rep);
 

@@ -67,12 +67,13 @@ void readTile(const GpuPixel* src, const Tile& tile, const ShaderFeatures& featu
             rep.nodesVisited += px.nodes;
             rep.leavesVisited += px.leaves;
             rep.trianglesTested += px.triangles;
-            rep.restarts += px.restarts;
+            (rep.packetWalk ? rep.idleSteps : rep.restarts) += px.walkEvents;
+            if (rep.packetWalk) rep.lockstepNodes += uint64_t(px.nodes) + px.walkEvents;
             if (!rep.nodesPerPixel.empty()) rep.nodesPerPixel[i] += px.nodes;  // every sample's
         }
         rep.pixelsCutShort += (px.flags & VKRAY_PIXEL_CUT_SHORT) != 0;
     });
-    if (counters)
+    if (counters && !rep.packetWalk)  // a packet's steps are counted per pixel above
         rep.lockstepNodes += lockstepNodes(tile.width, tile.height, rep.lockstepLanes,
                                            [&](uint32_t x, uint32_t y) { return src[y * VKRAY_TILE_SIZE + x].nodes; });
 }

@@ -74,6 +74,7 @@ Hit bvhPacketTrace(vec3 origin, vec3 dir, float tmax) {
         for (; iteration < VKRAY_BVH_MAX_ITERATIONS && (haveRef || top > 0) && !(haveRef && isLeafRef(ref)); ++iteration) {
             if (haveRef) {
                 if (enters) countNode();
+                else countIdleStep();
                 const BvhNode n = loadBvhNode(ref);
                 vec4 tEnter;
                 const bvec4 hit = hitsChildren(n, boxRay, best.t, tEnter);
@@ -99,6 +100,8 @@ Hit bvhPacketTrace(vec3 origin, vec3 dir, float tmax) {
             countNode();
             countLeaf();
             testSlots(leafFirst(ref), leafFirst(ref) + leafCount(ref), ray, false, LEAF_SLOTS, best);
+        } else {
+            countIdleStep();
         }
         haveRef = false;
         if (top > 0) VKRAY_PACKET_POP()

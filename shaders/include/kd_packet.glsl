@@ -67,7 +67,10 @@ void kdPacketStep(KdRay r, uvec2 n, uint node, uint octant, bool live, float seg
     far = up ? kdAboveChild(n) : node + 1u;
     nearPart = KdPacketPart(false, 0.0, 0u, 0.0, 0u);
     farPart = nearPart;
-    if (!live) return;
+    if (!live) {
+        countIdleStep();
+        return;
+    }
     countNode();
     uint first, second;
     float thit;
@@ -145,6 +148,8 @@ bool kdPacketPass(KdRay r, WatertightRay w, uint octant, float segMin, uint minA
             countNode();
             kdVisitLeaf(n, w, false, best);
             done = kdFinished(best, false, segMax);
+        } else {
+            countIdleStep();
         }
         VKRAY_KD_PACKET_POP()
     }

@@ -268,7 +268,7 @@ uint resumePixel(uint resumeIndex, uint outIndex, uvec2 pixel, uvec2 imageSize, 
     gNodesVisited = px.nodes;
     gLeavesVisited = px.leaves;
     gTrianglesTested = px.triangles;
-    gRestarts = px.restarts;
+    gWalkEvents = px.walkEvents;
     gCappedRays = px.capped;
     gResumeSlot = r.walkSlot;
     gResumeBest = Hit(r.walkTuv.x, r.walkTuv.yz, r.walkTriangle, r.walkOriginal);
@@ -301,7 +301,7 @@ void storePixel(uint i, PixelTrace pt, uint flags) {
         pixels[i].nodes = gNodesVisited;
         pixels[i].leaves = gLeavesVisited;
         pixels[i].triangles = gTrianglesTested;
-        pixels[i].restarts = gRestarts;
+        pixels[i].walkEvents = gWalkEvents;
     }
 }
 

@@ -98,17 +98,20 @@ uint gShadowRays = 0;
 uint gNodesVisited = 0;
 uint gLeavesVisited = 0;
 uint gTrianglesTested = 0;
-uint gRestarts = 0;
+uint gWalkEvents = 0;  // GpuPixel.walkEvents
 
 // A new pixel of the same invocation (render_main.glsl, "Pixels per invocation") counts from zero.
 void resetPixelCounters() {
-    gCappedRays = gShadowRays = gNodesVisited = gLeavesVisited = gTrianglesTested = gRestarts = 0u;
+    gCappedRays = gShadowRays = gNodesVisited = gLeavesVisited = gTrianglesTested = gWalkEvents = 0u;
 }
 
 // The counters compile to nothing unless the host specialises COUNT_TRAVERSAL to true.
 void countNode() { if (COUNT_TRAVERSAL) ++gNodesVisited; }
 void countLeaf() { if (COUNT_TRAVERSAL) ++gLeavesVisited; }
 void countTriangles(uint n) { if (COUNT_TRAVERSAL) gTrianglesTested += n; }
-void countRestart() { if (COUNT_TRAVERSAL) ++gRestarts; }
+void countRestart() { if (COUNT_TRAVERSAL) ++gWalkEvents; }
+// A packet walk's step that the lane's ray sits out (bvh_packet.glsl, kd_packet.glsl): with the
+// nodes it visits, the steps its packet took, whose share it used is the lanes' use of the packet.
+void countIdleStep() { if (COUNT_TRAVERSAL) ++gWalkEvents; }
 
 #endif

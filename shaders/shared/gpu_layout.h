@@ -202,7 +202,9 @@ VKRAY_STRUCT(GpuPixel) {  // 64 bytes
     uint nodes;      // nodes visited
     uint leaves;     // leaves visited
     uint triangles;  // ray-triangle tests
-    uint restarts;   // kd-restart restarts, kd-backtrack climbs
+    // The walk's own count: kd-restart's restarts and kd-backtrack's climbs; for the packet walks
+    // (bvh-packet, kd-packet), the lane's idle steps: steps its packet took that its ray sat out.
+    uint walkEvents;
     uint capped;     // rays ended by a traversal's iteration cap (reported, never hidden)
 };
 

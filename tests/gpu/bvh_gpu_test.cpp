@@ -129,5 +129,7 @@ TEST(BvhPacketOnGpu, SameFramesAsTheStackWalk) {
     test::expectPacketMatchesSingleRay("bvh", "bvh", "bvh-packet", "bvh_packet", false);
 }
 
+TEST(BvhPacketOnGpu, CountsItsPacketsSteps) { test::expectPacketCounters("bvh", "bvh-packet", true); }
+
 }  // namespace
 }  // namespace vkray

@@ -18,6 +18,7 @@
 #include "geometry/ray.h"
 #include "geometry/ray_triangle.h"
 #include "gpu/gpu_renderer.h"
+#include "gpu/lockstep.h"
 #include "gpu/vulkan_context.h"
 #include "image/compare.h"
 #include "image/image.h"
@@ -110,6 +111,40 @@ inline void expectPacketMatchesSingleRay(std::string_view single, std::string_vi
         }
         ASSERT_EQ(a.color.size(), b.color.size()) << file;
         EXPECT_EQ(differingPixels(a, b), 0u) << file;
+    }
+}
+
+// A packet accelerator's counters on camera rays (no lights, depth 1: every ray walks as a packet):
+// the lock-step steps are the packets' steps, the nodes the lanes' rays entered plus the steps they
+// sat out (GpuRenderReport::idleSteps), which the lanes of a packet on the hand-made scenes' edges and
+// corners do; the single walk counts none. With `slowestLane` (bvh-packet, one packet a subgroup of
+// camera rays), a packet takes at least the steps of its slowest lane. Without subgroup ballot the
+// packet runs the single walk's kernel, which counts no packet.
+inline void expectPacketCounters(std::string_view single, std::string_view packet, bool slowestLane) {
+    for (const char* file : {"cornell.scene", "objects.scene", "spheres.scene"}) {
+        Scene scene = loadScene(std::filesystem::path(VKRAY_SOURCE_DIR) / "scenes" / file);
+        scene.lights.clear();
+        const RenderOptions options{.width = 125, .height = 93, .maxDepth = 1, .countTraversal = true};
+        gpu::GpuRenderReport walk, packed;
+        renderGpu(scene, options, &walk, single);
+        renderGpu(scene, options, &packed, packet);
+        EXPECT_FALSE(walk.packetWalk);
+        EXPECT_EQ(walk.idleSteps, 0u) << file;
+        if (!gpuContext().info().subgroupBallot) {
+            EXPECT_FALSE(packed.packetWalk);
+            continue;
+        }
+        EXPECT_TRUE(packed.packetWalk);
+        EXPECT_EQ(packed.shadowRays, 0u) << file;
+        EXPECT_GT(packed.idleSteps, 0u) << file;
+        EXPECT_EQ(packed.restarts, 0u) << file;
+        EXPECT_EQ(packed.lockstepNodes, packed.nodesVisited + packed.idleSteps) << file;
+        if (slowestLane) {
+            EXPECT_GE(packed.lockstepNodes,
+                      gpu::lockstepNodes(uint32_t(options.width), uint32_t(options.height), packed.lockstepLanes,
+                                         [&](uint32_t x, uint32_t y) { return packed.nodesPerPixel[size_t(y) * size_t(options.width) + x]; }))
+                << file;
+        }
     }
 }
 

@@ -147,6 +147,8 @@ TEST(KdPacketOnGpu, SameFramesAndTrianglesAsTheStackWalk) {
     test::expectPacketMatchesSingleRay("kd-stack", "kd_stack", "kd-packet", "kd_packet", true);
 }
 
+TEST(KdPacketOnGpu, CountsItsPacketsSteps) { test::expectPacketCounters("kd-stack", "kd-packet", false); }
+
 std::vector<KdCase> cases() {
     std::vector<KdCase> all;
     for (const char* accel : {"kd-stack", "kd-shortstack", "kd-restart", "kd-pushdown", "kd-ropes", "kd-backtrack", "kd-packet"})
