@@ -16,7 +16,7 @@ the same number of times, the most expensive first, each with its length, execut
 --top      blocks to list (default 12)
 --asm      machine instructions printed of each listed block (default 0)
 
-Keep renders small (256x192 takes about a minute and a half): callgrind runs some 50 times slower.
+Needs valgrind (Debian's `valgrind`; scripts/install-deps.sh does not install it). Keep renders small (256x192 takes about a minute and a half): callgrind runs some 50 times slower.
 Instruction counts are not time: a cache miss or a long division costs more than a move. Compare
 two kernels by their counts and by scripts/ab.py's times together.
 
@@ -26,6 +26,7 @@ import argparse
 import collections
 import os
 import re
+import shutil
 import subprocess
 import sys
 import tempfile
@@ -48,6 +49,8 @@ def parse():
         p.error(f"{args.vkray}: not an executable")
     if args.kernels and not os.path.isdir(args.kernels):
         p.error(f"{args.kernels}: not a folder")
+    if not shutil.which("valgrind"):
+        p.error("needs valgrind's callgrind: apt-get install valgrind")
     return args
 
 
