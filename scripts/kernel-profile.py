@@ -62,8 +62,9 @@ def run(args, tmp):
     cmd = ["valgrind", "--tool=callgrind", "--smc-check=all", "--dump-instr=yes", f"--callgrind-out-file={out}",
            args.vkray, "render", *args.render, "-o", os.path.join(tmp, "image.png"), "--quiet"]
     r = subprocess.run(cmd, env=env, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True, errors="replace")
-    if r.returncode != 0:
-        sys.exit(f"kernel-profile: the render failed (exit {r.returncode}):\n" + r.stdout[-3000:])
+    if r.returncode != 0:  # vkray's own lines, without the listing and valgrind's
+        said = [l for l in r.stdout.splitlines() if l.strip() and not re.match(r"^(\s+[0-9a-f]+:\t|[\w.]+:$|==\d+==)", l)]
+        sys.exit(f"kernel-profile: the render failed (exit {r.returncode}):\n" + "\n".join(said[-20:]))
     return out, r.stdout
 
 
