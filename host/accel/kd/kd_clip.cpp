@@ -1,5 +1,6 @@
 #include "accel/kd/kd_clip.h"
 
+#include <algorithm>
 #include <array>
 #include <bit>
 #include <cstdint>
@@ -57,6 +58,14 @@ public:
 
     bool empty() const { return n_ == 0; }
 
+    // A copy of the current polygon only: a whole copy would move both buffers, ten vertices each.
+    ClipPolygon fork() const {
+        ClipPolygon copy;
+        copy.n_ = n_;
+        std::copy_n(v_[cur_].begin(), n_, copy.v_[0].begin());
+        return copy;
+    }
+
     // Pass `pass` of the six, in the order x low, x high, y low, ... : the part on the box's side of
     // that face's plane.
     void clip(const Box& box, int pass) {
@@ -110,9 +119,11 @@ public:
     }
 
 private:
+    ClipPolygon() = default;
+
     std::array<std::array<glm::dvec3, 10>, 2> v_;  // the current polygon and the next pass's
     int cur_ = 0;
-    size_t n_;
+    size_t n_ = 0;
 };
 
 }  // namespace
@@ -138,10 +149,10 @@ std::pair<Box, Box> clippedBoundsOfSplit(const Triangle& tri, const Box& below, 
     if (contains(below, b) || contains(above, b)) return {clippedBounds(tri, below), clippedBounds(tri, above)};
     ClipPolygon shared(tri);
     for (int pass = 0; pass < 2 * axis && !shared.empty(); ++pass) shared.clip(below, pass);
-    ClipPolygon inBelow = shared, inAbove = shared;
-    inBelow.clipFrom(below, 2 * axis);
+    ClipPolygon inAbove = shared.fork();
+    shared.clipFrom(below, 2 * axis);
     inAbove.clipFrom(above, 2 * axis);
-    return {inBelow.bounds(below, intersection(b, below)), inAbove.bounds(above, intersection(b, above))};
+    return {shared.bounds(below, intersection(b, below)), inAbove.bounds(above, intersection(b, above))};
 }
 
 }  // namespace vkray::accel::kd

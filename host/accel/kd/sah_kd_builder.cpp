@@ -34,6 +34,7 @@
 #include "accel/kd/kd_clip.h"
 #include "accel/kd/kd_build_tree.h"
 #include "accel/kd/kd_events.h"
+#include "accel/kd/kd_split.h"
 
 namespace vkray::accel::kd {
 namespace {
@@ -44,15 +45,14 @@ constexpr size_t kParallelEvents = 1 << 13;
 // Nodes with at least this many events also sweep and distribute their three axes as parallel tasks.
 constexpr size_t kParallelAxesEvents = 1 << 16;
 
-
-enum class Side : uint8_t { Both, BelowOnly, AboveOnly };
-
 struct SplitChoice {
     int axis = -1;
     float pos = 0.0f;
     bool planarBelow = true;  // where triangles lying in the plane go
     double cost = std::numeric_limits<double>::infinity();
     size_t below = 0, above = 0;  // triangles on each side
+
+    SplitPlane plane() const { return {axis, pos, planarBelow}; }
 };
 
 
@@ -113,7 +113,7 @@ struct AxisCost {
 // nodes are below kParallelEvents), so the timing costs nothing that matters where nodes are many
 // and small.
 enum Phase : size_t { kSweep, kClassify, kClip, kDistribute, kLeaves, kSmall, kPhaseCount };
-constexpr size_t kTimedEvents = 1 << 10;
+constexpr size_t kTimedEvents = kSmallSubtreeEvents;
 static_assert(kTimedEvents <= kParallelEvents);
 
 uint64_t ticks() {
@@ -124,13 +124,19 @@ uint64_t ticks() {
 #endif
 }
 
-// What one worker reuses from node to node instead of allocating it anew. The side marks are
-// indexed by triangle (Wald and Havran 5.2); the marks and the straddlers' new events are used only
-// within one node's split, where no other node's task runs on this worker (splitEvents).
+// Where a small subtree's node finds its lists on its worker's stack (WorkerScratch::stack).
+struct StackLists {
+    std::array<size_t, 3> at{}, size{};
+};
+
+// What one worker reuses from node to node instead of allocating it anew. The splitter's state is
+// used only within one node's split, where no other node's task runs on this worker (splitEvents).
+// A small subtree's event lists live on `stack`, each node's children's above its own and popped
+// when they are built (buildFlat): its thousands of nodes allocate and free no list.
 struct WorkerScratch {
-    std::vector<Side> side;
-    std::vector<uint32_t> straddling;
-    std::array<NodeEvents, 2> fresh;  // the straddlers' events in the child below, above
+    ListSplitter splitter;
+    AxisEvents stack;
+    size_t top = 0;            // the stack's first free event
     FlatSubtree flat;          // the small subtree being built (buildFlat)
     TriangleList flatIndices;  // its index list
     std::array<uint64_t, kPhaseCount> ticks{};
@@ -159,9 +165,9 @@ public:
 
 private:
     // invArea: 1 / the box's surface area.
-    void sweepAxis(int axis, const AxisEvents& ev, const Box& box, double invArea, size_t n, double budget,
+    void sweepAxis(int axis, EventSpan ev, const Box& box, double invArea, size_t n, double budget,
                    SplitChoice& best) const;
-    SplitChoice findBestSplit(WorkerScratch& w, const NodeEvents& ev, const Box& box, size_t n, double budget,
+    SplitChoice findBestSplit(WorkerScratch& w, const NodeSpans& ev, const Box& box, size_t n, double budget,
                               bool parallel);
     std::pair<NodeEvents, NodeEvents> splitEvents(WorkerScratch& w, NodeEvents ev, const SplitChoice& s,
                                                   const Box& below, const Box& above, bool parallel);
@@ -170,8 +176,12 @@ private:
     NodePtr makeLeaf(WorkerScratch& w, const NodeEvents& ev, int depth, size_t n);
     // A small subtree (under kTimedEvents events) from buildFlat, as a leaf when it is one.
     NodePtr buildSmall(WorkerScratch& w, NodeEvents ev, const Box& box, int depth, size_t n, double budget);
-    // Appends the subtree to w.flat in depth-first order.
-    void buildFlat(WorkerScratch& w, NodeEvents ev, const Box& box, int depth, size_t n, double budget);
+    // Appends the subtree of the node whose lists are `lists` to w.flat in depth-first order.
+    void buildFlat(WorkerScratch& w, const StackLists& lists, const Box& box, int depth, size_t n, double budget);
+    std::pair<StackLists, StackLists> splitOnStack(WorkerScratch& w, const StackLists& lists, const SplitChoice& s,
+                                                   const Box& below, const Box& above);
+    // The lists' events, valid until the stack grows.
+    static NodeSpans spansOn(const WorkerScratch& w, const StackLists& lists);
     void addProgress(WorkerScratch& w);
     // Ticks since `start` to `phase` of `w`, unless w is in a small subtree (timed as a whole).
     static void lap(WorkerScratch& w, Phase phase, uint64_t start) {
@@ -228,7 +238,7 @@ void Builder::forEachAxisTimed(bool parallel, Phase phase, WorkerScratch& w, con
 // ending after p (those starting at p touch it from above); triangles flat in p are tried on each side.
 // A split whose two sides together hold more references than `budget` is not a candidate (the half
 // absorbs the rounding of budgets handed down in proportion: counts are whole).
-void Builder::sweepAxis(int axis, const AxisEvents& ev, const Box& box, double invArea, size_t n, double budget,
+void Builder::sweepAxis(int axis, EventSpan ev, const Box& box, double invArea, size_t n, double budget,
                         SplitChoice& best) const {
     const AxisCost cost(box, axis, invArea, config_);
     int64_t startedBefore = 0, endingAfter = int64_t(n);
@@ -265,7 +275,7 @@ void Builder::sweepAxis(int axis, const AxisEvents& ev, const Box& box, double i
 // The three axes' sweeps are independent: a big node sweeps them as parallel tasks (the top levels
 // would otherwise run on one thread while the others wait), then takes the best in axis order with
 // the same strict comparison as one sweep after the other, so the choice is the same either way.
-SplitChoice Builder::findBestSplit(WorkerScratch& w, const NodeEvents& ev, const Box& box, size_t n, double budget,
+SplitChoice Builder::findBestSplit(WorkerScratch& w, const NodeSpans& ev, const Box& box, size_t n, double budget,
                                    bool parallel) {
     const double area = box.surfaceArea();
     if (!(area > 0.0)) return {};
@@ -276,21 +286,6 @@ SplitChoice Builder::findBestSplit(WorkerScratch& w, const NodeEvents& ev, const
     for (int axis = 1; axis < 3; ++axis)
         if (perAxis[axis].cost < best.cost) best = perAxis[axis];
     return best;
-}
-
-// Sorts a straddlers' list of new events: a few in most nodes, by insertion below 32, without
-// std::sort's set-up.
-void sortFresh(AxisEvents& fresh) {
-    if (fresh.size() >= 32) {
-        std::sort(fresh.begin(), fresh.end());
-        return;
-    }
-    for (size_t i = 1; i < fresh.size(); ++i) {
-        const Event x = fresh[i];
-        size_t j = i;
-        for (; j > 0 && x < fresh[j - 1]; --j) fresh[j] = fresh[j - 1];
-        fresh[j] = x;
-    }
 }
 
 // Wald and Havran 5.2-5.3: classify the triangles by the chosen split's axis events, clip the
@@ -319,58 +314,19 @@ std::pair<NodeEvents, NodeEvents> Builder::splitEvents(WorkerScratch& w, NodeEve
 void Builder::splitEventsOn(WorkerScratch& w, NodeEvents& ev, const SplitChoice& s, const Box& below,
                             const Box& above, bool parallel, NodeEvents& belowEv, NodeEvents& aboveEv) {
     uint64_t t = start(w);
-    std::vector<Side>& side = w.side;
-    if (side.size() < tris_.size()) side.resize(tris_.size());
-    // One pass in sorted order, where a triangle's start comes before its end: ending at or before
-    // the plane = below only, starting at or after it = above only (Wald and Havran 5.1); a planar
-    // one goes where the split chose; the rest straddle.
-    const uint32_t split = Event::orderedBits(s.pos);
-    w.straddling.clear();
-    for (const Event& e : ev[s.axis]) {
-        const uint32_t at = e.orderedPos(), tri = e.triangle();
-        switch (e.type()) {
-        case EventType::Start: side[tri] = at >= split ? Side::AboveOnly : Side::Both; break;
-        case EventType::End:
-            if (at <= split) side[tri] = Side::BelowOnly;
-            else if (side[tri] == Side::Both) w.straddling.push_back(tri);
-            break;
-        case EventType::Planar:
-            side[tri] = at < split || (at == split && s.planarBelow) ? Side::BelowOnly : Side::AboveOnly;
-            break;
-        }
-    }
+    w.splitter.classify(ev[s.axis], s.plane(), tris_.size());
     lap(w, kClassify, t);
     t = start(w);
-    for (NodeEvents& fresh : w.fresh)
-        for (AxisEvents& f : fresh) f.clear();
-    for (uint32_t tri : w.straddling) {
-        const auto [inBelow, inAbove] = clippedBoundsOfSplit(tris_[tri], below, above, s.axis);
-        appendEvents(tri, inBelow, w.fresh[0]);
-        appendEvents(tri, inAbove, w.fresh[1]);
-    }
+    w.splitter.clip(tris_, below, above, s.axis);
     lap(w, kClip, t);
     forEachAxisTimed(parallel, kDistribute, w, [&](int k) {
-        AxisEvents &toBelow = belowEv[k], &toAbove = aboveEv[k], &newBelow = w.fresh[0][k], &newAbove = w.fresh[1][k];
-        sortFresh(newBelow);
-        sortFresh(newAbove);
+        AxisEvents &toBelow = belowEv[k], &toAbove = aboveEv[k];
         // A triangle has at most two events per axis, so twice a side's count (straddlers included)
         // holds its kept events and the straddlers' new ones: no reallocation below.
         toBelow.reserve(2 * s.below);
         toAbove.reserve(2 * s.above);
-        const Event *nextBelow = newBelow.data(), *nextAbove = newAbove.data();
-        const Event *endBelow = nextBelow + newBelow.size(), *endAbove = nextAbove + newAbove.size();
-        for (const Event& e : ev[k]) {
-            const Side where = side[e.triangle()];
-            if (where == Side::BelowOnly) {
-                while (nextBelow != endBelow && *nextBelow < e) toBelow.push_back(*nextBelow++);
-                toBelow.push_back(e);
-            } else if (where == Side::AboveOnly) {
-                while (nextAbove != endAbove && *nextAbove < e) toAbove.push_back(*nextAbove++);
-                toAbove.push_back(e);
-            }
-        }
-        toBelow.insert(toBelow.end(), nextBelow, endBelow);
-        toAbove.insert(toAbove.end(), nextAbove, endAbove);
+        w.splitter.distribute(
+            k, ev[k], [&](const Event& e) { toBelow.push_back(e); }, [&](const Event& e) { toAbove.push_back(e); });
         AxisEvents().swap(ev[k]);  // free the parent's lists before the children grow theirs
     });
 }
@@ -391,7 +347,19 @@ NodePtr Builder::makeLeaf(WorkerScratch& w, const NodeEvents& ev, int depth, siz
 NodePtr Builder::buildSmall(WorkerScratch& w, NodeEvents ev, const Box& box, int depth, size_t n, double budget) {
     w.flat.clear();
     w.flatIndices.clear();
-    buildFlat(w, std::move(ev), box, depth, n, budget);
+    StackLists lists;
+    w.top = 0;
+    for (int k = 0; k < 3; ++k) {
+        lists.at[k] = w.top;
+        lists.size[k] = ev[k].size();
+        w.top += ev[k].size();
+    }
+    if (w.stack.size() < w.top) w.stack.resize(w.top);
+    for (int k = 0; k < 3; ++k) {
+        std::copy(ev[k].begin(), ev[k].end(), w.stack.begin() + std::ptrdiff_t(lists.at[k]));
+        AxisEvents().swap(ev[k]);
+    }
+    buildFlat(w, lists, box, depth, n, budget);
     const gpu::KdNode& root = w.flat[0];
     if (root.isLeaf() && root.triangleCount() == 0) return NodePtr(&kEmptyLeaf);
     NodePtr node(new BuildNode);
@@ -405,30 +373,66 @@ NodePtr Builder::buildSmall(WorkerScratch& w, NodeEvents ev, const Box& box, int
     return node;
 }
 
+NodeSpans Builder::spansOn(const WorkerScratch& w, const StackLists& lists) {
+    NodeSpans ev;
+    for (int k = 0; k < 3; ++k) ev[k] = EventSpan(w.stack.data() + lists.at[k], lists.size[k]);
+    return ev;
+}
+
+// The split of a small subtree's node: as splitEvents, the children's lists written on the stack
+// from its top, in room for two events per triangle and axis (at most that many: no bounds checks).
+std::pair<StackLists, StackLists> Builder::splitOnStack(WorkerScratch& w, const StackLists& lists,
+                                                        const SplitChoice& s, const Box& below, const Box& above) {
+    std::pair<StackLists, StackLists> children;
+    if (s.below == 0 || s.above == 0) {  // empty space cut off: the other side's lists are the parent's
+        (s.above == 0 ? children.first : children.second) = lists;
+        return children;
+    }
+    const size_t base = w.top, end = base + 6 * (s.below + s.above);
+    if (w.stack.size() < end) w.stack.resize(std::max(end, 2 * w.stack.size()));
+    const NodeSpans ev = spansOn(w, lists);  // after the stack's growth, which moves it
+    w.splitter.classify(ev[s.axis], s.plane(), tris_.size());
+    w.splitter.clip(tris_, below, above, s.axis);
+    Event* const stack = w.stack.data();
+    for (int k = 0; k < 3; ++k) {
+        children.first.at[k] = base + 2 * s.below * size_t(k);
+        children.second.at[k] = base + 6 * s.below + 2 * s.above * size_t(k);
+        Event* toBelow = stack + children.first.at[k];
+        Event* toAbove = stack + children.second.at[k];
+        w.splitter.distribute(k, ev[k], [&](const Event& e) { *toBelow++ = e; }, [&](const Event& e) { *toAbove++ = e; });
+        children.first.size[k] = size_t(toBelow - (stack + children.first.at[k]));
+        children.second.size[k] = size_t(toAbove - (stack + children.second.at[k]));
+    }
+    w.top = end;
+    return children;
+}
+
 // build() below kTimedEvents, with the same choices, written as flatten() would write them.
-void Builder::buildFlat(WorkerScratch& w, NodeEvents ev, const Box& box, int depth, size_t n, double budget) {
+void Builder::buildFlat(WorkerScratch& w, const StackLists& lists, const Box& box, int depth, size_t n,
+                        double budget) {
     const auto index = uint32_t(w.flat.size());
     w.flat.emplace_back();
     SplitChoice s;
-    if (n > 0 && depth < maxDepth_) s = findBestSplit(w, ev, box, n, budget, false);
+    if (n > 0 && depth < maxDepth_) s = findBestSplit(w, spansOn(w, lists), box, n, budget, false);
     if (s.axis < 0 || s.cost >= config_.intersectionCost * double(n)) {
         const auto first = uint32_t(w.flatIndices.size());
-        if (!ev[0].empty()) {  // every triangle has an event on each axis
-            for (const Event& e : ev[0])
-                if (e.type() != EventType::End) w.flatIndices.push_back(e.triangle());
-            std::sort(w.flatIndices.begin() + first, w.flatIndices.end());
-        }
+        const EventSpan ev = spansOn(w, lists)[0];  // every triangle has an event on each axis
+        for (const Event& e : ev)
+            if (e.type() != EventType::End) w.flatIndices.push_back(e.triangle());
+        std::sort(w.flatIndices.begin() + first, w.flatIndices.end());
         w.flat[index] = gpu::KdNode::leaf(first, uint32_t(w.flatIndices.size() - first));
         w.doneWeight += uint64_t(1) << (62 - depth);
         if (w.doneWeight >= kProgressStep) addProgress(w);
         return;
     }
     const auto [belowBox, aboveBox] = splitBox(box, s.axis, s.pos);
-    auto [belowEv, aboveEv] = splitEvents(w, std::move(ev), s, belowBox, aboveBox, false);
+    const size_t top = w.top;
+    const auto [belowLists, aboveLists] = splitOnStack(w, lists, s, belowBox, aboveBox);
     const double share = budget / double(s.below + s.above);
-    buildFlat(w, std::move(belowEv), belowBox, depth + 1, s.below, share * double(s.below));
+    buildFlat(w, belowLists, belowBox, depth + 1, s.below, share * double(s.below));
     const auto aboveIndex = uint32_t(w.flat.size());
-    buildFlat(w, std::move(aboveEv), aboveBox, depth + 1, s.above, share * double(s.above));
+    buildFlat(w, aboveLists, aboveBox, depth + 1, s.above, share * double(s.above));
+    w.top = top;  // the children's lists popped
     const auto empty = [&](uint32_t i) { return w.flat[i].isLeaf() && w.flat[i].triangleCount() == 0; };
     w.flat[index] = gpu::KdNode::inner(s.axis, s.pos, aboveIndex, empty(index + 1), empty(aboveIndex));
 }
@@ -471,7 +475,7 @@ NodePtr Builder::build(NodeEvents ev, const Box& box, int depth, size_t n, doubl
     }
     if (n == 0 || depth >= maxDepth_) return makeLeaf(w, ev, depth, n);
     const bool parallel = ev[0].size() >= kParallelEvents, parallelAxes = ev[0].size() >= kParallelAxesEvents;
-    const SplitChoice s = findBestSplit(w, ev, box, n, budget, parallelAxes);
+    const SplitChoice s = findBestSplit(w, spansOf(ev), box, n, budget, parallelAxes);
     // SAH termination (Wald and Havran, section 3): split only when it is cheaper than a leaf.
     if (s.axis < 0 || s.cost >= config_.intersectionCost * double(n)) return makeLeaf(w, ev, depth, n);
 

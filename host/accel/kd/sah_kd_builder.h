@@ -21,6 +21,7 @@
 // decision depends only on the node's own data, so the tree is identical for any thread count.
 #pragma once
 
+#include <cstddef>
 #include <vector>
 
 #include "core/phase_log.h"
@@ -29,9 +30,14 @@
 
 namespace vkray::accel::kd {
 
+// A subtree whose root has fewer events than this on an axis is built on one worker, straight in
+// the flat layout, its event lists on a stack (sah_kd_builder.cpp).
+inline constexpr size_t kSmallSubtreeEvents = 1024;
+
 // Wall-clock milliseconds of the build's steps; the splitting's phases are worker time, summed over
 // the workers (so they add up to at most treeMs times the workers; the rest is task scheduling and
-// waiting). The phases are those of nodes of 1024 events or more; smaller subtrees are one figure.
+// waiting). The phases are those of nodes of kSmallSubtreeEvents or more; smaller subtrees are one
+// figure.
 struct KdBuildTimes {
     double eventsMs = 0.0;   // bounds, initial events, the three sorts
     double treeMs = 0.0;     // recursive SAH splitting
@@ -40,7 +46,7 @@ struct KdBuildTimes {
     double clipMs = 0.0;        // worker time: straddlers clipped, their new events (4.3)
     double distributeMs = 0.0;  // worker time: the lists split in order, new events merged in (5.2-5.3)
     double leavesMs = 0.0;      // worker time: leaves made
-    double smallMs = 0.0;       // worker time: subtrees under 1024 events, as a whole (their phases are not timed)
+    double smallMs = 0.0;       // worker time: subtrees under kSmallSubtreeEvents, as a whole (phases untimed)
     double flattenMs = 0.0;  // the GPU arrays
     double totalMs = 0.0;
 };
