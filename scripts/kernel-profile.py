@@ -159,14 +159,14 @@ def main():
     total = sum(sum(c.values()) for c in costs.values())
     print(f"instructions executed in llvmpipe's code: {total:,}")
     ranked = sorted(costs.items(), key=lambda kv: -sum(kv[1].values()))
-    for fn, counts in ranked[:6]:
-        start = int(fn, 16) if fn.startswith("0x") else 0
-        m = match(start, counts, functions)
+    listed = [match(int(fn, 16) if fn.startswith("0x") else 0, counts, functions) for fn, counts in ranked[:6]]
+    for (fn, counts), m in zip(ranked, listed):
         n = sum(counts.values())
         print(f"  {n:>14,}  {100.0 * n / max(total, 1):5.1f}%  {m[0] if m else '(not in the listing)'} at {fn}")
+    if not ranked:
+        sys.exit("kernel-profile: callgrind saw no code of llvmpipe's")
     fn, counts = ranked[0]
-    start = int(fn, 16)
-    m = match(start, counts, functions)
+    start, m = int(fn, 16), listed[0]
     if not m:
         sys.exit("kernel-profile: the largest function is not in GALLIVM_DEBUG's listing")
     body = sum(counts.values())

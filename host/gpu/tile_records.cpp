@@ -67,8 +67,12 @@ void readTile(const GpuPixel* src, const Tile& tile, const ShaderFeatures& featu
             rep.nodesVisited += px.nodes;
             rep.leavesVisited += px.leaves;
             rep.trianglesTested += px.triangles;
-            (rep.packetWalk ? rep.idleSteps : rep.restarts) += px.walkEvents;
-            if (rep.packetWalk) rep.lockstepNodes += uint64_t(px.nodes) + px.walkEvents;
+            if (rep.packetWalk) {  // the steps a lane sat out, and its packet's (the lock-step count)
+                rep.idleSteps += px.walkEvents;
+                rep.lockstepNodes += uint64_t(px.nodes) + px.walkEvents;
+            } else {
+                rep.restarts += px.walkEvents;
+            }
             if (!rep.nodesPerPixel.empty()) rep.nodesPerPixel[i] += px.nodes;  // every sample's
         }
         rep.pixelsCutShort += (px.flags & VKRAY_PIXEL_CUT_SHORT) != 0;

@@ -55,15 +55,20 @@ struct SplitChoice {
     SplitPlane plane() const { return {axis, pos, planarBelow}; }
 };
 
-
+// A leaf's triangles, appended to `out` in index order: one a start or planar event of an axis's
+// list (a triangle has one of those on each axis).
+void appendTrianglesOf(EventSpan axisEvents, TriangleList& out) {
+    const size_t first = out.size();
+    for (const Event& e : axisEvents)
+        if (e.type() != EventType::End) out.push_back(e.triangle());
+    std::sort(out.begin() + std::ptrdiff_t(first), out.end());
+}
 
 // The node's `n` triangles, ascending.
 TriangleList trianglesOf(const NodeEvents& ev, size_t n) {
     TriangleList tris;
     tris.reserve(n);
-    for (const Event& e : ev[0])
-        if (e.type() != EventType::End) tris.push_back(e.triangle());
-    std::sort(tris.begin(), tris.end());
+    appendTrianglesOf(ev[0], tris);
     return tris;
 }
 
@@ -416,10 +421,7 @@ void Builder::buildFlat(WorkerScratch& w, const StackLists& lists, const Box& bo
     if (n > 0 && depth < maxDepth_) s = findBestSplit(w, spansOn(w, lists), box, n, budget, false);
     if (s.axis < 0 || s.cost >= config_.intersectionCost * double(n)) {
         const auto first = uint32_t(w.flatIndices.size());
-        const EventSpan ev = spansOn(w, lists)[0];  // every triangle has an event on each axis
-        for (const Event& e : ev)
-            if (e.type() != EventType::End) w.flatIndices.push_back(e.triangle());
-        std::sort(w.flatIndices.begin() + first, w.flatIndices.end());
+        appendTrianglesOf(spansOn(w, lists)[0], w.flatIndices);
         w.flat[index] = gpu::KdNode::leaf(first, uint32_t(w.flatIndices.size() - first));
         w.doneWeight += uint64_t(1) << (62 - depth);
         if (w.doneWeight >= kProgressStep) addProgress(w);
