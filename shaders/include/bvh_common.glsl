@@ -127,8 +127,8 @@ bvec4 hitsChildren(GpuBvhNode n, BoxRay r, float tLimit, out vec4 tEnter) {
 }
 #endif
 
-// Orders entries a and b of (key, ref) by key.
-void sortPair(inout vec4 key, inout uvec4 ref, int a, int b) {
+// Orders entries a and b of (key, ref, also) by key.
+void sortPair(inout vec4 key, inout uvec4 ref, inout uvec4 also, int a, int b) {
     if (key[b] < key[a]) {
         const float k = key[a];
         key[a] = key[b];
@@ -136,17 +136,27 @@ void sortPair(inout vec4 key, inout uvec4 ref, int a, int b) {
         const uint r = ref[a];
         ref[a] = ref[b];
         ref[b] = r;
+        const uint o = also[a];
+        also[a] = also[b];
+        also[b] = o;
     }
 }
 
-// (key, ref) in the order of key: a sorting network of five compare-swaps. Equal keys leave their
-// entries in the same order on every call, so two arrays sorted by copies of one key stay paired.
+// (key, ref, also) in the order of key: a sorting network of five compare-swaps, one network for
+// two payloads (the packet walk's children and its lane's entry distances).
+void sortByKey(inout vec4 key, inout uvec4 ref, inout uvec4 also) {
+    sortPair(key, ref, also, 0, 1);
+    sortPair(key, ref, also, 2, 3);
+    sortPair(key, ref, also, 0, 2);
+    sortPair(key, ref, also, 1, 3);
+    sortPair(key, ref, also, 1, 2);
+}
+
+// (key, ref) in the order of key: the network above with an unused second payload, whose swaps the
+// compiler drops as dead code.
 void sortByKey(inout vec4 key, inout uvec4 ref) {
-    sortPair(key, ref, 0, 1);
-    sortPair(key, ref, 2, 3);
-    sortPair(key, ref, 0, 2);
-    sortPair(key, ref, 1, 3);
-    sortPair(key, ref, 1, 2);
+    uvec4 unused = uvec4(0u);
+    sortByKey(key, ref, unused);
 }
 
 // The stack walks' push (bvh_traversal.glsl, bvh_packet.glsl): entries 1 .. HITS - 1 of the sorted

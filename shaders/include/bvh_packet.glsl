@@ -35,10 +35,9 @@ int packetChildren(vec4 tEnter, inout vec4 lane, inout uvec4 kids) {
     const uvec4 bits = uvec4(lessThan(lane, vec4(kInfinity))) << uvec4(0u, 1u, 2u, 3u);
     const uint entered = subgroupOr(bits.x | bits.y | bits.z | bits.w);
     const bvec4 packetEnters = notEqual(uvec4(entered) & uvec4(1u, 2u, 4u, 8u), uvec4(0u));
-    vec4 key = mix(vec4(kInfinity), subgroupBroadcastFirst(tEnter), packetEnters), sameKey = key;
+    vec4 key = mix(vec4(kInfinity), subgroupBroadcastFirst(tEnter), packetEnters);
     uvec4 laneBits = floatBitsToUint(lane);
-    sortByKey(key, kids);
-    sortByKey(sameKey, laneBits);
+    sortByKey(key, kids, laneBits);
     lane = uintBitsToFloat(laneBits);
     return bitCount(entered);
 }
