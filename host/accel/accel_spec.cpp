@@ -102,8 +102,6 @@ const TuningOption kTuning[] = {
     {"kd-max-duplication", "kd-tree: most references a triangle (default 8)", isKd, 1.0, 1e9,
      false, false, "kd-max-duplication must be a number of references per triangle, 1 or more",
      [](AccelSpec& s, double v) { s.kd.maxDuplication = v; }},
-    {"kd-bins", "kd-tree: 0 = exact SAH sweep; N = N bins an axis, binned build (default 0)", isKd, 0,
-     kd::KdConfig::kMaxBins, false, true, "", [](AccelSpec& s, double v) { s.kd.bins = int(v); }},
     {"kd-short-stack", "kd-shortstack: entries of its stack (default 4)", isKdShortStack, 1, VKRAY_KD_STACK_SIZE,
      false, true, "", [](AccelSpec& s, double v) { s.kdShortStack = int(v); }},
     {"rq-fast-build", "rayquery: 1 = fast build, 0 = fast trace (default 0)", isDriver, 0,

@@ -2,17 +2,14 @@
 // into that layout (kd_flatten.cpp).
 #pragma once
 
-#include <atomic>
 #include <cstdint>
 #include <memory>
-#include <mutex>
 #include <new>
 #include <utility>
 #include <vector>
 
 #include <tbb/scalable_allocator.h>
 
-#include "core/phase_log.h"
 #include "accel/kd/kd_tree.h"
 
 namespace vkray::accel::kd {
@@ -63,52 +60,6 @@ inline void NodeDeleter::operator()(BuildNode* node) const {
     if (node != &kEmptyLeaf) delete node;
 }
 
-// A small subtree built on one worker (w.flat, w.flatIndices in the builders) as the build node that
-// stands for it: the shared empty leaf, a leaf, or a kFlat node holding a copy of both arrays.
-NodePtr nodeOfFlat(const FlatSubtree& flat, const TriangleList& indices);
-
-// Node `index` of a flat subtree made the inner node over its children at index + 1 and `above`,
-// with the flags of the children that are empty leaves (kd_layout.h).
-inline void setFlatInner(FlatSubtree& f, uint32_t index, int axis, float pos, uint32_t above) {
-    const auto empty = [&](uint32_t i) { return f[i].isLeaf() && f[i].triangleCount() == 0; };
-    f[index] = gpu::KdNode::inner(axis, pos, above, empty(index + 1), empty(above));
-}
-
-// Progress of a build's splitting: a leaf at depth d completes 2^-d of the tree (the weights of a
-// binary tree's leaves sum to 1), kept in fixed point. Workers hold their leaves' weights back and
-// add them to the shared sum in steps of 2^-16 of the tree: an atomic add (and a lock, with a
-// progress callback) for every one of millions of leaves would have the workers queue for one
-// cache line.
-class SplitProgress {
-public:
-    explicit SplitProgress(const BuildProgress& progress) : progress_(progress) {}
-
-    // A leaf at `depth`; `held`: the calling worker's weights not yet added.
-    void leaf(uint64_t& held, int depth) {
-        held += uint64_t(1) << (62 - depth);
-        if (held >= kStep) add(held);
-    }
-    // Adds a worker's held weights to the sum, and reports each further percent.
-    void add(uint64_t& held) {
-        const uint64_t done = done_.fetch_add(held) + held;
-        held = 0;
-        if (!progress_) return;
-        const double fraction = double(done) / double(uint64_t(1) << 62);
-        std::lock_guard lock(mutex_);
-        if (fraction >= reported_ + 0.01) {
-            reported_ = fraction;
-            progress_("kd-tree: splitting", fraction);
-        }
-    }
-
-private:
-    static constexpr uint64_t kStep = uint64_t(1) << (62 - 16);
-    const BuildProgress& progress_;
-    std::atomic<uint64_t> done_{0};
-    std::mutex mutex_;
-    double reported_ = 0.0;
-};
-
 inline std::pair<Box, Box> splitBox(const Box& box, int axis, float pos) {
     Box below = box, above = box;
     below.hi[axis] = pos;
@@ -123,9 +74,5 @@ inline std::pair<Box, Box> splitBox(const Box& box, int axis, float pos) {
 // and leaf lists freed one by one would be a serial tail of the build).
 void flattenKdTree(NodePtr n, uint32_t index, uint64_t first, uint32_t parent, const Box& box, KdTree& out,
                    int depth);
-
-// The whole built tree, whose root box is `root`, into `out`'s arrays and header; throws when its
-// references exceed what the GPU layout addresses.
-void flattenBuiltTree(NodePtr tree, const Box& root, KdTree& out);
 
 }  // namespace vkray::accel::kd

@@ -6,20 +6,8 @@
 #include <tbb/parallel_for.h>
 
 #include "accel/kd/kd_clip.h"
-#include "geometry/ray_triangle.h"
 
 namespace vkray::accel::kd {
-
-std::vector<uint8_t> degenerateTriangles(const std::vector<Triangle>& tris) {
-    std::vector<uint8_t> degenerate(tris.size());
-    tbb::parallel_for(tbb::blocked_range<size_t>(0, tris.size(), 1 << 14), [&](const auto& r) {
-        for (size_t t = r.begin(); t != r.end(); ++t) {
-            const Triangle& tri = tris[t];
-            degenerate[t] = geometry::isDegenerate({glm::dvec3(tri.p0), glm::dvec3(tri.p1), glm::dvec3(tri.p2)});
-        }
-    });
-    return degenerate;
-}
 
 // The root's events, unsorted, and its box (left as it is when every triangle is degenerate, which
 // have no events), made in parallel: each block of triangles counts its events, a prefix over the

@@ -82,10 +82,6 @@ inline void appendEvents(uint32_t triangle, const Box& b, NodeEvents& out) {
     forEachEvent(triangle, b, [&](int k, const Event& e) { out[k].push_back(e); });
 }
 
-// Which triangles are degenerate (zero area, in double: geometry::isDegenerate), in parallel: the
-// builders leave them out, as the ray-triangle test never reports them.
-std::vector<uint8_t> degenerateTriangles(const std::vector<Triangle>& tris);
-
 // The root's events, unsorted, and its box (left as it is when every triangle is degenerate: they
 // have no events), made in parallel (kd_events.cpp).
 NodeEvents rootEvents(const std::vector<Triangle>& tris, const std::vector<uint8_t>& degenerate, Box& root);

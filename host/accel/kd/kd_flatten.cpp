@@ -2,11 +2,8 @@
 
 #include <algorithm>
 #include <stdexcept>
-#include <string>
 
-#include "core/error.h"
 #include "core/fork_join.h"
-#include "core/parallel_alloc.h"
 
 namespace vkray::accel::kd {
 namespace {
@@ -34,20 +31,6 @@ void placeFlat(const FlatSubtree& f, uint32_t i, uint32_t base, uint64_t first, 
 
 }  // namespace
 
-NodePtr nodeOfFlat(const FlatSubtree& flat, const TriangleList& indices) {
-    const gpu::KdNode& root = flat[0];
-    if (root.isLeaf() && root.triangleCount() == 0) return NodePtr(&kEmptyLeaf);
-    NodePtr node(new BuildNode);
-    node->axis = root.isLeaf() ? BuildNode::kLeaf : BuildNode::kFlat;
-    node->triangles.assign(indices.begin(), indices.end());
-    node->subtreeRefs = node->triangles.size();
-    if (node->axis == BuildNode::kFlat) {
-        node->flat.assign(flat.begin(), flat.end());
-        node->subtreeNodes = uint32_t(flat.size());
-    }
-    return node;
-}
-
 void flattenKdTree(NodePtr n, uint32_t index, uint64_t first, uint32_t parent, const Box& box,
              KdTree& out, int depth) {
     if (n->axis == BuildNode::kFlat) {
@@ -68,18 +51,6 @@ void flattenKdTree(NodePtr n, uint32_t index, uint64_t first, uint32_t parent, c
     forkJoin(depth < kParallelDepth,
              [&, &bBox = belowBox] { flattenKdTree(std::move(n->below), index + 1, first, index, bBox, out, depth + 1); },
              [&, &aBox = aboveBox] { flattenKdTree(std::move(n->above), aboveIndex, aboveFirst, index, aBox, out, depth + 1); });
-}
-
-void flattenBuiltTree(NodePtr tree, const Box& root, KdTree& out) {
-    if (tree->subtreeRefs > UINT32_MAX)  // a leaf's first entry is a 32-bit word (kd_layout.h)
-        throw Error("the kd-tree holds " + std::to_string(tree->subtreeRefs) +
-                    " triangle references; its GPU layout addresses at most " + std::to_string(UINT32_MAX));
-    // The walk below writes every node, extra record and index entry.
-    resizeForOverwrite(out.nodes, tree->subtreeNodes);
-    resizeForOverwrite(out.extra, tree->subtreeNodes);
-    resizeForOverwrite(out.indices, size_t(tree->subtreeRefs));
-    flattenKdTree(std::move(tree), 0, 0, VKRAY_KD_NO_PARENT, root, out, 0);
-    out.header = gpu::KdTreeHeader{root.lo, uint32_t(out.nodes.size()), root.hi, uint32_t(out.indices.size())};
 }
 
 }  // namespace vkray::accel::kd

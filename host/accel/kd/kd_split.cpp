@@ -3,48 +3,8 @@
 #include <algorithm>
 
 #include "accel/kd/kd_clip.h"
-#include "accel/kd/kd_cost.h"
 
 namespace vkray::accel::kd {
-
-// With their classification: at plane p, below = triangles starting before p (those ending at p
-// touch it from below), above = triangles ending after p (those starting at p touch it from above);
-// triangles flat in p are tried on each side. A split whose two sides together hold more
-// references than `budget` is not a candidate (the half absorbs the rounding of budgets handed down
-// in proportion: counts are whole).
-void sweepEvents(int axis, EventSpan ev, const Box& box, double invArea, size_t n, double budget,
-                 const KdConfig& config, SplitChoice& best) {
-    const AxisCost cost(box, axis, invArea, config);
-    int64_t startedBefore = 0, endingAfter = int64_t(n);
-    const Event* e = ev.data();
-    const Event* const end = e + ev.size();
-    while (e != end) {
-        const float p = e->pos();
-        const uint32_t at = e->orderedPos();
-        // The events at p, counted by type without branching on it: ends and starts alternate
-        // unpredictably along an axis, and a branch on the type would be mispredicted half the time.
-        int64_t ends = 0, planars = 0, starts = 0;
-        do {
-            const EventType type = e->type();
-            ends += type == EventType::End;
-            planars += type == EventType::Planar;
-            starts += type == EventType::Start;
-        } while (++e != end && e->orderedPos() == at);
-        endingAfter -= ends + planars;
-        if (usableSplit(box, axis, p) && double(startedBefore + endingAfter + planars) <= budget + 0.5) {
-            const int64_t below = startedBefore, above = endingAfter;
-            // Without planar triangles both placements are the same split, costed once.
-            const double planarBelowCost = cost(p, below + planars, above);
-            const double planarAboveCost = planars == 0 ? planarBelowCost : cost(p, below, above + planars);
-            const bool planarBelow = planarBelowCost <= planarAboveCost;
-            const double c = planarBelow ? planarBelowCost : planarAboveCost;
-            if (c < best.cost)
-                best = SplitChoice{axis, p, planarBelow, c, size_t(below + (planarBelow ? planars : 0)),
-                                   size_t(above + (planarBelow ? 0 : planars))};
-        }
-        startedBefore += starts + planars;
-    }
-}
 
 // One pass in sorted order, where a triangle's start comes before its end: ending at or before the
 // plane = below only, starting at or after it = above only (Wald and Havran 5.1); a planar one goes

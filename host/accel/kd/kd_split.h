@@ -8,7 +8,6 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
-#include <limits>
 #include <span>
 #include <vector>
 
@@ -28,23 +27,6 @@ struct SplitPlane {
     float pos = 0.0f;
     bool planarBelow = true;  // where triangles lying in the plane go
 };
-
-// A candidate split and its SAH cost; no axis: none found.
-struct SplitChoice {
-    int axis = -1;
-    float pos = 0.0f;
-    bool planarBelow = true;  // where triangles lying in the plane go
-    double cost = std::numeric_limits<double>::infinity();
-    size_t below = 0, above = 0;  // triangles on each side, straddlers on both
-
-    SplitPlane plane() const { return {axis, pos, planarBelow}; }
-};
-
-// The plane sweep of Wald and Havran (section 4.2, Algorithm 4) over one axis's sorted events of a
-// node of `n` triangles in `box` (invArea: 1 / its surface area): `best` becomes any candidate that
-// costs less (kd_split.cpp).
-void sweepEvents(int axis, EventSpan ev, const Box& box, double invArea, size_t n, double budget,
-                 const KdConfig& config, SplitChoice& best);
 
 // One worker's splitter: what it reuses from node to node instead of allocating it anew. The side
 // marks are indexed by triangle (Wald and Havran 5.2); marks and new events hold one split's state,

@@ -25,7 +25,7 @@ std::string KdConfig::describe() const {
     char text[128];
     std::snprintf(text, sizeof text, "pbrt SAH: Ct=%g Ci=%g eb=%g for empty sides >= %g of the node", traversalCost,
                   intersectionCost, emptyBonus, emptyBonusMinFraction);
-    return bins > 0 ? std::string(text) + "; " + std::to_string(bins) + " bins" : std::string(text);
+    return text;
 }
 
 double Box::surfaceArea() const {

@@ -53,11 +53,6 @@ struct KdConfig {
     // triangles made 30 references and 84 nodes per triangle without it. The meshes of scenes/ stay
     // below it (docs/kdtree.md, "A budget of references").
     double maxDuplication = 8.0;
-    // Candidate split planes: 0 = at every triangle's bounds, swept exactly (Wald and Havran 2006;
-    // sah_kd_builder.h); N > 0 = at N - 1 planes spaced evenly across the node on each axis, and at
-    // its triangles' outer bounds, counted in bins (binned_kd_builder.h).
-    int bins = 0;
-    static constexpr int kMaxBins = 1024;
     // The kd-stack kernel's stack holds one entry per level.
     static constexpr int kMaxDepthLimit = VKRAY_KD_MAX_DEPTH;
 

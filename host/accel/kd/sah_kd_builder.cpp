@@ -20,6 +20,10 @@
 #include <tbb/scalable_allocator.h>
 #include <tbb/task_arena.h>
 
+#if defined(__x86_64__) || defined(__i386__)
+#include <x86intrin.h>
+#endif
+
 #include "core/error.h"
 #include "core/fork_join.h"
 #include "core/worker_arena.h"
@@ -27,9 +31,7 @@
 #include "core/radix_sort.h"
 #include "core/timing.h"
 #include "geometry/ray_triangle.h"
-#include "accel/kd/binned_kd_builder.h"
 #include "accel/kd/kd_clip.h"
-#include "accel/kd/kd_cost.h"
 #include "accel/kd/kd_build_tree.h"
 #include "accel/kd/kd_events.h"
 #include "accel/kd/kd_split.h"
@@ -42,6 +44,16 @@ namespace {
 constexpr size_t kParallelEvents = 1 << 13;
 // Nodes with at least this many events also sweep and distribute their three axes as parallel tasks.
 constexpr size_t kParallelAxesEvents = 1 << 16;
+
+struct SplitChoice {
+    int axis = -1;
+    float pos = 0.0f;
+    bool planarBelow = true;  // where triangles lying in the plane go
+    double cost = std::numeric_limits<double>::infinity();
+    size_t below = 0, above = 0;  // triangles on each side
+
+    SplitPlane plane() const { return {axis, pos, planarBelow}; }
+};
 
 // A leaf's triangles, appended to `out` in index order: one a start or planar event of an axis's
 // list (a triangle has one of those on each axis).
@@ -60,6 +72,46 @@ TriangleList trianglesOf(const NodeEvents& ev, size_t n) {
     return tris;
 }
 
+// A float split the GPU reads back unchanged: strictly inside the box (a split on the boundary cuts
+// nothing) and not denormal (lavapipe flushes denormals to zero).
+bool usableSplit(const Box& box, int axis, float pos) {
+    return pos > box.lo[axis] && pos < box.hi[axis] && (pos == 0.0f || std::abs(pos) >= std::numeric_limits<float>::min());
+}
+
+// The SAH cost of a split along one axis (KdConfig), with what depends only on the node and the axis
+// set once per sweep. The children's surface areas are linear in the split position: the two faces
+// across the axis (`caps`) plus the four along it (`sides` per unit of length), so a candidate costs
+// a few multiplications instead of two boxes' areas. The products are formed as in KdConfig's
+// formula, Ct + Ci * bonus / SA(N) * (SA(L) nL + SA(R) nR), left to right, so every candidate's cost
+// is the same double whichever way the sweep reaches it. Counts are signed: a signed integer
+// converts to double in one instruction, an unsigned one does not.
+struct AxisCost {
+    double lo, hi, caps, sides, traversal, fullScale, emptyScale, minEmpty;
+
+    AxisCost(const Box& box, int axis, double invArea, const KdConfig& config) {
+        const glm::dvec3 e = glm::dvec3(box.hi) - glm::dvec3(box.lo);
+        const double a = e[(axis + 1) % 3], b = e[(axis + 2) % 3];
+        lo = box.lo[axis];
+        hi = box.hi[axis];
+        caps = 2.0 * a * b;
+        sides = 2.0 * (a + b);
+        traversal = config.traversalCost;
+        fullScale = config.intersectionCost * 1.0 * invArea;
+        emptyScale = config.intersectionCost * (1.0 - config.emptyBonus) * invArea;
+        // The bonus only for empty space worth a level of the tree (KdConfig::emptyBonusMinFraction).
+        minEmpty = config.emptyBonusMinFraction * (hi - lo);
+    }
+
+    double operator()(float pos, int64_t nBelow, int64_t nAbove) const {
+        const double below = caps + sides * (double(pos) - lo);
+        const double above = caps + sides * (hi - double(pos));
+        const double emptyExtent = nBelow == 0 ? double(pos) - lo : nAbove == 0 ? hi - double(pos) : 0.0;
+        const bool emptySide = (nBelow == 0 || nAbove == 0) && emptyExtent >= minEmpty;
+        return traversal + (emptySide ? emptyScale : fullScale) * (below * double(nBelow) + above * double(nAbove));
+    }
+};
+
+
 // The build's phases (KdBuildTimes), timed per worker in processor ticks, turned into milliseconds
 // once, against the wall clock, at the end. Nodes of at least kTimedEvents events are timed phase by
 // phase; a subtree below that is timed as a whole (kSmall), on the one worker that builds it (its
@@ -68,6 +120,14 @@ TriangleList trianglesOf(const NodeEvents& ev, size_t n) {
 enum Phase : size_t { kSweep, kClassify, kClip, kDistribute, kLeaves, kSmall, kPhaseCount };
 constexpr size_t kTimedEvents = kSmallSubtreeEvents;
 static_assert(kTimedEvents <= kParallelEvents);
+
+uint64_t ticks() {
+#if defined(__x86_64__) || defined(__i386__)
+    return __rdtsc();
+#else
+    return uint64_t(Clock::now().time_since_epoch().count());
+#endif
+}
 
 // Where a small subtree's node finds its lists on its worker's stack (WorkerScratch::stack).
 struct StackLists {
@@ -86,8 +146,13 @@ struct WorkerScratch {
     TriangleList flatIndices;  // its index list
     std::array<uint64_t, kPhaseCount> ticks{};
     bool inSmallSubtree = false;  // timed as a whole (kSmall): its phases are not
-    uint64_t doneWeight = 0;      // leaves' progress weights not yet added (SplitProgress)
+    uint64_t doneWeight = 0;      // leaves' progress weights not yet added to the build's
 };
+
+// Workers add their leaves' progress weights to the shared sum in steps of 2^-16 of the tree: an
+// atomic add (and a lock, with a progress callback) for every one of millions of leaves would have
+// the workers queue for one cache line.
+constexpr uint64_t kProgressStep = uint64_t(1) << (62 - 16);
 
 class Builder {
 public:
@@ -105,6 +170,8 @@ public:
 
 private:
     // invArea: 1 / the box's surface area.
+    void sweepAxis(int axis, EventSpan ev, const Box& box, double invArea, size_t n, double budget,
+                   SplitChoice& best) const;
     SplitChoice findBestSplit(WorkerScratch& w, const NodeSpans& ev, const Box& box, size_t n, double budget,
                               bool parallel);
     std::pair<NodeEvents, NodeEvents> splitEvents(WorkerScratch& w, NodeEvents ev, const SplitChoice& s,
@@ -120,6 +187,7 @@ private:
                                                    const Box& below, const Box& above);
     // The lists' events, valid until the stack grows.
     static NodeSpans spansOn(const WorkerScratch& w, const StackLists& lists);
+    void addProgress(WorkerScratch& w);
     // Ticks since `start` to `phase` of `w`, unless w is in a small subtree (timed as a whole).
     static void lap(WorkerScratch& w, Phase phase, uint64_t start) {
         if (!w.inSmallSubtree) w.ticks[phase] += ticks() - start;
@@ -138,7 +206,12 @@ private:
                                     tbb::ets_key_per_instance>
         scratch_;
 
-    SplitProgress progress_;
+    // Progress: a leaf at depth d completes 2^-d of the tree (the weights of a binary tree's leaves
+    // sum to 1), kept in fixed point; the workers add theirs in steps (kProgressStep).
+    const BuildProgress& progress_;
+    std::atomic<uint64_t> doneWeight_{0};
+    std::mutex progressMutex_;
+    double reported_ = 0.0;
 };
 
 std::array<uint64_t, kPhaseCount> Builder::phaseTicks() const {
@@ -165,6 +238,45 @@ void Builder::forEachAxisTimed(bool parallel, Phase phase, WorkerScratch& w, con
 }
 
 
+// The plane sweep of Wald and Havran (section 4.2, Algorithm 4) with their classification: at plane
+// p, below = triangles starting before p (those ending at p touch it from below), above = triangles
+// ending after p (those starting at p touch it from above); triangles flat in p are tried on each side.
+// A split whose two sides together hold more references than `budget` is not a candidate (the half
+// absorbs the rounding of budgets handed down in proportion: counts are whole).
+void Builder::sweepAxis(int axis, EventSpan ev, const Box& box, double invArea, size_t n, double budget,
+                        SplitChoice& best) const {
+    const AxisCost cost(box, axis, invArea, config_);
+    int64_t startedBefore = 0, endingAfter = int64_t(n);
+    const Event* e = ev.data();
+    const Event* const end = e + ev.size();
+    while (e != end) {
+        const float p = e->pos();
+        const uint32_t at = e->orderedPos();
+        // The events at p, counted by type without branching on it: ends and starts alternate
+        // unpredictably along an axis, and a branch on the type would be mispredicted half the time.
+        int64_t ends = 0, planars = 0, starts = 0;
+        do {
+            const EventType type = e->type();
+            ends += type == EventType::End;
+            planars += type == EventType::Planar;
+            starts += type == EventType::Start;
+        } while (++e != end && e->orderedPos() == at);
+        endingAfter -= ends + planars;
+        if (usableSplit(box, axis, p) && double(startedBefore + endingAfter + planars) <= budget + 0.5) {
+            const int64_t below = startedBefore, above = endingAfter;
+            // Without planar triangles both placements are the same split, costed once.
+            const double planarBelowCost = cost(p, below + planars, above);
+            const double planarAboveCost = planars == 0 ? planarBelowCost : cost(p, below, above + planars);
+            const bool planarBelow = planarBelowCost <= planarAboveCost;
+            const double c = planarBelow ? planarBelowCost : planarAboveCost;
+            if (c < best.cost)
+                best = SplitChoice{axis, p, planarBelow, c, size_t(below + (planarBelow ? planars : 0)),
+                                   size_t(above + (planarBelow ? 0 : planars))};
+        }
+        startedBefore += starts + planars;
+    }
+}
+
 // The three axes' sweeps are independent: a big node sweeps them as parallel tasks (the top levels
 // would otherwise run on one thread while the others wait), then takes the best in axis order with
 // the same strict comparison as one sweep after the other, so the choice is the same either way.
@@ -174,7 +286,7 @@ SplitChoice Builder::findBestSplit(WorkerScratch& w, const NodeSpans& ev, const 
     if (!(area > 0.0)) return {};
     std::array<SplitChoice, 3> perAxis;
     forEachAxisTimed(parallel, kSweep, w,
-                     [&](int axis) { sweepEvents(axis, ev[axis], box, 1.0 / area, n, budget, config_, perAxis[axis]); });
+                     [&](int axis) { sweepAxis(axis, ev[axis], box, 1.0 / area, n, budget, perAxis[axis]); });
     SplitChoice best = perAxis[0];
     for (int axis = 1; axis < 3; ++axis)
         if (perAxis[axis].cost < best.cost) best = perAxis[axis];
@@ -231,7 +343,8 @@ NodePtr Builder::makeLeaf(WorkerScratch& w, const NodeEvents& ev, int depth, siz
         leaf->triangles = trianglesOf(ev, n);
         leaf->subtreeRefs = leaf->triangles.size();
     }
-    progress_.leaf(w.doneWeight, depth);
+    w.doneWeight += uint64_t(1) << (62 - depth);
+    if (w.doneWeight >= kProgressStep) addProgress(w);
     lap(w, kLeaves, t);
     return leaf;
 }
@@ -252,7 +365,17 @@ NodePtr Builder::buildSmall(WorkerScratch& w, NodeEvents ev, const Box& box, int
         AxisEvents().swap(ev[k]);
     }
     buildFlat(w, lists, box, depth, n, budget);
-    return nodeOfFlat(w.flat, w.flatIndices);
+    const gpu::KdNode& root = w.flat[0];
+    if (root.isLeaf() && root.triangleCount() == 0) return NodePtr(&kEmptyLeaf);
+    NodePtr node(new BuildNode);
+    node->axis = root.isLeaf() ? BuildNode::kLeaf : BuildNode::kFlat;
+    node->triangles.assign(w.flatIndices.begin(), w.flatIndices.end());
+    node->subtreeRefs = node->triangles.size();
+    if (node->axis == BuildNode::kFlat) {
+        node->flat.assign(w.flat.begin(), w.flat.end());
+        node->subtreeNodes = uint32_t(w.flat.size());
+    }
+    return node;
 }
 
 NodeSpans Builder::spansOn(const WorkerScratch& w, const StackLists& lists) {
@@ -300,7 +423,8 @@ void Builder::buildFlat(WorkerScratch& w, const StackLists& lists, const Box& bo
         const auto first = uint32_t(w.flatIndices.size());
         appendTrianglesOf(spansOn(w, lists)[0], w.flatIndices);
         w.flat[index] = gpu::KdNode::leaf(first, uint32_t(w.flatIndices.size() - first));
-        progress_.leaf(w.doneWeight, depth);
+        w.doneWeight += uint64_t(1) << (62 - depth);
+        if (w.doneWeight >= kProgressStep) addProgress(w);
         return;
     }
     const auto [belowBox, aboveBox] = splitBox(box, s.axis, s.pos);
@@ -311,12 +435,25 @@ void Builder::buildFlat(WorkerScratch& w, const StackLists& lists, const Box& bo
     const auto aboveIndex = uint32_t(w.flat.size());
     buildFlat(w, aboveLists, aboveBox, depth + 1, s.above, share * double(s.above));
     w.top = top;  // the children's lists popped
-    setFlatInner(w.flat, index, s.axis, s.pos, aboveIndex);
+    const auto empty = [&](uint32_t i) { return w.flat[i].isLeaf() && w.flat[i].triangleCount() == 0; };
+    w.flat[index] = gpu::KdNode::inner(s.axis, s.pos, aboveIndex, empty(index + 1), empty(aboveIndex));
+}
+
+void Builder::addProgress(WorkerScratch& w) {
+    const uint64_t done = doneWeight_.fetch_add(w.doneWeight) + w.doneWeight;
+    w.doneWeight = 0;
+    if (!progress_) return;
+    const double fraction = double(done) / double(uint64_t(1) << 62);
+    std::lock_guard lock(progressMutex_);
+    if (fraction >= reported_ + 0.01) {
+        reported_ = fraction;
+        progress_("kd-tree: splitting", fraction);
+    }
 }
 
 void Builder::finishProgress() {
     for (WorkerScratch& w : scratch_)
-        if (w.doneWeight > 0) progress_.add(w.doneWeight);
+        if (w.doneWeight > 0) addProgress(w);
 }
 
 // `budget`: the most references this subtree's leaves may hold together (KdConfig::maxDuplication).
@@ -367,7 +504,6 @@ NodePtr Builder::build(NodeEvents ev, const Box& box, int depth, size_t n, doubl
 
 KdBuildResult buildSahKdTree(const std::vector<Triangle>& triangles, const KdConfig& config, int threads,
                              const BuildProgress& progress) {
-    if (config.bins != 0) return buildBinnedKdTree(triangles, config, threads, progress);
     const Clock::time_point start = Clock::now();
     KdBuildResult result;
     tbb::task_arena arena(arenaThreads(threads));
@@ -376,8 +512,16 @@ KdBuildResult buildSahKdTree(const std::vector<Triangle>& triangles, const KdCon
         if (triangles.size() > Event::kMaxTriangles)
             throw Error("the kd-tree builder takes at most " + std::to_string(Event::kMaxTriangles) +
                         " triangles (the scene has " + std::to_string(triangles.size()) + ")");
+        // Which triangles are degenerate, in parallel (double-precision cross products).
+        std::vector<uint8_t> degenerate(triangles.size());
+        tbb::parallel_for(tbb::blocked_range<size_t>(0, triangles.size(), 1 << 14), [&](const auto& r) {
+            for (size_t t = r.begin(); t != r.end(); ++t) {
+                const Triangle& tri = triangles[t];
+                degenerate[t] = geometry::isDegenerate({glm::dvec3(tri.p0), glm::dvec3(tri.p1), glm::dvec3(tri.p2)});
+            }
+        });
         Box root;
-        NodeEvents ev = rootEvents(triangles, degenerateTriangles(triangles), root);
+        NodeEvents ev = rootEvents(triangles, degenerate, root);
         const size_t n = triangleCount(ev);
         // Each list ascends by triangle, so a stable sort on position and type
         // (the key's upper 34 bits) is the sort on the whole key.
@@ -400,7 +544,16 @@ KdBuildResult buildSahKdTree(const std::vector<Triangle>& triangles, const KdCon
 
         const Clock::time_point flattenStart = Clock::now();
         if (progress) progress("kd-tree: flattening", 1.0);
-        flattenBuiltTree(std::move(tree), root, result.tree);
+        if (tree->subtreeRefs > UINT32_MAX)  // a leaf's first entry is a 32-bit word (kd_layout.h)
+            throw Error("the kd-tree holds " + std::to_string(tree->subtreeRefs) +
+                        " triangle references; its GPU layout addresses at most " + std::to_string(UINT32_MAX));
+        // The walk below writes every node, extra record and index entry.
+        resizeForOverwrite(result.tree.nodes, tree->subtreeNodes);
+        resizeForOverwrite(result.tree.extra, tree->subtreeNodes);
+        resizeForOverwrite(result.tree.indices, size_t(tree->subtreeRefs));
+        flattenKdTree(std::move(tree), 0, 0, VKRAY_KD_NO_PARENT, root, result.tree, 0);
+        result.tree.header = gpu::KdTreeHeader{root.lo, uint32_t(result.tree.nodes.size()), root.hi,
+                                               uint32_t(result.tree.indices.size())};
         result.times.flattenMs = msSince(flattenStart);
     });
     result.times.totalMs = msSince(start);

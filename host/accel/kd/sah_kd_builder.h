@@ -56,7 +56,6 @@ struct KdBuildResult {
     KdBuildTimes times;
 };
 
-// config.bins != 0 builds by binned candidates instead (binned_kd_builder.h).
 // `threads`: workers of the task arena, 0 = all cores. `progress` (may be empty) hears phase names
 // and fractions, from one thread at a time.
 KdBuildResult buildSahKdTree(const std::vector<Triangle>& triangles, const KdConfig& config, int threads = 0,
