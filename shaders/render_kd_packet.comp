@@ -1,8 +1,8 @@
-// Render kernel with `kd-packet`: kd-stack's SAH kd-tree, its closest hits walked by the subgroup's
-// rays as packets (kd_packet.glsl). Shadow rays and the resumable variant take kd-stack's walk, one
-// ray a lane, as bvh-packet's take the single-ray walk of theirs (render_bvh_packet.comp): the
-// resumable variant saves no packet state, and the tiles it takes up are the few whose rays ran out
-// of lavapipe's loop budget.
+// Render kernel with `kd-packet`: kd-stack's SAH kd-tree, its camera rays walked by the subgroup's
+// rays as packets (kd_packet.glsl; traceCamera, accelerator.glsl). Reflection, refraction and
+// shadow rays, and the resumable variant, take kd-stack's walk, one ray a lane, as bvh-packet's
+// take the single-ray walks of theirs (render_bvh_packet.comp): diverging rays cost more in packets,
+// and the resumable variant saves no packet state.
 #version 460
 #extension GL_GOOGLE_include_directive : require
 #extension GL_KHR_shader_subgroup_basic : require
@@ -10,11 +10,11 @@
 #extension GL_KHR_shader_subgroup_arithmetic : require
 #extension GL_KHR_shader_subgroup_ballot : require
 
-#define VKRAY_KD_OWN_CLOSEST
+#define VKRAY_OWN_CAMERA_TRACE
 #include "include/kd_stack.glsl"
 #include "include/kd_packet.glsl"
 
-Hit traceClosest(vec3 origin, vec3 dir, float tmax) {
+Hit traceCamera(vec3 origin, vec3 dir, float tmax) {
     if (RESUMABLE) return kdTrace(origin, dir, tmax, false);
     return kdPacketTrace(origin, dir, tmax);
 }

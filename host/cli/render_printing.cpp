@@ -91,7 +91,8 @@ nlohmann::json gpuJson(const gpu::GpuRenderReport& g) {
         j["traversal"] = {{"nodes", g.nodesVisited}, {"leaves", g.leavesVisited},
                           {"triangles", g.trianglesTested}, {"restarts", g.restarts},
                           {"lockstep", {{"lanes", g.lockstepLanes}, {"nodes", g.lockstepNodes}}},
-                          {"packet_walk", g.packetWalk}, {"idle_steps", g.idleSteps}};
+                          {"packet_walk", g.packetWalk}, {"idle_steps", g.idleSteps},
+                          {"camera_rays", g.cameraRays}};
     return j;
 }
 
@@ -118,8 +119,11 @@ void printGpuStats(const gpu::GpuRenderReport& g) {
                     double(g.nodesVisited) / all, double(g.leavesVisited) / all, double(g.trianglesTested) / all,
                     double(g.restarts) / all);
         if (g.packetWalk && g.lockstepNodes > 0)
-            std::printf("packets:     %.2f node steps a ray as its packet took them, lanes' use %.1f%% (the steps a "
-                        "lane's ray entered; shadow rays walk alone)\n",
+            std::printf("packets:     %llu of %llu closest-hit rays walked as packets (%.1f%%: the camera rays; secondary "
+                        "and shadow rays walk alone), %.2f node steps a ray, a packet's counted for each lane, lanes' "
+                        "use %.1f%%\n",
+                        (unsigned long long)g.cameraRays, (unsigned long long)g.raysTraced,
+                        100.0 * double(g.cameraRays) / double(std::max<uint64_t>(g.raysTraced, 1)),
                         double(g.lockstepNodes) / all, 100.0 * double(g.nodesVisited) / double(g.lockstepNodes));
         else if (g.lockstepNodes > 0)
             std::printf("simd:        %.2f node steps a ray in lock-step over subgroups of %u, SIMD efficiency %.1f%%\n",

@@ -38,13 +38,14 @@ struct GpuRenderReport {
     bool resumedFromStart = false;  // every tile resumable at once (brute force beyond one budget)
     // Traversal work over all rays; filled only with RenderOptions::countTraversal.
     uint64_t nodesVisited = 0, leavesVisited = 0, trianglesTested = 0, restarts = 0;
-    // The kernel walks closest-hit rays as packets (accel::isPacketWalk): idleSteps are the steps
-    // lanes took with their packet but sat out, their ray not entering the node; then the
-    // lock-step steps below are nodesVisited + idleSteps, the steps the lanes' packets took, and
-    // nodesVisited over them the lanes' use of their packets. Shadow rays and the resumable
-    // variant walk one ray a lane and count no idle steps.
+    // The kernel walks camera rays as packets (accel::isPacketWalk): idleSteps are the steps lanes
+    // took with their packet but sat out, their ray not entering the node; then the lock-step steps
+    // below are nodesVisited + idleSteps, the steps the lanes' walks took, a packet's counted for
+    // each of its lanes, and nodesVisited over them the lanes' use of their packets. Secondary and
+    // shadow rays, and the resumable variant, walk one ray a lane and count no idle steps.
+    // cameraRays: the closest-hit rays that were camera rays, one a pixel.
     bool packetWalk = false;
-    uint64_t idleSteps = 0;
+    uint64_t idleSteps = 0, cameraRays = 0;
     // The node steps the device's subgroups run in lock-step (lockstep.h): nodesVisited over this is
     // the SIMD efficiency. A lower bound where a pixel traces several rays (its lanes need not be
     // at the same ray); for a packet walk, its packets' steps (above). Filled only with

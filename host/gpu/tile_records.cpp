@@ -67,6 +67,7 @@ void readTile(const GpuPixel* src, const Tile& tile, const ShaderFeatures& featu
             rep.nodesVisited += px.nodes;
             rep.leavesVisited += px.leaves;
             rep.trianglesTested += px.triangles;
+            rep.cameraRays += px.rays > 0;
             if (rep.packetWalk) {  // the steps a lane sat out, and its packet's (the lock-step count)
                 rep.idleSteps += px.walkEvents;
                 rep.lockstepNodes += uint64_t(px.nodes) + px.walkEvents;

@@ -13,4 +13,17 @@ Hit traceClosest(vec3 origin, vec3 dir, float tmax);
 // Whether anything lies on the ray in (0, tmax): shadow rays.
 bool traceAny(vec3 origin, vec3 dir, float tmax);
 
+// The closest hit of a pixel's ray: traceCamera for its camera ray where the kernel defines
+// VKRAY_OWN_CAMERA_TRACE and one (the packet walks, whose packets pay only for rays that travel
+// together), traceClosest otherwise. The lanes of a subgroup start their pixels together
+// (render_main.glsl), so their camera rays reach traceCamera together.
+#ifdef VKRAY_OWN_CAMERA_TRACE
+Hit traceCamera(vec3 origin, vec3 dir, float tmax);
+Hit tracePixelRay(bool camera, vec3 origin, vec3 dir, float tmax) {
+    return camera ? traceCamera(origin, dir, tmax) : traceClosest(origin, dir, tmax);
+}
+#else
+Hit tracePixelRay(bool camera, vec3 origin, vec3 dir, float tmax) { return traceClosest(origin, dir, tmax); }
+#endif
+
 #endif

@@ -376,10 +376,7 @@ Hit kdTrace(vec3 origin, vec3 dir, float tmax, const bool anyHit) {
     return best;
 }
 
-// A kernel that walks closest hits its own way (kd-packet) defines VKRAY_KD_OWN_CLOSEST.
-#ifndef VKRAY_KD_OWN_CLOSEST
 Hit traceClosest(vec3 origin, vec3 dir, float tmax) { return kdTrace(origin, dir, tmax, false); }
-#endif
 bool traceAny(vec3 origin, vec3 dir, float tmax) { return kdTrace(origin, dir, tmax, true).triangle >= 0; }
 
 #endif

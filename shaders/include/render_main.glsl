@@ -202,11 +202,12 @@ bool shadeAndSpawn(inout PixelTrace pt, PendingRay ray, SurfacePoint s, GpuMater
 bool traceNextRay(inout PixelTrace pt, out uint stage) {
     stage = VKRAY_RESUME_RAYS;
     const PendingRay ray = loadRay(pt.stackTop - 1);
-    const Hit hit = traceClosest(ray.origin, ray.dir, kInfinity);
+    const bool cameraRay = pt.rays == 0;
+    const Hit hit = tracePixelRay(cameraRay, ray.origin, ray.dir, kInfinity);
     if (RESUMABLE && gLoopCutShort) return false;  // the ray stays pending
     gProgress = true;
     --pt.stackTop;
-    const bool cameraRay = pt.rays++ == 0;
+    ++pt.rays;
     if (hit.triangle < 0) {  // a miss sees the background
         pt.radiance += ray.weight * params.background;
         return true;

@@ -131,5 +131,7 @@ TEST(BvhPacketOnGpu, SameFramesAsTheStackWalk) {
 
 TEST(BvhPacketOnGpu, CountsItsPacketsSteps) { test::expectPacketCounters("bvh", "bvh-packet", true); }
 
+TEST(BvhPacketOnGpu, WalksOnlyCameraRaysAsPackets) { test::expectOnlyCameraRaysInPackets("bvh-packet"); }
+
 }  // namespace
 }  // namespace vkray

@@ -114,6 +114,30 @@ inline void expectPacketMatchesSingleRay(std::string_view single, std::string_vi
     }
 }
 
+// Which rays a packet accelerator walks as packets: its camera rays alone (traceCamera,
+// accelerator.glsl). With reflections, refractions and shadow rays added to the same camera rays,
+// the idle steps, which only a packet walk counts, stay those of the camera rays, one a pixel.
+inline void expectOnlyCameraRaysInPackets(std::string_view packet) {
+    if (!gpuContext().info().subgroupBallot) GTEST_SKIP() << "no subgroup ballot: the packet runs the single walk";
+    for (const char* file : {"cornell.scene", "spheres.scene"}) {
+        const Scene scene = loadScene(std::filesystem::path(VKRAY_SOURCE_DIR) / "scenes" / file);
+        Scene unlit = scene;
+        unlit.lights.clear();
+        RenderOptions options{.width = 96, .height = 72, .maxDepth = 1, .countTraversal = true};
+        gpu::GpuRenderReport camera, full;
+        renderGpu(unlit, options, &camera, packet);
+        options.maxDepth = 4;
+        renderGpu(scene, options, &full, packet);
+        const uint64_t pixels = uint64_t(options.width) * uint64_t(options.height);
+        EXPECT_EQ(camera.cameraRays, pixels) << file;
+        EXPECT_EQ(full.cameraRays, pixels) << file;
+        EXPECT_GT(full.raysTraced, pixels) << file << ": the scene should spawn secondary rays";
+        EXPECT_GT(full.shadowRays, 0u) << file;
+        EXPECT_GT(camera.idleSteps, 0u) << file;
+        EXPECT_EQ(full.idleSteps, camera.idleSteps) << file;
+    }
+}
+
 // A packet accelerator's counters on camera rays (no lights, depth 1: every ray walks as a packet):
 // the lock-step steps are the packets' steps, the nodes the lanes' rays entered plus the steps they
 // sat out (GpuRenderReport::idleSteps), which the lanes of a packet on the hand-made scenes' edges and

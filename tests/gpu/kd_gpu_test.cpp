@@ -149,6 +149,8 @@ TEST(KdPacketOnGpu, SameFramesAndTrianglesAsTheStackWalk) {
 
 TEST(KdPacketOnGpu, CountsItsPacketsSteps) { test::expectPacketCounters("kd-stack", "kd-packet", false); }
 
+TEST(KdPacketOnGpu, WalksOnlyCameraRaysAsPackets) { test::expectOnlyCameraRaysInPackets("kd-packet"); }
+
 std::vector<KdCase> cases() {
     std::vector<KdCase> all;
     for (const char* accel : {"kd-stack", "kd-shortstack", "kd-restart", "kd-pushdown", "kd-ropes", "kd-backtrack", "kd-packet"})
