@@ -3,8 +3,10 @@
 set(BENCH_OUT ${CMAKE_BINARY_DIR}/test-output/bench-cli)
 set(BENCH_SCENE ${CMAKE_SOURCE_DIR}/scenes/objects.scene)
 
+# Each test writes below a folder of its own: run_bench_cli.cmake empties its OUT first, and the
+# tests run in parallel.
 add_test(NAME bench.cli.writes_report
-         COMMAND ${CMAKE_COMMAND} -DVKRAY=$<TARGET_FILE:vkray> -DSCENE=${BENCH_SCENE} -DOUT=${BENCH_OUT}
+         COMMAND ${CMAKE_COMMAND} -DVKRAY=$<TARGET_FILE:vkray> -DSCENE=${BENCH_SCENE} -DOUT=${BENCH_OUT}/report
                  -P ${CMAKE_CURRENT_SOURCE_DIR}/bench/run_bench_cli.cmake)
 set_tests_properties(bench.cli.writes_report PROPERTIES TIMEOUT 300 ENVIRONMENT "VKRAY_VALIDATION=1")
 
