@@ -19,9 +19,6 @@
 #include "include/bvh_packet.glsl"
 #include "include/bvh_traversal.glsl"
 
-Hit traceCamera(vec3 origin, vec3 dir, float tmax) {
-    if (RESUMABLE) return bvhStacklessTrace(origin, dir, tmax, false);
-    return bvhPacketTrace(origin, dir, tmax);
-}
+Hit traceCamera(vec3 origin, vec3 dir, float tmax) { return bvhPacketTrace(origin, dir, tmax); }
 
 #include "include/render_main.glsl"

@@ -14,9 +14,6 @@
 #include "include/kd_stack.glsl"
 #include "include/kd_packet.glsl"
 
-Hit traceCamera(vec3 origin, vec3 dir, float tmax) {
-    if (RESUMABLE) return kdTrace(origin, dir, tmax, false);
-    return kdPacketTrace(origin, dir, tmax);
-}
+Hit traceCamera(vec3 origin, vec3 dir, float tmax) { return kdPacketTrace(origin, dir, tmax); }
 
 #include "include/render_main.glsl"

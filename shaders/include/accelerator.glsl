@@ -5,6 +5,7 @@
 #ifndef VKRAY_ACCELERATOR_GLSL
 #define VKRAY_ACCELERATOR_GLSL
 
+#include "trace_status.glsl"
 #include "triangle.glsl"
 
 // Closest hit in (0, tmax); ties in t go to the lowest triangle identity (beats(), triangle.glsl).
@@ -16,11 +17,12 @@ bool traceAny(vec3 origin, vec3 dir, float tmax);
 // The closest hit of a pixel's ray: traceCamera for its camera ray where the kernel defines
 // VKRAY_OWN_CAMERA_TRACE and one (the packet walks, whose packets pay only for rays that travel
 // together), traceClosest otherwise. The lanes of a subgroup start their pixels together
-// (render_main.glsl), so their camera rays reach traceCamera together.
+// (render_main.glsl), so their camera rays reach traceCamera together. The resumable variant
+// saves no packet's state between its dispatches: its camera rays walk as its other rays.
 #ifdef VKRAY_OWN_CAMERA_TRACE
 Hit traceCamera(vec3 origin, vec3 dir, float tmax);
 Hit tracePixelRay(bool camera, vec3 origin, vec3 dir, float tmax) {
-    return camera ? traceCamera(origin, dir, tmax) : traceClosest(origin, dir, tmax);
+    return camera && !RESUMABLE ? traceCamera(origin, dir, tmax) : traceClosest(origin, dir, tmax);
 }
 #else
 Hit tracePixelRay(bool camera, vec3 origin, vec3 dir, float tmax) { return traceClosest(origin, dir, tmax); }
