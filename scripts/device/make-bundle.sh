@@ -7,7 +7,8 @@
 # usage: scripts/device/make-bundle.sh BUILD_DIR BUNDLE [OTHER_VKRAY...]     (on the build machine)
 #   OTHER_VKRAY: further vkray binaries (other builds, for device-ab.sh), copied in under their
 #   file names. On the GPU machine: tar -C /tmp -xJf BUNDLE.tar.xz, then run a device script with
-#   /tmp/$(basename BUNDLE) from a checkout of the same revision (the scripts read scenes/).
+#   /tmp/$(basename BUNDLE) from a checkout of the same revision (the scripts read scenes/, the
+#   meshes in scenes/meshes/ too: fetch them here with scripts/fetch-scenes.sh and take them along).
 set -eu
 [ $# -ge 2 ] || { awk 'NR > 1 && !/^#/ {exit} NR > 1 {sub(/^# ?/, ""); print}' "$0" >&2; exit 2; }
 build=$1; bundle=$2; shift 2
