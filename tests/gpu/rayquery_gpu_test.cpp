@@ -2,7 +2,8 @@
 // of scenes/ and scenes/primary/ (the close-ups) against the CPU reference (double precision, brute
 // force's answers): the primary hits and the image within the limits every vkray accelerator is held
 // to (bvh_gpu_test.cpp), the driver's structure built on the device, no pixel cut short.
-// A device without ray query fails them (gpu_test_util.h, rayQueryContext()).
+// A lavapipe without ray query fails them; a GPU without it skips them (gpu_test_util.h,
+// rayQuerySkipped()).
 #include <cstdio>
 #include <filesystem>
 #include <ostream>
