@@ -23,10 +23,11 @@ public:
             const BuildOptions& options)
         : traversal_(traversal), shortStack_(shortStack), config_(config),
           build_(kd::buildSahKdTree(scene.triangles, config_, options.threads, options.progress)) {
-        if (traversal_ != kd::Traversal::Ropes) return;
+        // What only one traversal reads is made after the build, for it alone (extra()).
         const auto start = Clock::now();
-        build_.tree.ropes = kd::buildRopes(build_.tree, options.threads);
-        ropesMs_ = msSince(start);
+        if (traversal_ == kd::Traversal::Ropes) build_.tree.ropes = kd::buildRopes(build_.tree, options.threads);
+        else if (traversal_ == kd::Traversal::Backtrack) kd::deriveNodeExtras(build_.tree, options.threads);
+        extraMs_ = msSince(start);
     }
 
     std::unique_ptr<geometry::Tracer> makeTracer(const Scene& scene) const override {
@@ -62,7 +63,7 @@ public:
         const size_t gpuBytes = sizeof(gpu::KdTreeHeader) + t.nodes.size() * sizeof(gpu::KdNode) +
                                 t.indices.size() * sizeof(uint32_t) + extra().bytes.size();
         std::vector<AccelStat> stats = {
-            {"build_ms", ms.totalMs + ropesMs_, "ms"},
+            {"build_ms", ms.totalMs + extraMs_, "ms"},
             {"build_events_ms", ms.eventsMs, "ms: bounds, events, sort"},
             {"build_split_ms", ms.treeMs, "ms: SAH splitting"},
             {"build_sweep_ms", ms.sweepMs, "ms of the workers: plane sweeps"},
@@ -86,7 +87,9 @@ public:
             {"gpu_bytes", double(gpuBytes), "bytes"},
             {"extra_bytes", double(extra().bytes.size()), extra().what},
         };
-        if (traversal_ == kd::Traversal::Ropes) stats.insert(stats.begin() + 10, {"build_ropes_ms", ropesMs_, "ms: ropes"});
+        if (traversal_ == kd::Traversal::Ropes) stats.insert(stats.begin() + 10, {"build_ropes_ms", extraMs_, "ms: ropes"});
+        if (traversal_ == kd::Traversal::Backtrack)
+            stats.insert(stats.begin() + 10, {"build_links_ms", extraMs_, "ms: parent links and node boxes"});
         return stats;
     }
 
@@ -116,7 +119,7 @@ private:
     int shortStack_;
     kd::KdConfig config_;
     kd::KdBuildResult build_;
-    double ropesMs_ = 0.0;
+    double extraMs_ = 0.0;  // the ropes (kd-ropes) or the parent links and node boxes (kd-backtrack)
 };
 
 }  // namespace

@@ -28,9 +28,8 @@ using NodePtr = std::unique_ptr<BuildNode, NodeDeleter>;
 
 // A subtree under kTimedEvents events (sah_kd_builder.cpp), built on one worker straight in the flat layout
 // (kd_layout.h) with indices relative to its root: its above-child links and its leaves' first
-// entries are offsets that flatten() adds its place to, and flatten() derives the boxes and parent
-// links (8 bytes a node held until then, not 40). Millions of small nodes are then written once,
-// not allocated as build nodes, walked and freed.
+// entries are offsets that flatten() adds its place to. Millions of small nodes are then written
+// once, not allocated as build nodes, walked and freed.
 using FlatSubtree = std::vector<gpu::KdNode, tbb::scalable_allocator<gpu::KdNode>>;
 
 struct BuildNode {
@@ -60,19 +59,12 @@ inline void NodeDeleter::operator()(BuildNode* node) const {
     if (node != &kEmptyLeaf) delete node;
 }
 
-inline std::pair<Box, Box> splitBox(const Box& box, int axis, float pos) {
-    Box below = box, above = box;
-    below.hi[axis] = pos;
-    above.lo[axis] = pos;
-    return {below, above};
-}
-
-// Depth-first layout (kd_layout.h): below child next, above child by index; parent links and boxes
-// for kd-backtrack in `extra`. Writes the subtree of `n` at node `index` and index-list entry
-// `first` onwards, whose places its subtree sizes give, so the subtrees near the root are written
-// as parallel tasks; it consumes the tree, which is then freed in parallel too (millions of nodes
-// and leaf lists freed one by one would be a serial tail of the build).
-void flattenKdTree(NodePtr n, uint32_t index, uint64_t first, uint32_t parent, const Box& box, KdTree& out,
-                   int depth);
+// Depth-first layout (kd_layout.h): below child next, above child by index. Writes the subtree of
+// `n` at node `index` and index-list entry `first` onwards, whose places its subtree sizes give, so
+// the subtrees near the root are written as parallel tasks; it consumes the tree, which is then
+// freed in parallel too (millions of nodes and leaf lists freed one by one would be a serial tail
+// of the build). The nodes' boxes and parent links are not written here: deriveNodeExtras
+// (kd_tree.h) derives them from the nodes where a traversal needs them.
+void flattenKdTree(NodePtr n, uint32_t index, uint64_t first, KdTree& out, int depth);
 
 }  // namespace vkray::accel::kd

@@ -9,8 +9,6 @@
 #include <cstdint>
 #include <vector>
 
-#include <tbb/scalable_allocator.h>
-
 #include "accel/kd/kd_tree.h"
 #include "core/parallel_alloc.h"
 #include "scene/scene.h"
@@ -56,9 +54,14 @@ private:
     uint64_t key_ = 0;
 };
 
-// The lists of the nodes below the root are made and freed by the million: from oneTBB's scalable
-// allocator, whose per-thread caches serve them without a lock, not glibc's.
-using AxisEvents = std::vector<Event, FirstTouchAllocator<Event, tbb::scalable_allocator<Event>>>;
+// The lists of nodes of at least kSmallSubtreeEvents events (smaller subtrees keep theirs on a
+// per-worker stack, sah_kd_builder.cpp): thousands, up to megabytes each, made level by level as
+// their parents' are freed. From glibc's allocator, which hands a freed list's memory to the next
+// level's (its mmap threshold rises to the sizes freed), so a level writes to pages already
+// mapped; oneTBB's scalable allocator mapped fresh pages for every level, and the page faults were
+// three quarters of the lists' split at the big nodes (1M-triangle grid, 2 threads: 628 against
+// 132-159 ms of the workers).
+using AxisEvents = std::vector<Event, FirstTouchAllocator<Event>>;
 using NodeEvents = std::array<AxisEvents, 3>;
 
 // The events of one triangle from its clipped bounds `b` (Wald and Havran 4.2), f(k, event) for

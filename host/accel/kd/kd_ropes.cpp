@@ -51,9 +51,8 @@ uint32_t pushDown(const KdTree& tree, uint32_t node, const Box& box, int face) {
 // Popov et al.'s top-down construction: a child inherits its parent's ropes (optimised for the
 // parent's faces, which hold the child's), gets its sibling across the split, and pushes each one
 // further down for its own, smaller faces. Records every node's box and each leaf's ropes.
-void buildSubtree(const KdTree& tree, uint32_t node, const Ropes& ropes, std::vector<gpu::KdRopeRecord>& out,
-                  int depth) {
-    const Box box = tree.nodeBox(node);
+void buildSubtree(const KdTree& tree, uint32_t node, const Box& box, const Ropes& ropes,
+                  std::vector<gpu::KdRopeRecord>& out, int depth) {
     Ropes mine;
     for (int f = 0; f < 6; ++f) mine[f] = pushDown(tree, ropes[f], box, f);
     const gpu::KdNode& n = tree.nodes[node];
@@ -70,8 +69,9 @@ void buildSubtree(const KdTree& tree, uint32_t node, const Ropes& ropes, std::ve
     Ropes belowRopes = mine, aboveRopes = mine;
     belowRopes[2 * a + 1] = above;
     aboveRopes[2 * a] = below;
-    const auto goBelow = [&] { buildSubtree(tree, below, belowRopes, out, depth + 1); };
-    const auto goAbove = [&] { buildSubtree(tree, above, aboveRopes, out, depth + 1); };
+    const auto [belowBox, aboveBox] = splitBox(box, a, n.split());
+    const auto goBelow = [&, &b = belowBox] { buildSubtree(tree, below, b, belowRopes, out, depth + 1); };
+    const auto goAbove = [&, &b = aboveBox] { buildSubtree(tree, above, b, aboveRopes, out, depth + 1); };
     // Depth-first order: the below subtree's nodes lie between the node and its above child.
     if (above - node >= kParallelNodes && tree.nodes.size() - above >= kParallelNodes) {
         tbb::parallel_invoke(goBelow, goAbove);
@@ -96,7 +96,7 @@ std::vector<gpu::KdRopeRecord> buildRopes(const KdTree& tree, int threads) {
     tbb::task_arena arena(arenaThreads(threads));
     Ropes none;
     none.fill(VKRAY_KD_NO_ROPE);
-    arena.execute([&] { buildSubtree(tree, 0, none, ropes, 0); });
+    arena.execute([&] { buildSubtree(tree, 0, tree.rootBox(), none, ropes, 0); });
     return ropes;
 }
 

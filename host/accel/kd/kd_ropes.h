@@ -12,7 +12,7 @@
 namespace vkray::accel::kd {
 
 // One record per node of `tree` (an inner node's ropes are VKRAY_KD_NO_ROPE). `threads`: oneTBB
-// workers, 0 = all cores. Needs tree.extra (the node boxes).
+// workers, 0 = all cores. Each node's box is its parent's split, from the root box.
 std::vector<gpu::KdRopeRecord> buildRopes(const KdTree& tree, int threads);
 
 // The rope of face `face` (2 axis + side; side 1 = the face at box.hi[axis]) of a leaf with box `box`,

@@ -468,7 +468,10 @@ std::unique_ptr<KdTracer> makeKdTracer(kd::Traversal traversal, const KdTree& tr
     case kd::Traversal::Ropes:
         if (tree.ropes.size() != tree.nodes.size()) throw std::logic_error("kd-ropes: the tree has no ropes (buildRopes)");
         return std::make_unique<KdRestartTracer>(tree, std::move(triangles), maxSteps, RestartFrom::Rope);
-    case kd::Traversal::Backtrack: return std::make_unique<KdBacktrackTracer>(tree, std::move(triangles), maxSteps);
+    case kd::Traversal::Backtrack:
+        if (tree.extra.size() != tree.nodes.size())
+            throw std::logic_error("kd-backtrack: the tree has no parent links (deriveNodeExtras)");
+        return std::make_unique<KdBacktrackTracer>(tree, std::move(triangles), maxSteps);
     }
     return nullptr;
 }

@@ -5,7 +5,11 @@
 #include <cstdio>
 #include <utility>
 
+#include <tbb/task_arena.h>
+
 #include "core/error.h"
+#include "core/fork_join.h"
+#include "core/worker_arena.h"
 
 namespace vkray::accel::kd {
 
@@ -42,30 +46,60 @@ bool KdTree::operator==(const KdTree& o) const {
            std::equal(extra.begin(), extra.end(), o.extra.begin(), o.extra.end(), sameExtra);
 }
 
+namespace {
+
+// Node `index`'s extra record and its subtree's, the subtrees near the root as parallel tasks.
+// `depth` also ends a malformed tree's cycle (no path is deeper than VKRAY_KD_MAX_DEPTH).
+void deriveSubtree(KdTree& tree, uint32_t index, uint32_t parent, const Box& box, int depth) {
+    tree.extra[index] = gpu::KdNodeExtra{box.lo, parent, box.hi, 0};
+    const gpu::KdNode& node = tree.nodes[index];
+    if (node.isLeaf() || depth > VKRAY_KD_MAX_DEPTH) return;
+    const auto [below, above] = splitBox(box, node.axis(), node.split());
+    forkJoin(depth < kParallelDepth, [&, &b = below] { deriveSubtree(tree, index + 1, index, b, depth + 1); },
+             [&, &a = above] { deriveSubtree(tree, node.aboveChild(), index, a, depth + 1); });
+}
+
+}  // namespace
+
+void deriveNodeExtras(KdTree& tree, int threads) {
+    tbb::task_arena arena(arenaThreads(threads));
+    arena.execute([&] {
+        resizeForOverwrite(tree.extra, tree.nodes.size());  // every node's record is written below
+        if (!tree.nodes.empty()) deriveSubtree(tree, 0, VKRAY_KD_NO_PARENT, tree.rootBox(), 0);
+    });
+}
+
 KdTreeFigures measureTree(const KdTree& tree, const KdConfig& config) {
     KdTreeFigures f;
     f.nodes = tree.nodes.size();
     f.references = tree.indices.size();
     const double rootArea = tree.rootBox().surfaceArea();
-    // Depth-first walk with an explicit stack of (node, depth); depth is bounded by VKRAY_KD_MAX_DEPTH.
-    std::vector<std::pair<uint32_t, int>> pending;
-    if (!tree.nodes.empty()) pending.emplace_back(0u, 0);
+    // Depth-first walk with an explicit stack of (node, depth, box), each box split from its
+    // parent's as the traversals split it; depth is bounded by VKRAY_KD_MAX_DEPTH.
+    struct Pending {
+        uint32_t index;
+        int depth;
+        Box box;
+    };
+    std::vector<Pending> pending;
+    if (!tree.nodes.empty()) pending.push_back({0u, 0, tree.rootBox()});
     while (!pending.empty()) {
-        const auto [index, depth] = pending.back();
+        const auto [index, depth, box] = pending.back();
         pending.pop_back();
         const gpu::KdNode& node = tree.nodes[index];
         f.maxDepth = std::max(f.maxDepth, depth);
         // SAH cost of the whole tree (Wald and Havran 2006, eq. 1): every node weighted by the
         // probability SA(node)/SA(root) that a random ray through the root meets it.
-        const double p = rootArea > 0.0 ? tree.nodeBox(index).surfaceArea() / rootArea : 1.0;
+        const double p = rootArea > 0.0 ? box.surfaceArea() / rootArea : 1.0;
         if (node.isLeaf()) {
             ++f.leaves;
             if (node.triangleCount() == 0) ++f.emptyLeaves;
             f.sahCost += p * config.intersectionCost * node.triangleCount();
         } else {
             f.sahCost += p * config.traversalCost;
-            pending.emplace_back(node.aboveChild(), depth + 1);
-            pending.emplace_back(index + 1, depth + 1);
+            const auto [below, above] = splitBox(box, node.axis(), node.split());
+            pending.push_back({node.aboveChild(), depth + 1, above});
+            pending.push_back({index + 1, depth + 1, below});
         }
     }
     // Distinct triangles: one flag a triangle, set in one pass over the references, linear where

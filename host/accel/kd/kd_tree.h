@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -80,9 +81,18 @@ struct Box {
     bool operator==(const Box&) const = default;
 };
 
+// The boxes of the children of a node with box `box` split at `pos` on `axis`: below, above.
+inline std::pair<Box, Box> splitBox(const Box& box, int axis, float pos) {
+    Box below = box, above = box;
+    below.hi[axis] = pos;
+    above.lo[axis] = pos;
+    return {below, above};
+}
+
 // A built tree: the GPU arrays of shaders/shared/kd_layout.h. `extra` (parent links and node boxes)
-// is always filled on the CPU, where kd-backtrack needs it; only the kd-backtrack kernel uploads it.
-// `ropes` is filled only for kd-ropes (kd_ropes.h), after the build.
+// is filled only for kd-backtrack, whose walks climb by it (deriveNodeExtras, after the build): at
+// 32 bytes a node it would be four times the nodes' memory, written for no other traversal. `ropes`
+// is filled only for kd-ropes (kd_ropes.h), after the build.
 struct KdTree {
     gpu::KdTreeHeader header{};
     BuildArray<gpu::KdNode> nodes;
@@ -91,9 +101,14 @@ struct KdTree {
     std::vector<gpu::KdRopeRecord> ropes;
 
     Box rootBox() const { return Box{header.lo, header.hi}; }
+    // Needs `extra` (deriveNodeExtras).
     Box nodeBox(uint32_t node) const { return Box{extra[node].lo, extra[node].hi}; }
     bool operator==(const KdTree&) const;
 };
+
+// Fills tree.extra: each node's box (its parent's split at the parent's plane, from the root box)
+// and parent link. `threads`: oneTBB workers, 0 = all cores.
+void deriveNodeExtras(KdTree& tree, int threads);
 
 // Shape of a built tree, for --stats.
 struct KdTreeFigures {

@@ -547,11 +547,10 @@ KdBuildResult buildSahKdTree(const std::vector<Triangle>& triangles, const KdCon
         if (tree->subtreeRefs > UINT32_MAX)  // a leaf's first entry is a 32-bit word (kd_layout.h)
             throw Error("the kd-tree holds " + std::to_string(tree->subtreeRefs) +
                         " triangle references; its GPU layout addresses at most " + std::to_string(UINT32_MAX));
-        // The walk below writes every node, extra record and index entry.
+        // The walk below writes every node and index entry.
         resizeForOverwrite(result.tree.nodes, tree->subtreeNodes);
-        resizeForOverwrite(result.tree.extra, tree->subtreeNodes);
         resizeForOverwrite(result.tree.indices, size_t(tree->subtreeRefs));
-        flattenKdTree(std::move(tree), 0, 0, VKRAY_KD_NO_PARENT, root, result.tree, 0);
+        flattenKdTree(std::move(tree), 0, 0, result.tree, 0);
         result.tree.header = gpu::KdTreeHeader{root.lo, uint32_t(result.tree.nodes.size()), root.hi,
                                                uint32_t(result.tree.indices.size())};
         result.times.flattenMs = msSince(flattenStart);

@@ -7,21 +7,27 @@
 #include <cstdio>
 #include <random>
 #include <set>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
 #include <gtest/gtest.h>
 
+#include "accel/kd/kd_traversal.h"
 #include "accel/kd/kd_tree.h"
 #include "accel/kd/sah_kd_builder.h"
+#include "geometry/brute_force.h"
 #include "geometry/ray_triangle.h"
 #include "kd_test_util.h"
 
 namespace vkray::accel::kd {
 namespace {
 
+// The tree with its node boxes and parent links, which the tests check.
 KdTree build(const Scene& s, int threads = 1, KdConfig config = {}) {
-    return buildSahKdTree(s.triangles, config, threads).tree;
+    KdTree tree = buildSahKdTree(s.triangles, config, threads).tree;
+    deriveNodeExtras(tree, threads);
+    return tree;
 }
 
 bool boxHolds(const gpu::KdNodeExtra& b, const glm::dvec3& p) {
@@ -190,6 +196,23 @@ TEST(KdBuilder, EmptyAndDegenerateScenes) {
     Scene degenerate;
     degenerate.triangles.push_back({{0, 0, 0}, {1, 1, 1}, {2, 2, 2}, 0});  // collinear
     EXPECT_TRUE(build(degenerate).indices.empty());
+}
+
+// The build writes no node boxes or parent links (four times the nodes' memory, for kd-backtrack
+// alone); deriveNodeExtras makes the same for any thread count, and kd-backtrack's walk refuses a
+// tree without them rather than read past an empty array.
+TEST(KdBuilder, NodeExtrasOnlyWhenDerived) {
+    const Scene s = test::randomSoup(5, 3000);
+    KdTree t = buildSahKdTree(s.triangles, KdConfig{}, 2).tree;
+    EXPECT_TRUE(t.extra.empty());
+    EXPECT_THROW(makeKdTracer(Traversal::Backtrack, t, geometry::triangleVertices(s)), std::logic_error);
+    KdTree other = t;
+    deriveNodeExtras(t, 1);
+    deriveNodeExtras(other, 2);
+    ASSERT_EQ(t.extra.size(), t.nodes.size());
+    EXPECT_TRUE(t == other);
+    expectPartition(t);
+    EXPECT_NE(makeKdTracer(Traversal::Backtrack, t, geometry::triangleVertices(s)), nullptr);
 }
 
 TEST(KdBuilder, SameTreeForAnyThreadCount) {
