@@ -153,7 +153,8 @@ int main(int argc, char** argv) {
                 kd::KdConfig config;
                 config.intersectionCost = ci;
                 std::printf(" %s\n", config.describe().c_str());
-                const kd::KdBuildResult built = timeBuilds(scene, config, o);
+                kd::KdBuildResult built = timeBuilds(scene, config, o);
+                kd::deriveNodeExtras(built.tree, 0);  // kd-backtrack's parent links, after the timed builds
                 if (scene.hasCamera) cpuTraversalFigures(scene, built.tree, o);
                 if (ctx && scene.hasCamera) gpuTimes(*ctx, scene, config, o);
             }
