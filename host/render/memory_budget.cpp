@@ -54,7 +54,7 @@ AccelModel modelOf(const accel::AccelSpec& spec) {
     switch (spec.family) {
         case accel::Family::Brute: return {};
         case accel::Family::Bvh: return {.buildPeak = 160, .structure = 40};
-        case accel::Family::Kd: return {.buildPeak = 896, .structure = kdStructure(spec.kdTraversal)};
+        case accel::Family::Kd: return {.buildPeak = 512, .structure = kdStructure(spec.kdTraversal)};
         // The Morton order of the triangles on the host (bvh::mortonOrder: codes, indices, sort
         // scratch); the driver's structure and scratch are an allowance of five triangle buffers.
         case accel::Family::Driver: return {.buildPeak = 32, .structure = 0, .driver = 5 * sizeof(gpu::GpuTriangle)};
