@@ -57,10 +57,10 @@ private:
 // The lists of nodes of at least kSmallSubtreeEvents events (smaller subtrees keep theirs on a
 // per-worker stack, sah_kd_builder.cpp): thousands, up to megabytes each, made level by level as
 // their parents' are freed. From glibc's allocator, which hands a freed list's memory to the next
-// level's (its mmap threshold rises to the sizes freed), so a level writes to pages already
-// mapped; oneTBB's scalable allocator mapped fresh pages for every level, and the page faults were
-// three quarters of the lists' split at the big nodes (1M-triangle grid, 2 threads: 628 against
-// 132-159 ms of the workers).
+// level's (its mmap threshold rises to the sizes freed, up to 32 MiB a list), so a level writes
+// to pages already mapped; oneTBB's scalable allocator mapped fresh pages for every level, and
+// the page faults were three quarters of the lists' split at the big nodes (1M-triangle grid,
+// 2 threads: 628 against 132-159 ms of the workers).
 using AxisEvents = std::vector<Event, FirstTouchAllocator<Event>>;
 using NodeEvents = std::array<AxisEvents, 3>;
 
