@@ -87,24 +87,28 @@ public:
             {"gpu_bytes", double(gpuBytes), "bytes"},
             {"extra_bytes", double(extra().bytes.size()), extra().what},
         };
-        if (traversal_ == kd::Traversal::Ropes) stats.insert(stats.begin() + 10, {"build_ropes_ms", extraMs_, "ms: ropes"});
-        if (traversal_ == kd::Traversal::Backtrack)
-            stats.insert(stats.begin() + 10, {"build_links_ms", extraMs_, "ms: parent links and node boxes"});
+        if (const Extra e = extra(); e.buildStat) stats.insert(stats.begin() + 10, {e.buildStat, extraMs_, e.buildWhat});
         return stats;
     }
 
 private:
     // Parent links and node boxes (kd-backtrack) or node boxes and leaf ropes (kd-ropes): only the
-    // traversal that reads them uploads (and pays for) them.
+    // traversal that reads them makes (after the tree), uploads and pays for them; the time to make
+    // them is a build figure of its own.
     struct Extra {
         std::span<const std::byte> bytes;
         const char* what;
+        const char* buildStat = nullptr;  // its --stats name, with buildWhat
+        const char* buildWhat = nullptr;
     };
     Extra extra() const {
         const kd::KdTree& t = build_.tree;
         switch (traversal_) {
-        case kd::Traversal::Backtrack: return {std::as_bytes(std::span(t.extra)), "bytes: parent links and node boxes"};
-        case kd::Traversal::Ropes: return {std::as_bytes(std::span(t.ropes)), "bytes: node boxes and leaf ropes"};
+        case kd::Traversal::Backtrack:
+            return {std::as_bytes(std::span(t.extra)), "bytes: parent links and node boxes", "build_links_ms",
+                    "ms: parent links and node boxes"};
+        case kd::Traversal::Ropes:
+            return {std::as_bytes(std::span(t.ropes)), "bytes: node boxes and leaf ropes", "build_ropes_ms", "ms: ropes"};
         default: return {{}, "bytes: none"};
         }
     }
