@@ -69,32 +69,14 @@ public:
     // Pass `pass` of the six, in the order x low, x high, y low, ... : the part on the box's side of
     // that face's plane.
     void clip(const Box& box, int pass) {
-        const int axis = pass / 2;
-        const bool upper = pass % 2 == 1;
-        const double plane = upper ? box.hi[axis] : box.lo[axis];
-        const glm::dvec3* poly = v_[cur_].data();
-        std::array<bool, 10> inside{};
-        bool all = true;
-        for (size_t i = 0; i < n_; ++i) {
-            inside[i] = upper ? poly[i][axis] <= plane : poly[i][axis] >= plane;
-            all = all && inside[i];
+        switch (pass) {
+        case 0: clipAt<0, false>(box.lo.x); break;
+        case 1: clipAt<0, true>(box.hi.x); break;
+        case 2: clipAt<1, false>(box.lo.y); break;
+        case 3: clipAt<1, true>(box.hi.y); break;
+        case 4: clipAt<2, false>(box.lo.z); break;
+        default: clipAt<2, true>(box.hi.z); break;
         }
-        if (all) return;  // the plane cuts nothing off: the pass would copy the polygon as it is
-        glm::dvec3* next = v_[1 - cur_].data();
-        size_t m = 0;
-        for (size_t i = 0; i < n_; ++i) {
-            const size_t j = i + 1 == n_ ? 0 : i + 1;
-            const glm::dvec3& a = poly[i];
-            const glm::dvec3& b = poly[j];
-            if (inside[i]) next[m++] = a;
-            if (inside[i] != inside[j]) {
-                glm::dvec3 v = a + (b - a) * ((plane - a[axis]) / (b[axis] - a[axis]));
-                v[axis] = plane;  // on the plane exactly, whatever the interpolation rounded to
-                next[m++] = v;
-            }
-        }
-        cur_ = 1 - cur_;
-        n_ = m;
     }
 
     // Passes first..5 against `box`, stopping when nothing is left.
@@ -119,6 +101,40 @@ public:
     }
 
 private:
+    // One pass with its axis and side as constants: with the axis an index known only at run time,
+    // each new vertex was stored to memory, its coordinate on the axis overwritten there and the
+    // whole vertex read back, a load stalled behind a narrower store at every crossing.
+    template <int axis, bool upper>
+    void clipAt(double plane) {
+        const glm::dvec3* poly = v_[cur_].data();
+        std::array<bool, 10> inside;
+        bool all = true;
+        for (size_t i = 0; i < n_; ++i) {
+            inside[i] = upper ? poly[i][axis] <= plane : poly[i][axis] >= plane;
+            all = all && inside[i];
+        }
+        if (all) return;  // the plane cuts nothing off: the pass would copy the polygon as it is
+        // Which vertices are kept changes from edge to edge without a pattern, so without branches:
+        // every slot is written and the count steps past what is kept. A crossing's point is made
+        // for every edge (NaN for an edge in the plane: never kept), on the plane exactly, whatever
+        // the interpolation would round its coordinate there to.
+        glm::dvec3* next = v_[1 - cur_].data();
+        size_t m = 0;
+        for (size_t i = 0; i < n_; ++i) {
+            const size_t j = i + 1 == n_ ? 0 : i + 1;
+            const glm::dvec3& a = poly[i];
+            const glm::dvec3& b = poly[j];
+            next[m] = a;
+            m += inside[i];
+            const double t = (plane - a[axis]) / (b[axis] - a[axis]);
+            next[m] = glm::dvec3(axis == 0 ? plane : a.x + (b.x - a.x) * t, axis == 1 ? plane : a.y + (b.y - a.y) * t,
+                                 axis == 2 ? plane : a.z + (b.z - a.z) * t);
+            m += inside[i] != inside[j];
+        }
+        cur_ = 1 - cur_;
+        n_ = m;
+    }
+
     ClipPolygon() = default;
 
     std::array<std::array<glm::dvec3, 10>, 2> v_;  // the current polygon and the next pass's
