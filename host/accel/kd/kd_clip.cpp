@@ -47,7 +47,11 @@ bool contains(const Box& outer, const Box& inner) {
 
 namespace {
 
-// A triangle being clipped (Sutherland-Hodgman) in double: it gains at most one vertex a plane.
+// A triangle being clipped (Sutherland-Hodgman) in double. A convex polygon gains at most one
+// vertex a plane, nine at most after six; rounding can bend a nearly degenerate one so that a plane
+// crosses it more than twice, and a pass then writes up to twice its vertices. The buffers hold
+// that for any polygon a convex one can become; one beyond it is given up (nothing left: the
+// triangle's bounds within the box stand in, bounds()), never written past the end.
 class ClipPolygon {
 public:
     explicit ClipPolygon(const Triangle& tri) : n_(3) {
@@ -58,7 +62,7 @@ public:
 
     bool empty() const { return n_ == 0; }
 
-    // A copy of the current polygon only: a whole copy would move both buffers, ten vertices each.
+    // A copy of the current polygon only: a whole copy would move both buffers.
     ClipPolygon fork() const {
         ClipPolygon copy;
         copy.n_ = n_;
@@ -106,8 +110,12 @@ private:
     // whole vertex read back, a load stalled behind a narrower store at every crossing.
     template <int axis, bool upper>
     void clipAt(double plane) {
+        if (n_ > kMaxConvex) {  // bent by rounding (above): given up
+            n_ = 0;
+            return;
+        }
         const glm::dvec3* poly = v_[cur_].data();
-        std::array<bool, 10> inside;
+        std::array<bool, kMaxConvex> inside;
         bool all = true;
         for (size_t i = 0; i < n_; ++i) {
             inside[i] = upper ? poly[i][axis] <= plane : poly[i][axis] >= plane;
@@ -137,7 +145,9 @@ private:
 
     ClipPolygon() = default;
 
-    std::array<std::array<glm::dvec3, 10>, 2> v_;  // the current polygon and the next pass's
+    static constexpr size_t kMaxConvex = 9;  // a triangle after six planes
+    // A pass of kMaxConvex vertices writes at most two a vertex, the last unkept: slots 0..2 * 9.
+    std::array<std::array<glm::dvec3, 2 * kMaxConvex + 1>, 2> v_;  // the current polygon and the next pass's
     int cur_ = 0;
     size_t n_ = 0;
 };
