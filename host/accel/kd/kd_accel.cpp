@@ -16,6 +16,34 @@
 namespace vkray::accel {
 namespace {
 
+// Parent links and node boxes (kd-backtrack) or node boxes and leaf ropes (kd-ropes): only the
+// traversal that reads them makes (after the tree), uploads and pays for them; the time to make
+// them is a build figure of its own.
+struct Extra {
+    std::span<const std::byte> bytes;
+    const char* what;
+    const char* buildStat = nullptr;  // its --stats name, with buildWhat
+    const char* buildWhat = nullptr;
+};
+
+Extra extraOf(const kd::KdTree& t, kd::Traversal traversal) {
+    switch (traversal) {
+    case kd::Traversal::Backtrack:
+        return {std::as_bytes(std::span(t.extra)), "bytes: parent links and node boxes", "build_links_ms",
+                "ms: parent links and node boxes"};
+    case kd::Traversal::Ropes:
+        return {std::as_bytes(std::span(t.ropes)), "bytes: node boxes and leaf ropes", "build_ropes_ms", "ms: ropes"};
+    default: return {{}, "bytes: none"};
+    }
+}
+
+uint32_t maxLeafTriangles(const kd::KdTree& t) {
+    uint32_t most = 0;
+    for (const gpu::KdNode& n : t.nodes)
+        if (n.isLeaf()) most = std::max(most, n.triangleCount());
+    return most;
+}
+
 // The kd family's BuiltAccel: one SAH tree, walked by one traversal on the CPU and the GPU.
 class KdAccel final : public BuiltAccel {
 public:
@@ -23,7 +51,7 @@ public:
             const BuildOptions& options)
         : traversal_(traversal), shortStack_(shortStack), config_(config),
           build_(kd::buildSahKdTree(scene.triangles, config_, options.threads, options.progress)) {
-        // What only one traversal reads is made after the build, for it alone (extra()).
+        // What only one traversal reads is made after the build, for it alone (extraOf).
         const auto start = Clock::now();
         if (traversal_ == kd::Traversal::Ropes) build_.tree.ropes = kd::buildRopes(build_.tree, options.threads);
         else if (traversal_ == kd::Traversal::Backtrack) kd::deriveNodeExtras(build_.tree, options.threads);
@@ -35,33 +63,16 @@ public:
                                 shortStack_);
     }
 
-    GpuAccelData gpuData() const override {
-        GpuAccelData data;
-        data.traversal = kdTraversal(traversal_);
-        data.nodeTexelBytes = VKRAY_KD_NODE_TEXEL_BYTES;
-        const kd::KdTree& t = build_.tree;
-        // kd-stack keeps a node index and two bits in one stack word (kd_stack.glsl).
-        if (t.nodes.size() > VKRAY_KD_MAX_NODES)
-            throw Error("the kd-tree has " + std::to_string(t.nodes.size()) + " nodes; the GPU kernels address at most " +
-                        std::to_string(VKRAY_KD_MAX_NODES) + " (raise kd-traversal-cost or lower kd-max-depth: --accel help)");
-        data.maxLeafTriangles = maxLeafTriangles();
-        data.kdShortStack = kdShortStack(traversal_, shortStack_);
-        data.nodes = asBytes(std::vector<gpu::KdTreeHeader>{t.header});
-        const std::vector<std::byte> nodeBytes = asBytes(t.nodes);
-        data.nodes.insert(data.nodes.end(), nodeBytes.begin(), nodeBytes.end());
-        data.indices = asBytes(t.indices);
-        const Extra e = extra();
-        data.extra.assign(e.bytes.begin(), e.bytes.end());
-        return data;
-    }
+    GpuAccelData gpuData() const override { return kdGpuData(build_.tree, traversal_, shortStack_); }
 
     std::vector<AccelStat> stats() const override {
         const kd::KdTreeFigures f = kd::measureTree(build_.tree, config_);
         const kd::KdBuildTimes& ms = build_.times;
         // What gpuData() would upload, counted without copying the arrays.
         const kd::KdTree& t = build_.tree;
+        const Extra extra = extraOf(t, traversal_);
         const size_t gpuBytes = sizeof(gpu::KdTreeHeader) + t.nodes.size() * sizeof(gpu::KdNode) +
-                                t.indices.size() * sizeof(uint32_t) + extra().bytes.size();
+                                t.indices.size() * sizeof(uint32_t) + extra.bytes.size();
         std::vector<AccelStat> stats = {
             {"build_ms", ms.totalMs + extraMs_, "ms"},
             {"build_events_ms", ms.eventsMs, "ms: bounds, events, sort"},
@@ -76,7 +87,7 @@ public:
             {"build_flatten_ms", ms.flattenMs, "ms: GPU arrays"},
             {"nodes", double(f.nodes), "8 bytes each"},
             {"leaves", double(f.leaves), ""},
-            {"max_leaf_triangles", double(maxLeafTriangles()), ""},
+            {"max_leaf_triangles", double(maxLeafTriangles(t)), ""},
             {"empty_leaves", double(f.emptyLeaves), ""},
             {"max_depth", double(f.maxDepth), "limit " + std::to_string(config_.resolvedMaxDepth(f.indexedTriangles))},
             {"mean_triangles_per_leaf", f.meanTrianglesPerLeaf(), "references / leaves"},
@@ -85,40 +96,13 @@ public:
              "budget " + shortNumber(config_.maxDuplication)},
             {"sah_cost", f.sahCost, config_.describe()},
             {"gpu_bytes", double(gpuBytes), "bytes"},
-            {"extra_bytes", double(extra().bytes.size()), extra().what},
+            {"extra_bytes", double(extra.bytes.size()), extra.what},
         };
-        if (const Extra e = extra(); e.buildStat) stats.insert(stats.begin() + 10, {e.buildStat, extraMs_, e.buildWhat});
+        if (extra.buildStat) stats.insert(stats.begin() + 10, {extra.buildStat, extraMs_, extra.buildWhat});
         return stats;
     }
 
 private:
-    // Parent links and node boxes (kd-backtrack) or node boxes and leaf ropes (kd-ropes): only the
-    // traversal that reads them makes (after the tree), uploads and pays for them; the time to make
-    // them is a build figure of its own.
-    struct Extra {
-        std::span<const std::byte> bytes;
-        const char* what;
-        const char* buildStat = nullptr;  // its --stats name, with buildWhat
-        const char* buildWhat = nullptr;
-    };
-    Extra extra() const {
-        const kd::KdTree& t = build_.tree;
-        switch (traversal_) {
-        case kd::Traversal::Backtrack:
-            return {std::as_bytes(std::span(t.extra)), "bytes: parent links and node boxes", "build_links_ms",
-                    "ms: parent links and node boxes"};
-        case kd::Traversal::Ropes:
-            return {std::as_bytes(std::span(t.ropes)), "bytes: node boxes and leaf ropes", "build_ropes_ms", "ms: ropes"};
-        default: return {{}, "bytes: none"};
-        }
-    }
-    uint32_t maxLeafTriangles() const {
-        uint32_t most = 0;
-        for (const gpu::KdNode& n : build_.tree.nodes)
-            if (n.isLeaf()) most = std::max(most, n.triangleCount());
-        return most;
-    }
-
     kd::Traversal traversal_;
     int shortStack_;
     kd::KdConfig config_;
@@ -143,6 +127,25 @@ Traversal kdTraversal(kd::Traversal traversal) {
 
 uint32_t kdShortStack(kd::Traversal traversal, int shortStack) {
     return traversal == kd::Traversal::ShortStack ? uint32_t(shortStack) : 0u;
+}
+
+GpuAccelData kdGpuData(const kd::KdTree& t, kd::Traversal traversal, int shortStack) {
+    GpuAccelData data;
+    data.traversal = kdTraversal(traversal);
+    data.nodeTexelBytes = VKRAY_KD_NODE_TEXEL_BYTES;
+    // kd-stack keeps a node index and two bits in one stack word (kd_stack.glsl).
+    if (t.nodes.size() > VKRAY_KD_MAX_NODES)
+        throw Error("the kd-tree has " + std::to_string(t.nodes.size()) + " nodes; the GPU kernels address at most " +
+                    std::to_string(VKRAY_KD_MAX_NODES) + " (raise kd-traversal-cost or lower kd-max-depth: --accel help)");
+    data.maxLeafTriangles = maxLeafTriangles(t);
+    data.kdShortStack = kdShortStack(traversal, shortStack);
+    data.nodes = asBytes(std::vector<gpu::KdTreeHeader>{t.header});
+    const std::vector<std::byte> nodeBytes = asBytes(t.nodes);
+    data.nodes.insert(data.nodes.end(), nodeBytes.begin(), nodeBytes.end());
+    data.indices = asBytes(t.indices);
+    const Extra e = extraOf(t, traversal);
+    data.extra.assign(e.bytes.begin(), e.bytes.end());
+    return data;
 }
 
 std::unique_ptr<BuiltAccel> buildKdAccel(const Scene& scene, const kd::KdConfig& config, kd::Traversal traversal,

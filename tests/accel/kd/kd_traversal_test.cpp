@@ -22,6 +22,7 @@
 
 #include "accel/kd/kd_traversal.h"
 #include "geometry/brute_force.h"
+#include "kd_hand_trees.h"
 #include "kd_test_util.h"
 #include "kd_tracer_fixture.h"
 #include "scene/camera.h"
@@ -341,70 +342,36 @@ TEST(KdShortStack, BetweenTheFullStackAndPushDown) {
     EXPECT_LT(cOne.nodes, cPush.nodes);
 }
 
-// Hand-made trees for rays lying in split planes: each triangle sits where the builder's one-sided
-// classification puts it (touching a plane from above: above only), and a decoy farther along the
-// ray sits on the other side. A traversal that walks only one side of an in-plane node returns the
-// decoy (or, for any hit, nothing before tmax).
-struct HandTree {
-    Scene scene;
-    KdTree tree;
-};
-
-gpu::KdNodeExtra boxOf(glm::vec3 lo, glm::vec3 hi, uint32_t parent) { return gpu::KdNodeExtra{lo, parent, hi, 0}; }
-
+// The hand-made trees of kd_hand_trees.h: rays lying in split planes, a decoy on the other side.
 TEST_P(KdTraversalTest, RayInSplitPlaneFindsTriangleTouchingItFromAbove) {
-    HandTree h;
-    // 0: touches x = 0 from above (an edge in the plane), hit at y = 0; 1: decoy touching from below, y = 2.
-    h.scene.triangles = {{{0, 0, -1}, {0, 0, 1}, {1, 0, 0}, 0}, {{0, 2, -1}, {0, 2, 1}, {-1, 2, 0}, 0}};
-    h.tree.header = gpu::KdTreeHeader{{-1, -1, -1}, 3, {1, 3, 1}, 2};
-    h.tree.nodes = {gpu::KdNode::inner(0, 0.0f, 2), gpu::KdNode::leaf(0, 1), gpu::KdNode::leaf(1, 1)};
-    h.tree.indices = {1, 0};
-    h.tree.extra = {boxOf({-1, -1, -1}, {1, 3, 1}, VKRAY_KD_NO_PARENT), boxOf({-1, -1, -1}, {0, 3, 1}, 0),
-                    boxOf({0, -1, -1}, {1, 3, 1}, 0)};
+    test::HandTree h = test::triangleTouchingThePlaneFromAbove();
     const auto kd = tracerFor(GetParam(), h.tree, geometry::triangleVertices(h.scene));
     const geometry::BruteForceTracer brute(h.scene);
     for (const double dx : {0.0, -0.0}) {
-        const geometry::Ray ray{{0.0, -1.0, 0.25}, {dx, 1.0, 0.0}};
+        const geometry::Ray ray{h.ray.origin, {dx, h.ray.dir.y, h.ray.dir.z}};
         const geometry::Hit want = brute.closest(ray, kInf);
         ASSERT_EQ(want.triangle, 0);
         const geometry::Hit got = kd->closest(ray, kInf);
         EXPECT_EQ(got.triangle, 0);
         EXPECT_EQ(got.t, want.t);
-        EXPECT_TRUE(kd->occluded(ray, 2.0));  // only triangle 0 lies before t = 2
+        EXPECT_TRUE(kd->occluded(ray, h.clearOf));  // only triangle 0 lies before it
     }
 }
 
-// A ray along the line where two split planes meet (x = 0 and y = 0, direction +z): four leaves
-// hold it, and only the fourth side-mask pass (above in x and in y) reaches the nearest triangle.
 TEST_P(KdTraversalTest, RayAlongTwoSplitPlanesNeedsFourPasses) {
-    HandTree h;
-    h.scene.triangles = {{{0, 0, 1}, {1, 0, 1}, {0, 1, 1}, 0},     // x above, y above: hit at z = 1
-                         {{0, 0, 2}, {-1, 0, 2}, {0, -1, 2}, 0},   // x below, y below: z = 2
-                         {{0, 0, 3}, {-1, 0, 3}, {0, 1, 3}, 0},    // x below, y above: z = 3
-                         {{0, 0, 4}, {1, 0, 4}, {0, -1, 4}, 0}};   // x above, y below: z = 4
-    const glm::vec3 lo(-1, -1, -1), hi(1, 1, 5);
-    h.tree.header = gpu::KdTreeHeader{lo, 7, hi, 4};
-    // 0: x = 0; 1: (below) y = 0, leaves 2 and 3; 4: (above) y = 0, leaves 5 and 6.
-    h.tree.nodes = {gpu::KdNode::inner(0, 0.0f, 4), gpu::KdNode::inner(1, 0.0f, 3), gpu::KdNode::leaf(0, 1),
-                    gpu::KdNode::leaf(1, 1),        gpu::KdNode::inner(1, 0.0f, 6), gpu::KdNode::leaf(2, 1),
-                    gpu::KdNode::leaf(3, 1)};
-    h.tree.indices = {1, 2, 3, 0};
-    h.tree.extra = {boxOf(lo, hi, VKRAY_KD_NO_PARENT),  boxOf(lo, {0, 1, 5}, 0),        boxOf(lo, {0, 0, 5}, 1),
-                    boxOf({-1, 0, -1}, {0, 1, 5}, 1),   boxOf({0, -1, -1}, hi, 0),      boxOf({0, -1, -1}, {1, 0, 5}, 4),
-                    boxOf({0, 0, -1}, hi, 4)};
+    test::HandTree h = test::rayAlongTwoSplitPlanes();
     const auto kd = tracerFor(GetParam(), h.tree, geometry::triangleVertices(h.scene));
     const geometry::BruteForceTracer brute(h.scene);
-    const geometry::Ray ray{{0.0, 0.0, -1.0}, {0.0, -0.0, 1.0}};
-    const geometry::Hit want = brute.closest(ray, kInf);
+    const geometry::Hit want = brute.closest(h.ray, kInf);
     ASSERT_EQ(want.triangle, 0);
     geometry::TraversalCounters c;
-    const geometry::Hit got = kd->closest(ray, kInf, &c);
+    const geometry::Hit got = kd->closest(h.ray, kInf, &c);
     EXPECT_EQ(got.triangle, 0);
     EXPECT_EQ(got.t, want.t);
     EXPECT_EQ(c.leaves, 4u) << "one leaf per side mask";
     EXPECT_EQ(c.capped, 0u);
-    EXPECT_TRUE(kd->occluded(ray, 2.5));  // only triangle 0 lies before t = 2.5
-    EXPECT_FALSE(kd->occluded(ray, 1.5));
+    EXPECT_TRUE(kd->occluded(h.ray, h.clearOf));  // only triangle 0 lies before it
+    EXPECT_FALSE(kd->occluded(h.ray, 1.5));
 }
 
 TEST(KdClip, ZeroDirectionComponentsNeverMakeNaN) {
