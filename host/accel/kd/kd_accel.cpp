@@ -83,7 +83,8 @@ public:
             {"build_distribute_ms", ms.distributeMs, "ms of the workers: lists split in order, new events merged in"},
             {"build_leaves_ms", ms.leavesMs, "ms of the workers: leaves"},
             {"build_small_ms", ms.smallMs,
-             "ms of the workers: subtrees under " + std::to_string(kd::kSmallSubtreeEvents) + " events"},
+             "ms of the workers: subtrees under " + std::to_string(kd::kSmallSubtreeEvents) +
+                 " events, in the phases above (their share estimated from one node in 64)"},
             {"build_flatten_ms", ms.flattenMs, "ms: GPU arrays"},
             {"nodes", double(f.nodes), "8 bytes each"},
             {"leaves", double(f.leaves), ""},

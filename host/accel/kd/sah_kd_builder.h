@@ -36,8 +36,9 @@ inline constexpr size_t kSmallSubtreeEvents = 1024;
 
 // Wall-clock milliseconds of the build's steps; the splitting's phases are worker time, summed over
 // the workers (so they add up to at most treeMs times the workers; the rest is task scheduling and
-// waiting). The phases are those of nodes of kSmallSubtreeEvents or more; smaller subtrees are one
-// figure.
+// waiting). Nodes of kSmallSubtreeEvents or more are timed phase by phase; the smaller subtrees as
+// a whole (smallMs), and their share of each phase is estimated from one node in 64 of theirs timed
+// phase by phase (timing every small node cost more than some phases).
 struct KdBuildTimes {
     double eventsMs = 0.0;   // bounds, initial events, the three sorts
     double treeMs = 0.0;     // recursive SAH splitting
@@ -46,7 +47,7 @@ struct KdBuildTimes {
     double clipMs = 0.0;        // worker time: straddlers clipped, their new events (4.3)
     double distributeMs = 0.0;  // worker time: the lists split in order, new events merged in (5.2-5.3)
     double leavesMs = 0.0;      // worker time: leaves made
-    double smallMs = 0.0;       // worker time: subtrees under kSmallSubtreeEvents, as a whole (phases untimed)
+    double smallMs = 0.0;       // worker time: subtrees under kSmallSubtreeEvents (their phases in those above)
     double flattenMs = 0.0;  // the GPU arrays
     double totalMs = 0.0;
 };
