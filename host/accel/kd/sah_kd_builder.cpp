@@ -13,7 +13,6 @@
 #include <optional>
 #include <stdexcept>
 #include <string>
-#include <utility>
 
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
@@ -120,8 +119,7 @@ struct AxisCost {
 // and small. One node in kSampledNodes of the small subtrees (every 64th a worker builds) is timed
 // phase by phase as well, and the small subtrees' share of each phase is estimated from those
 // nodes in proportion to the count: tens of thousands of samples where whole subtrees would give a
-// few (a few hundred subtrees hold a mesh's work). A sampled node's split is an instance of its
-// own (splitOnStack<true>); the rest execute 0.65% more instructions (the dragon's build).
+// few (a few hundred subtrees hold a mesh's work), for 0.7% more instructions (the dragon's build).
 enum Phase : size_t { kSweep, kClassify, kClip, kDistribute, kLeaves, kSmall, kPhaseCount };
 constexpr size_t kTimedEvents = kSmallSubtreeEvents;
 constexpr uint64_t kSampledNodes = 64;
@@ -194,20 +192,22 @@ private:
     NodePtr buildSmall(WorkerScratch& w, NodeEvents ev, const Box& box, int depth, size_t n, double budget);
     // Appends the subtree of the node whose lists are `lists` to w.flat in depth-first order.
     void buildFlat(WorkerScratch& w, const StackLists& lists, const Box& box, int depth, size_t n, double budget);
-    // kTimed: its phases timed (a sampled node); a separate instance, so the others pay nothing.
-    template <bool kTimed>
     std::pair<StackLists, StackLists> splitOnStack(WorkerScratch& w, const StackLists& lists, const SplitChoice& s,
                                                    const Box& below, const Box& above);
     // The lists' events, valid until the stack grows.
     static NodeSpans spansOn(const WorkerScratch& w, const StackLists& lists);
     void addProgress(WorkerScratch& w);
-    // Ticks since `start` to `phase` of `w`; in a small subtree (timed as a whole) only at a sampled
-    // node, to its sampled ticks.
-    static void lap(WorkerScratch& w, Phase phase, uint64_t start) {
-        if (!w.inSmallSubtree) w.ticks[phase] += ticks() - start;
-        else if (w.sampled) w.sampledTicks[phase] += ticks() - start;
+    // Whether `w`'s phases are timed now: outside the small subtrees (timed as a whole), and at their
+    // sampled nodes (to the sampled ticks).
+    static bool timed(const WorkerScratch& w) { return !w.inSmallSubtree || w.sampled; }
+    static uint64_t start(const WorkerScratch& w) { return timed(w) ? ticks() : 0; }
+    // Ticks since `start` to `phase` of `w`, when timed; returns the next phase's start.
+    static uint64_t lap(WorkerScratch& w, Phase phase, uint64_t start) {
+        if (!timed(w)) return 0;
+        const uint64_t now = ticks();
+        (w.inSmallSubtree ? w.sampledTicks : w.ticks)[phase] += now - start;
+        return now;
     }
-    static uint64_t start(const WorkerScratch& w) { return w.inSmallSubtree && !w.sampled ? 0 : ticks(); }
     // f(0), f(1), f(2), its time added to `phase` of the worker that ran it: as three oneTBB tasks
     // when `parallel`, each on its own worker's account, else in a row on `w`, this worker's.
     template <class F>
@@ -341,8 +341,7 @@ void Builder::splitEventsOn(WorkerScratch& w, NodeEvents& ev, const SplitChoice&
                             const Box& above, bool parallel, NodeEvents& belowEv, NodeEvents& aboveEv) {
     uint64_t t = start(w);
     w.splitter.classify(ev[s.axis], s.plane(), tris_.size());
-    lap(w, kClassify, t);
-    t = start(w);
+    t = lap(w, kClassify, t);
     w.splitter.clip(tris_, below, above, s.axis);
     lap(w, kClip, t);
     forEachAxisTimed(parallel, kDistribute, w, [&](int k) {
@@ -407,7 +406,6 @@ NodeSpans Builder::spansOn(const WorkerScratch& w, const StackLists& lists) {
 
 // The split of a small subtree's node: as splitEvents, the children's lists written on the stack
 // from its top, in room for two events per triangle and axis (at most that many: no bounds checks).
-template <bool kTimed>
 std::pair<StackLists, StackLists> Builder::splitOnStack(WorkerScratch& w, const StackLists& lists,
                                                         const SplitChoice& s, const Box& below, const Box& above) {
     std::pair<StackLists, StackLists> children;
@@ -418,16 +416,11 @@ std::pair<StackLists, StackLists> Builder::splitOnStack(WorkerScratch& w, const 
     const size_t base = w.top, end = base + 6 * (s.below + s.above);
     if (w.stack.size() < end) w.stack.resize(std::max(end, 2 * w.stack.size()));
     const NodeSpans ev = spansOn(w, lists);  // after the stack's growth, which moves it
-    uint64_t t = kTimed ? ticks() : 0;
-    const auto timed = [&](Phase phase) {  // the time since the last, to `phase`
-        if (!kTimed) return;
-        const uint64_t now = ticks();
-        w.sampledTicks[phase] += now - std::exchange(t, now);
-    };
+    uint64_t t = start(w);
     w.splitter.classify(ev[s.axis], s.plane(), tris_.size());
-    timed(kClassify);
+    t = lap(w, kClassify, t);
     w.splitter.clip(tris_, below, above, s.axis);
-    timed(kClip);
+    t = lap(w, kClip, t);
     Event* const stack = w.stack.data();
     for (int k = 0; k < 3; ++k) {
         children.first.at[k] = base + 2 * s.below * size_t(k);
@@ -438,7 +431,7 @@ std::pair<StackLists, StackLists> Builder::splitOnStack(WorkerScratch& w, const 
         children.first.size[k] = size_t(toBelow - (stack + children.first.at[k]));
         children.second.size[k] = size_t(toAbove - (stack + children.second.at[k]));
     }
-    timed(kDistribute);
+    lap(w, kDistribute, t);
     w.top = end;
     return children;
 }
@@ -465,8 +458,7 @@ void Builder::buildFlat(WorkerScratch& w, const StackLists& lists, const Box& bo
     }
     const auto [belowBox, aboveBox] = splitBox(box, s.axis, s.pos);
     const size_t top = w.top;
-    const auto [belowLists, aboveLists] =
-        w.sampled ? splitOnStack<true>(w, lists, s, belowBox, aboveBox) : splitOnStack<false>(w, lists, s, belowBox, aboveBox);
+    const auto [belowLists, aboveLists] = splitOnStack(w, lists, s, belowBox, aboveBox);
     const double share = budget / double(s.below + s.above);
     buildFlat(w, belowLists, belowBox, depth + 1, s.below, share * double(s.below));
     const auto aboveIndex = uint32_t(w.flat.size());
@@ -508,7 +500,7 @@ NodePtr Builder::build(NodeEvents ev, const Box& box, int depth, size_t n, doubl
         const uint64_t t = ticks();
         w.inSmallSubtree = true;
         NodePtr subtree = buildSmall(w, std::move(ev), box, depth, n, budget);
-        w.inSmallSubtree = w.sampled = false;
+        w.inSmallSubtree = false;
         w.ticks[kSmall] += ticks() - t;
         return subtree;
     }
