@@ -395,3 +395,10 @@ foreach(run "render;-o;${CLI_OUT}/memory.png" "render;--cpu;-o;${CLI_OUT}/memory
   set_tests_properties(cli.error.memory_ulimit_${name} PROPERTIES TIMEOUT 60)
 endforeach()
 endif()
+
+# The README's examples, run as a new user runs them after `make test` has fetched the meshes
+# (tests/cli/readme_examples.sh). Named outside cli.* so that the sanitizer build's CTest run
+# leaves it out: its benchmark example alone takes about a minute on 2 cores.
+add_test(NAME readme.examples
+         COMMAND ${CLI_DIR}/readme_examples.sh ${CMAKE_SOURCE_DIR} $<TARGET_FILE_DIR:vkray> ${CLI_OUT}/readme)
+set_tests_properties(readme.examples PROPERTIES TIMEOUT 900 ENVIRONMENT "VKRAY_VALIDATION=1")
