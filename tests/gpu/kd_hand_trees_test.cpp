@@ -1,12 +1,9 @@
 // The kd kernels on the hand-made trees of tests/accel/kd/kd_hand_trees.h: rays lying in split
 // planes, where a walk that takes one side of an in-plane node finds the decoy on the other side.
-// The scene is the tree's triangles seen from the tree's ray, at an odd size so that the centre
-// pixel's camera ray is that ray exactly (its zero components zero), and every kernel walking the
-// hand-made tree must name brute force's primary triangle at every pixel: triangle 0 at the centre.
-#include <cstdio>
-#include <string>
-#include <vector>
-
+// The scene, built in code, is the tree's triangles seen from the tree's ray, at an odd size so that
+// the centre pixel's camera ray is that ray exactly (its zero components zero), and every kernel
+// walking the hand-made tree must name brute force's primary triangle at every pixel: triangle 0 at
+// the centre.
 #include <gtest/gtest.h>
 
 #include "accel/accel_spec.h"
@@ -14,39 +11,26 @@
 #include "accel/kd/kd_hand_trees.h"
 #include "accel/kd/kd_ropes.h"
 #include "gpu_test_util.h"
+#include "support/scene_builder.h"
 
 namespace vkray {
 namespace {
 
-// The hand tree's triangles as a scene file, seen from its ray's origin along the ray.
+// The hand tree's triangles (in the tree's coordinates: origin 0) seen from its ray's origin
+// along the ray, in a material that shows only which triangle a pixel sees.
 Scene handScene(const test::HandTree& h) {
-    const glm::dvec3 eye = h.ray.origin, centre = h.ray.origin + h.ray.dir;
-    const glm::dvec3 up = h.ray.dir.z != 0.0 ? glm::dvec3(0, 1, 0) : glm::dvec3(0, 0, 1);
-    std::string text = "size 5 5\nmaxdepth 1\nambient 1 1 1\ndiffuse 0 0 0\n";
-    char line[160];
-    std::snprintf(line, sizeof line, "camera %.9g %.9g %.9g  %.9g %.9g %.9g  %.9g %.9g %.9g  40\n", eye.x, eye.y, eye.z,
-                  centre.x, centre.y, centre.z, up.x, up.y, up.z);
-    text += line;
-    for (const Triangle& t : h.scene.triangles) {
-        for (const glm::vec3& p : {t.p0, t.p1, t.p2}) {
-            std::snprintf(line, sizeof line, "vertex %.9g %.9g %.9g\n", p.x, p.y, p.z);
-            text += line;
-        }
-    }
-    for (size_t i = 0; i < h.scene.triangles.size(); ++i)
-        text += "tri " + std::to_string(3 * i) + " " + std::to_string(3 * i + 1) + " " + std::to_string(3 * i + 2) + "\n";
-    return parseSceneText(text, "hand-tree.scene", ".");
+    Scene s = h.scene;
+    s.camera.eye = glm::vec3(h.ray.origin);
+    s.camera.center = glm::vec3(h.ray.origin + h.ray.dir);
+    s.camera.up = h.ray.dir.z != 0.0 ? glm::vec3(0, 1, 0) : glm::vec3(0, 0, 1);
+    s.camera.fovyDegrees = 40.0f;
+    s.hasCamera = true;
+    s.materials = {test::blackMaterial()};
+    return s;
 }
 
 void expectEveryKernelFindsTriangleZero(test::HandTree h) {
     const Scene scene = handScene(h);
-    ASSERT_EQ(scene.origin, glm::dvec3(0.0));  // the tree's coordinates are the scene's
-    ASSERT_EQ(scene.triangles.size(), h.scene.triangles.size());
-    for (size_t i = 0; i < scene.triangles.size(); ++i) {
-        ASSERT_EQ(scene.triangles[i].p0, h.scene.triangles[i].p0);
-        ASSERT_EQ(scene.triangles[i].p1, h.scene.triangles[i].p1);
-        ASSERT_EQ(scene.triangles[i].p2, h.scene.triangles[i].p2);
-    }
     const RenderOptions options{.width = 5, .height = 5, .maxDepth = 1};
     ASSERT_EQ(primaryDirection(makeCameraFrame(scene.camera, 5, 5), 2, 2), h.ray.dir);  // the centre ray lies in the planes
     const Frame brute = test::renderGpu(scene, options);

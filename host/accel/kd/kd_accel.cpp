@@ -84,7 +84,8 @@ public:
             {"build_leaves_ms", ms.leavesMs, "ms of the workers: leaves"},
             {"build_small_ms", ms.smallMs,
              "ms of the workers: subtrees under " + std::to_string(kd::kSmallSubtreeEvents) +
-                 " events, in the phases above (their share estimated from one node in 64)"},
+                 " events, in the phases above (their share estimated from one node in " +
+                 std::to_string(kd::kSampledSmallNodes) + ")"},
             {"build_flatten_ms", ms.flattenMs, "ms: GPU arrays"},
             {"nodes", double(f.nodes), "8 bytes each"},
             {"leaves", double(f.leaves), ""},

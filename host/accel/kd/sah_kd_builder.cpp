@@ -111,18 +111,17 @@ struct AxisCost {
     }
 };
 
-
 // The build's phases (KdBuildTimes), timed per worker in processor ticks, turned into milliseconds
 // once, against the wall clock, at the end. Nodes of at least kTimedEvents events are timed phase by
 // phase; a subtree below that is timed as a whole (kSmall), on the one worker that builds it (its
 // nodes are below kParallelEvents), so the timing costs nothing that matters where nodes are many
-// and small. One node in kSampledNodes of the small subtrees (every 64th a worker builds) is timed
-// phase by phase as well, and the small subtrees' share of each phase is estimated from those
-// nodes in proportion to the count: tens of thousands of samples where whole subtrees would give a
-// few (a few hundred subtrees hold a mesh's work), for 0.7% more instructions (the dragon's build).
+// and small. One node in kSampledSmallNodes of the small subtrees (a worker's first, and every
+// kSampledSmallNodes-th after it) is timed phase by phase as well, and the small subtrees' share
+// of each phase is estimated from those nodes in proportion to the count: tens of thousands of
+// samples where whole subtrees would give a few (a few hundred subtrees hold a mesh's work), for
+// 0.5% more instructions (the dragon's build).
 enum Phase : size_t { kSweep, kClassify, kClip, kDistribute, kLeaves, kSmall, kPhaseCount };
 constexpr size_t kTimedEvents = kSmallSubtreeEvents;
-constexpr uint64_t kSampledNodes = 64;
 static_assert(kTimedEvents <= kParallelEvents);
 
 uint64_t ticks() {
@@ -152,7 +151,7 @@ struct WorkerScratch {
     std::array<uint64_t, kPhaseCount> sampledTicks{};  // the phases of the sampled small-subtree nodes
     bool inSmallSubtree = false;  // timed as a whole (kSmall): its phases only at sampled nodes
     bool sampled = false;         // this small-subtree node is timed phase by phase
-    uint64_t smallNodes = 0, sampledNodes = 0;
+    uint64_t smallNodes = 0;      // small-subtree nodes built (numbers 0, 64, ... sampled)
     uint64_t doneWeight = 0;      // leaves' progress weights not yet added to the build's
 };
 
@@ -197,6 +196,12 @@ private:
     // The lists' events, valid until the stack grows.
     static NodeSpans spansOn(const WorkerScratch& w, const StackLists& lists);
     void addProgress(WorkerScratch& w);
+    // The split's sides marked and its straddlers clipped to both children (w.splitter), each step
+    // timed to its phase; returns the clip's end (the list split's start).
+    uint64_t classifyAndClip(WorkerScratch& w, EventSpan splitAxis, const SplitChoice& s, const Box& below,
+                             const Box& above);
+    // A leaf at `depth`, made since `start`: its time to the leaves' phase, its weight to the progress.
+    void leafDone(WorkerScratch& w, int depth, uint64_t start);
     // Whether `w`'s phases are timed now: outside the small subtrees (timed as a whole), and at their
     // sampled nodes (to the sampled ticks).
     static bool timed(const WorkerScratch& w) { return !w.inSmallSubtree || w.sampled; }
@@ -231,7 +236,10 @@ private:
 
 double Builder::smallNodesPerSample() const {
     uint64_t nodes = 0, sampled = 0;
-    for (const WorkerScratch& w : scratch_) nodes += w.smallNodes, sampled += w.sampledNodes;
+    for (const WorkerScratch& w : scratch_) {
+        nodes += w.smallNodes;
+        sampled += (w.smallNodes + kSampledSmallNodes - 1) / kSampledSmallNodes;  // nodes 0, 64, 128, ...
+    }
     return sampled > 0 ? double(nodes) / double(sampled) : 0.0;
 }
 
@@ -257,7 +265,6 @@ void Builder::forEachAxisTimed(bool parallel, Phase phase, WorkerScratch& w, con
         lap(w, phase, t);
     }
 }
-
 
 // The plane sweep of Wald and Havran (section 4.2, Algorithm 4) with their classification: at plane
 // p, below = triangles starting before p (those ending at p touch it from below), above = triangles
@@ -339,11 +346,7 @@ std::pair<NodeEvents, NodeEvents> Builder::splitEvents(WorkerScratch& w, NodeEve
 
 void Builder::splitEventsOn(WorkerScratch& w, NodeEvents& ev, const SplitChoice& s, const Box& below,
                             const Box& above, bool parallel, NodeEvents& belowEv, NodeEvents& aboveEv) {
-    uint64_t t = start(w);
-    w.splitter.classify(ev[s.axis], s.plane(), tris_.size());
-    t = lap(w, kClassify, t);
-    w.splitter.clip(tris_, below, above, s.axis);
-    lap(w, kClip, t);
+    classifyAndClip(w, ev[s.axis], s, below, above);
     forEachAxisTimed(parallel, kDistribute, w, [&](int k) {
         AxisEvents &toBelow = belowEv[k], &toAbove = aboveEv[k];
         // A triangle has at most two events per axis, so twice a side's count (straddlers included)
@@ -363,10 +366,23 @@ NodePtr Builder::makeLeaf(WorkerScratch& w, const NodeEvents& ev, int depth, siz
         leaf->triangles = trianglesOf(ev, n);
         leaf->subtreeRefs = leaf->triangles.size();
     }
-    lap(w, kLeaves, t);  // before the progress report, which may print
+    leafDone(w, depth, t);
+    return leaf;
+}
+
+inline void Builder::leafDone(WorkerScratch& w, int depth, uint64_t start) {
+    lap(w, kLeaves, start);  // before the progress report, which may print
     w.doneWeight += uint64_t(1) << (62 - depth);
     if (w.doneWeight >= kProgressStep) addProgress(w);
-    return leaf;
+}
+
+inline uint64_t Builder::classifyAndClip(WorkerScratch& w, EventSpan splitAxis, const SplitChoice& s,
+                                         const Box& below, const Box& above) {
+    uint64_t t = start(w);
+    w.splitter.classify(splitAxis, s.plane(), tris_.size());
+    t = lap(w, kClassify, t);
+    w.splitter.clip(tris_, below, above, s.axis);
+    return lap(w, kClip, t);
 }
 
 NodePtr Builder::buildSmall(WorkerScratch& w, NodeEvents ev, const Box& box, int depth, size_t n, double budget) {
@@ -416,11 +432,7 @@ std::pair<StackLists, StackLists> Builder::splitOnStack(WorkerScratch& w, const 
     const size_t base = w.top, end = base + 6 * (s.below + s.above);
     if (w.stack.size() < end) w.stack.resize(std::max(end, 2 * w.stack.size()));
     const NodeSpans ev = spansOn(w, lists);  // after the stack's growth, which moves it
-    uint64_t t = start(w);
-    w.splitter.classify(ev[s.axis], s.plane(), tris_.size());
-    t = lap(w, kClassify, t);
-    w.splitter.clip(tris_, below, above, s.axis);
-    t = lap(w, kClip, t);
+    const uint64_t t = classifyAndClip(w, ev[s.axis], s, below, above);
     Event* const stack = w.stack.data();
     for (int k = 0; k < 3; ++k) {
         children.first.at[k] = base + 2 * s.below * size_t(k);
@@ -442,8 +454,7 @@ void Builder::buildFlat(WorkerScratch& w, const StackLists& lists, const Box& bo
     const auto index = uint32_t(w.flat.size());
     w.flat.emplace_back();
     // This node's phases all run before its children's, which sample themselves.
-    w.sampled = w.smallNodes++ % kSampledNodes == 0;
-    w.sampledNodes += w.sampled;
+    w.sampled = w.smallNodes++ % kSampledSmallNodes == 0;
     SplitChoice s;
     if (n > 0 && depth < maxDepth_) s = findBestSplit(w, spansOn(w, lists), box, n, budget, false);
     if (s.axis < 0 || s.cost >= config_.intersectionCost * double(n)) {
@@ -451,9 +462,7 @@ void Builder::buildFlat(WorkerScratch& w, const StackLists& lists, const Box& bo
         const auto first = uint32_t(w.flatIndices.size());
         appendTrianglesOf(spansOn(w, lists)[0], w.flatIndices);
         w.flat[index] = gpu::KdNode::leaf(first, uint32_t(w.flatIndices.size() - first));
-        lap(w, kLeaves, t);  // before the progress report, which may print
-        w.doneWeight += uint64_t(1) << (62 - depth);
-        if (w.doneWeight >= kProgressStep) addProgress(w);
+        leafDone(w, depth, t);
         return;
     }
     const auto [belowBox, aboveBox] = splitBox(box, s.axis, s.pos);

@@ -33,12 +33,15 @@ namespace vkray::accel::kd {
 // A subtree whose root has fewer events than this on an axis is built on one worker, straight in
 // the flat layout, its event lists on a stack (sah_kd_builder.cpp).
 inline constexpr size_t kSmallSubtreeEvents = 1024;
+// Of the small subtrees' nodes, every this-many-th a worker builds is timed phase by phase
+// (KdBuildTimes).
+inline constexpr uint64_t kSampledSmallNodes = 64;
 
 // Wall-clock milliseconds of the build's steps; the splitting's phases are worker time, summed over
 // the workers (so they add up to at most treeMs times the workers; the rest is task scheduling and
 // waiting). Nodes of kSmallSubtreeEvents or more are timed phase by phase; the smaller subtrees as
-// a whole (smallMs), and their share of each phase is estimated from one node in 64 of theirs timed
-// phase by phase (timing every small node cost more than some phases).
+// a whole (smallMs), and their share of each phase is estimated from one node in kSampledSmallNodes
+// of theirs timed phase by phase (timing every small node cost more than some phases).
 struct KdBuildTimes {
     double eventsMs = 0.0;   // bounds, initial events, the three sorts
     double treeMs = 0.0;     // recursive SAH splitting
